@@ -1,0 +1,18 @@
+# FindSuiteSparse: Debian's SuiteSparse 5.x ships neither a CMake config nor a pkg-config file.
+# Defines the imported target SuiteSparse::SuiteSparse (CHOLMOD, UMFPACK, KLU and what they need).
+find_path(SuiteSparse_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse)
+set(_ss_libs cholmod umfpack klu btf amd colamd camd ccolamd suitesparseconfig)
+set(_ss_paths)
+foreach(_lib IN LISTS _ss_libs)
+  find_library(SuiteSparse_${_lib}_LIBRARY NAMES ${_lib})
+  list(APPEND _ss_paths SuiteSparse_${_lib}_LIBRARY)
+endforeach()
+include(FindPackageHandleStandardArgs)
+find_package_handle_standard_args(SuiteSparse REQUIRED_VARS SuiteSparse_INCLUDE_DIR ${_ss_paths})
+if(SuiteSparse_FOUND AND NOT TARGET SuiteSparse::SuiteSparse)
+  add_library(SuiteSparse::SuiteSparse INTERFACE IMPORTED)
+  set_target_properties(SuiteSparse::SuiteSparse PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${SuiteSparse_INCLUDE_DIR}")
+  foreach(_lib IN LISTS _ss_libs)
+    set_property(TARGET SuiteSparse::SuiteSparse APPEND PROPERTY INTERFACE_LINK_LIBRARIES "${SuiteSparse_${_lib}_LIBRARY}")
+  endforeach()
+endif()

@@ -1,0 +1,56 @@
+#pragma once
+// Assembly of the reduced system through a DofMap.
+//
+// Elements give matrices and vectors over their raw DOFs; the assembler maps them through the
+// constraint transformation, raw u = T_f u_free + T_p u_prescribed:
+//   K_ff += T_f,e^T K_e T_f,e      K_fp += T_f,e^T K_e T_p,e
+// The first assembly builds the CSC pattern from triplets; later assemblies with the same
+// sequence of calls write straight into the values (the pattern, and hence the symbolic
+// factorisation, is reused).
+#include <Eigen/SparseCore>
+#include <span>
+#include <vector>
+
+#include "core/dof_map.hpp"
+
+namespace beamfea {
+
+class SystemAssembler {
+ public:
+  explicit SystemAssembler(const DofMap& map) : map_(&map) {}
+
+  // Starts an assembly pass; zeroes the values once the pattern is known.
+  void begin();
+  // Adds a symmetric or unsymmetric matrix over raw DOFs.
+  void add(std::span<const int> raw, const Eigen::Ref<const Eigen::MatrixXd>& K);
+  // Ends the pass: on the first pass, builds the pattern.
+  void end();
+
+  const SparseMatrix& K_ff() const { return Kff_; }   // free x free
+  const SparseMatrix& K_fp() const { return Kfp_; }   // free x prescribed
+  bool has_pattern() const { return built_; }
+  // Must be called when the DofMap changes structure (a new map object).
+  void reset(const DofMap& map);
+
+ private:
+  struct Triplet {
+    int row, col;
+    double value;
+  };
+  void put(std::vector<Triplet>& trip, std::vector<int>& pos, std::size_t& k, SparseMatrix& A, int r, int c, double v);
+  static void build(SparseMatrix& A, int rows, int cols, const std::vector<Triplet>& trip, std::vector<int>& pos);
+
+  const DofMap* map_;
+  bool built_ = false;
+  SparseMatrix Kff_, Kfp_;
+  std::vector<Triplet> tff_, tfp_;
+  std::vector<int> pos_ff_, pos_fp_;
+  std::size_t kff_ = 0, kfp_ = 0;
+  // Scratch for one call, reused between calls (member, not static).
+  std::vector<std::pair<int, double>> terms_f_;
+  std::vector<int> start_f_;
+  std::vector<std::pair<int, double>> terms_p_;
+  std::vector<int> start_p_;
+};
+
+}  // namespace beamfea

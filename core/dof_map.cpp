@@ -1,0 +1,429 @@
+#include "core/dof_map.hpp"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <map>
+
+#include "core/errors.hpp"
+
+namespace beamfea {
+
+Configuration reference_configuration(const Model& m) {
+  Configuration c;
+  c.x.reserve(m.nodes.size());
+  for (const auto& n : m.nodes) c.x.push_back(n.x);
+  c.R.assign(m.nodes.size(), Mat3::Identity());
+  c.joint_axes.reserve(m.joints.size());
+  for (const auto& j : m.joints) c.joint_axes.push_back(j.axes);
+  return c;
+}
+
+namespace {
+
+using Expr = std::map<int, double>;
+
+void add_scaled(Expr& dst, const Expr& src, double f) {
+  if (f == 0.0) return;
+  for (const auto& [k, v] : src) dst[k] += f * v;
+}
+
+double max_abs(const Expr& e) {
+  double m = 0.0;
+  for (const auto& [k, v] : e) m = std::max(m, std::abs(v));
+  return m;
+}
+
+}  // namespace
+
+DofMap::DofMap(const Model& model, const Configuration& configuration) : model_(&model) {
+  n_nodes_ = static_cast<int>(model.nodes.size());
+  n_raw_ = 6 * n_nodes_;
+  joint_offset_.reserve(model.joints.size());
+  for (const auto& j : model.joints) {
+    joint_offset_.push_back(n_raw_);
+    n_raw_ += j.coordinates();
+  }
+  x_ = configuration.x;
+  build_forest(model);
+  build_tree_rows(model, configuration);
+  build_extra_rows(model, configuration);
+  eliminate(model);
+}
+
+int DofMap::raw_index(const DofRef& d) const {
+  return d.owner == DofRef::Owner::Node ? raw_node(d.index, d.comp) : raw_joint(d.index, d.comp);
+}
+
+DofRef DofMap::raw_ref(int raw) const {
+  if (raw < 6 * n_nodes_) return {DofRef::Owner::Node, raw / 6, raw % 6};
+  const auto it = std::upper_bound(joint_offset_.begin(), joint_offset_.end(), raw);
+  const int j = static_cast<int>(it - joint_offset_.begin()) - 1;
+  return {DofRef::Owner::Joint, j, raw - joint_offset_[j]};
+}
+
+int DofMap::prescribed_index(int raw) const { return raw_prescribed_[raw]; }
+
+Eigen::VectorXd DofMap::prescribed_values() const {
+  Eigen::VectorXd v(prescribed_size());
+  for (int i = 0; i < prescribed_size(); ++i) v[i] = prescribed_[i].value;
+  return v;
+}
+
+// Spanning forest of the graph of rigid links and joints, rooted at the most supported node of
+// each connected component so that supports fall on independent DOFs whenever possible.
+void DofMap::build_forest(const Model& m) {
+  struct Adj {
+    ConstraintEdge::Kind kind;
+    int index, other;
+  };
+  std::vector<std::vector<Adj>> adj(n_nodes_);
+  for (int e = 0; e < static_cast<int>(m.elements.size()); ++e) {
+    const auto& el = m.elements[e];
+    if (el.type != MemberType::Rigid) continue;
+    adj[el.nodes[0]].push_back({ConstraintEdge::Kind::Rigid, e, el.nodes[1]});
+    adj[el.nodes[1]].push_back({ConstraintEdge::Kind::Rigid, e, el.nodes[0]});
+  }
+  for (int j = 0; j < static_cast<int>(m.joints.size()); ++j) {
+    const auto& jt = m.joints[j];
+    adj[jt.nodes[0]].push_back({ConstraintEdge::Kind::Joint, j, jt.nodes[1]});
+    adj[jt.nodes[1]].push_back({ConstraintEdge::Kind::Joint, j, jt.nodes[0]});
+  }
+  std::vector<int> support_count(n_nodes_, 0);
+  for (const auto& s : m.supports)
+    for (bool f : s.fixed) support_count[s.node] += f ? 1 : 0;
+  for (const auto& p : m.prescribed)
+    if (p.dof.owner == DofRef::Owner::Node) support_count[p.dof.index] += 1;
+
+  // Visit candidate roots from the most supported down.
+  std::vector<int> order(n_nodes_);
+  for (int i = 0; i < n_nodes_; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return support_count[a] > support_count[b]; });
+
+  parent_edge_.assign(n_nodes_, -1);
+  std::vector<char> visited(n_nodes_, 0);
+  std::vector<char> used_rigid(m.elements.size(), 0), used_joint(m.joints.size(), 0);
+  for (int root : order) {
+    if (visited[root] || adj[root].empty()) continue;
+    visited[root] = 1;
+    std::deque<int> queue{root};
+    while (!queue.empty()) {
+      const int n = queue.front();
+      queue.pop_front();
+      for (const auto& a : adj[n]) {
+        auto& used = a.kind == ConstraintEdge::Kind::Rigid ? used_rigid[a.index] : used_joint[a.index];
+        if (used) continue;
+        used = 1;
+        ConstraintEdge e;
+        e.kind = a.kind;
+        e.index = a.index;
+        if (!visited[a.other]) {
+          visited[a.other] = 1;
+          e.parent = n;
+          e.child = a.other;
+          e.forward = a.kind == ConstraintEdge::Kind::Joint ? m.joints[a.index].nodes[0] == n : true;
+          parent_edge_[a.other] = static_cast<int>(tree_edges_.size());
+          tree_order_.push_back(static_cast<int>(tree_edges_.size()));
+          tree_edges_.push_back(e);
+          queue.push_back(a.other);
+        } else {
+          // Closes a loop: kept as an extra constraint, written from nodes[0] to nodes[1].
+          const auto& ends = a.kind == ConstraintEdge::Kind::Rigid ? m.elements[a.index].nodes
+                                                                   : m.joints[a.index].nodes;
+          e.parent = ends[0];
+          e.child = ends[1];
+          e.forward = true;
+          loop_edges_.push_back(e);
+        }
+      }
+    }
+  }
+}
+
+// Raw rows of the slaves in terms of independent DOFs, parents first.
+//   rigid link p -> s, d = x_s - x_p:  u_s = u_p + theta_p x d,  theta_s = theta_p
+//   joint p -> s:                       u_s = u_p,  theta_s = theta_p +/- sum_i a_i dq_i
+void DofMap::build_tree_rows(const Model&, const Configuration& c) {
+  raw_to_ind_.assign(n_raw_, -1);
+  for (int n = 0; n < n_nodes_; ++n)
+    if (!is_slave(n))
+      for (int k = 0; k < 6; ++k) raw_to_ind_[6 * n + k] = 0;
+  for (int r = 6 * n_nodes_; r < n_raw_; ++r) raw_to_ind_[r] = 0;
+  for (int r = 0; r < n_raw_; ++r)
+    if (raw_to_ind_[r] == 0) {
+      raw_to_ind_[r] = static_cast<int>(ind_to_raw_.size());
+      ind_to_raw_.push_back(r);
+    }
+  n_ind_ = static_cast<int>(ind_to_raw_.size());
+
+  std::vector<Expr> rows(n_raw_);
+  for (int r = 0; r < n_raw_; ++r)
+    if (raw_to_ind_[r] >= 0) rows[r][raw_to_ind_[r]] = 1.0;
+  for (int ei : tree_order_) {
+    const auto& e = tree_edges_[ei];
+    const int p = e.parent, s = e.child;
+    for (int k = 0; k < 6; ++k) rows[6 * s + k] = rows[6 * p + k];
+    if (e.kind == ConstraintEdge::Kind::Rigid) {
+      const Mat3 D = -skew(c.x[s] - c.x[p]);  // u_s += -[d] theta_p
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) add_scaled(rows[6 * s + i], rows[6 * p + 3 + k], D(i, k));
+    } else {
+      const double sign = e.forward ? 1.0 : -1.0;
+      const auto& axes = c.joint_axes[e.index];
+      for (int q = 0; q < static_cast<int>(axes.size()); ++q) {
+        const int rq = raw_joint(e.index, q);
+        for (int i = 0; i < 3; ++i) add_scaled(rows[6 * s + 3 + i], rows[rq], sign * axes[q][i]);
+      }
+    }
+  }
+  tree_rows_.resize(n_raw_);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int r = 0; r < n_raw_; ++r) {
+    for (const auto& [k, v] : rows[r]) {
+      if (v == 0.0) continue;
+      tree_rows_[r].push_back({k, v});
+      t.emplace_back(r, k, v);
+    }
+  }
+  Tind_.resize(n_raw_, n_ind_);
+  Tind_.setFromTriplets(t.begin(), t.end());
+}
+
+// Row k (0..5) of a loop edge over raw DOFs, from nodes[0] (parent) to nodes[1] (child).
+DofMap::Row DofMap::edge_row_raw(const Model&, const Configuration& c, const ConstraintEdge& e, int k) const {
+  Row row;
+  const int p = e.parent, s = e.child;
+  if (k < 3) {
+    row.push_back({6 * s + k, 1.0});
+    row.push_back({6 * p + k, -1.0});
+    if (e.kind == ConstraintEdge::Kind::Rigid) {
+      const Mat3 D = skew(c.x[s] - c.x[p]);  // u_s - u_p + [d] theta_p = 0
+      for (int j = 0; j < 3; ++j)
+        if (D(k, j) != 0.0) row.push_back({6 * p + 3 + j, D(k, j)});
+    }
+  } else {
+    const int i = k - 3;
+    row.push_back({6 * s + 3 + i, 1.0});
+    row.push_back({6 * p + 3 + i, -1.0});
+    if (e.kind == ConstraintEdge::Kind::Joint) {
+      const auto& axes = c.joint_axes[e.index];
+      for (int q = 0; q < static_cast<int>(axes.size()); ++q)
+        if (axes[q][i] != 0.0) row.push_back({raw_joint(e.index, q), -axes[q][i]});
+    }
+  }
+  return row;
+}
+
+void DofMap::build_extra_rows(const Model& m, const Configuration& c) {
+  // Prescribed values: supports first (value 0), then "prescribed" entries override values.
+  raw_prescribed_.assign(n_raw_, -1);
+  auto prescribe = [&](int raw, double value, bool support) {
+    int& p = raw_prescribed_[raw];
+    if (p < 0) {
+      p = static_cast<int>(prescribed_.size());
+      prescribed_.push_back({raw_ref(raw), value, support});
+    } else {
+      if (!support) prescribed_[p].value = value;
+      prescribed_[p].support = prescribed_[p].support || support;
+    }
+  };
+  for (const auto& s : m.supports)
+    for (int k = 0; k < 6; ++k)
+      if (s.fixed[k]) prescribe(6 * s.node + k, 0.0, true);
+  for (const auto& p : m.prescribed) prescribe(raw_index(p.dof), p.value, false);
+
+  ind_prescribed_.assign(n_ind_, -1);
+  for (int r = 0; r < n_raw_; ++r) {
+    const int p = raw_prescribed_[r];
+    if (p < 0) continue;
+    if (raw_to_ind_[r] >= 0) {
+      ind_prescribed_[raw_to_ind_[r]] = p;
+    } else {
+      ExtraRow x;
+      x.raw.push_back({r, 1.0});
+      x.rhs.push_back({p, 1.0});
+      x.prescribed = p;
+      extra_.push_back(std::move(x));
+    }
+  }
+  for (const auto& e : loop_edges_)
+    for (int k = 0; k < 6; ++k) {
+      ExtraRow x;
+      x.raw = edge_row_raw(m, c, e, k);
+      if (e.kind == ConstraintEdge::Kind::Joint) {
+        x.joint = e.index;
+        x.joint_row = k;
+      }
+      extra_.push_back(std::move(x));
+    }
+}
+
+// Gauss-Jordan elimination of the extra constraints on the independent DOFs; prescribed
+// independent DOFs are known values, encoded as keys -1 - p in the expressions.
+void DofMap::eliminate(const Model& m) {
+  auto presc_key = [](int p) { return -1 - p; };
+  std::map<int, Expr> dependent;  // ind -> expression over free ind (keys >= 0) and prescribed
+  extra_ind_.clear();
+  for (const auto& x : extra_) {
+    Expr row;  // row . ind - rhs . p = 0
+    for (const auto& t : x.raw)
+      for (const auto& u : tree_rows_[t.ind]) row[u.ind] += t.coef * u.coef;
+    extra_ind_.push_back(row);
+    for (const auto& t : x.rhs) row[presc_key(t.ind)] -= t.coef;
+    const double scale = max_abs(row);
+    // Known values and earlier eliminations.
+    Expr e;
+    for (const auto& [k, v] : row) {
+      if (k < 0) {
+        e[k] += v;
+      } else if (ind_prescribed_[k] >= 0) {
+        e[presc_key(ind_prescribed_[k])] += v;
+      } else if (auto it = dependent.find(k); it != dependent.end()) {
+        add_scaled(e, it->second, v);
+      } else {
+        e[k] += v;
+      }
+    }
+    int pivot = -1;
+    double best = 1e-10 * scale;
+    for (const auto& [k, v] : e)
+      if (k >= 0 && std::abs(v) > best) {
+        best = std::abs(v);
+        pivot = k;
+      }
+    if (pivot < 0) {
+      Row r;
+      for (const auto& [k, v] : e)
+        if (k < 0 && std::abs(v) > 1e-10 * scale) r.push_back({-1 - k, v});
+      if (!r.empty()) redundant_.push_back(r);
+      continue;
+    }
+    const double cp = e[pivot];
+    Expr expr;
+    for (const auto& [k, v] : e)
+      if (k != pivot && std::abs(v) > 1e-14 * scale) expr[k] = -v / cp;
+    for (auto& [d, de] : dependent) {
+      auto it = de.find(pivot);
+      if (it == de.end()) continue;
+      const double f = it->second;
+      de.erase(it);
+      add_scaled(de, expr, f);
+    }
+    dependent[pivot] = std::move(expr);
+  }
+
+  raw_to_free_.assign(n_raw_, -1);
+  std::vector<int> ind_to_free(n_ind_, -1);
+  for (int i = 0; i < n_ind_; ++i) {
+    if (ind_prescribed_[i] >= 0 || dependent.count(i)) continue;
+    ind_to_free[i] = n_free_++;
+    raw_to_free_[ind_to_raw_[i]] = ind_to_free[i];
+    free_refs_.push_back(raw_ref(ind_to_raw_[i]));
+  }
+  ind_dependent_.assign(n_ind_, 0);
+  for (const auto& [d, de] : dependent) ind_dependent_[d] = 1;
+
+  std::vector<Eigen::Triplet<double>> tf, tp;
+  auto emit = [&](int raw, int k, double v) {
+    if (k < 0) {
+      tp.emplace_back(raw, -1 - k, v);
+    } else {
+      tf.emplace_back(raw, ind_to_free[k], v);
+    }
+  };
+  for (int r = 0; r < n_raw_; ++r)
+    for (const auto& t : tree_rows_[r]) {
+      if (ind_prescribed_[t.ind] >= 0) {
+        emit(r, presc_key(ind_prescribed_[t.ind]), t.coef);
+      } else if (auto it = dependent.find(t.ind); it != dependent.end()) {
+        for (const auto& [k, v] : it->second) emit(r, k, t.coef * v);
+      } else {
+        emit(r, t.ind, t.coef);
+      }
+    }
+  Tf_.resize(n_raw_, n_free_);
+  Tf_.setFromTriplets(tf.begin(), tf.end());
+  Tf_.prune(0.0);
+  Tp_.resize(n_raw_, prescribed_size());
+  Tp_.setFromTriplets(tp.begin(), tp.end());
+  Tp_.prune(0.0);
+  (void)m;
+}
+
+Eigen::VectorXd DofMap::expand(const Eigen::VectorXd& u_free, const Eigen::VectorXd& u_prescribed) const {
+  Eigen::VectorXd u = Tf_ * u_free;
+  if (prescribed_size() > 0) u += Tp_ * u_prescribed;
+  return u;
+}
+
+std::string DofMap::check_consistency(const Eigen::VectorXd& u_prescribed) const {
+  for (const auto& r : redundant_) {
+    double s = 0.0, mag = 0.0;
+    for (const auto& t : r) {
+      s += t.coef * u_prescribed[t.ind];
+      mag += std::abs(t.coef * u_prescribed[t.ind]);
+    }
+    if (std::abs(s) > 1e-9 * mag + 1e-300 && std::abs(s) > 0.0) {
+      std::string names;
+      for (const auto& t : r) names += (names.empty() ? "" : ", ") + model_->describe(prescribed_[t.ind].dof);
+      return "supports or prescribed values on one rigid body disagree: " + names;
+    }
+  }
+  return "";
+}
+
+DofMap::ConstraintForces DofMap::constraint_forces(const Eigen::VectorXd& r_raw) const {
+  ConstraintForces out;
+  const Eigen::VectorXd r_ind = Tind_.transpose() * r_raw;
+  const int m = static_cast<int>(extra_.size());
+
+  // Multipliers of the extra constraints: sum_k lambda_k C_k = r_ind on the unprescribed DOFs.
+  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m);
+  if (m > 0) {
+    std::map<int, int> rows;  // ind -> equation
+    for (const auto& row : extra_ind_)
+      for (const auto& [k, v] : row)
+        if (ind_prescribed_[k] < 0 && !rows.count(k)) rows.emplace(k, static_cast<int>(rows.size()));
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), m);
+    Eigen::VectorXd b(static_cast<Eigen::Index>(rows.size()));
+    for (const auto& [k, i] : rows) b[i] = r_ind[k];
+    for (int c = 0; c < m; ++c)
+      for (const auto& [k, v] : extra_ind_[c])
+        if (auto it = rows.find(k); it != rows.end()) A(it->second, c) += v;
+    if (A.rows() > 0) lambda = A.completeOrthogonalDecomposition().solve(b);
+  }
+
+  out.prescribed.assign(prescribed_.size(), 0.0);
+  for (int i = 0; i < n_ind_; ++i) {
+    const int p = ind_prescribed_[i];
+    if (p < 0) continue;
+    double v = r_ind[i];
+    for (int c = 0; c < m; ++c)
+      if (auto it = extra_ind_[c].find(i); it != extra_ind_[c].end()) v -= lambda[c] * it->second;
+    out.prescribed[p] = v;
+  }
+  for (int c = 0; c < m; ++c)
+    if (extra_[c].prescribed >= 0) out.prescribed[extra_[c].prescribed] = lambda[c];
+
+  // Forces carried by the tree edges: accumulate the residual from the leaves to the roots.
+  Eigen::VectorXd r = r_raw;
+  for (int c = 0; c < m; ++c)
+    for (const auto& t : extra_[c].raw) r[t.ind] -= lambda[c] * t.coef;
+  std::vector<Vec6> acc(n_nodes_);
+  for (int n = 0; n < n_nodes_; ++n) acc[n] = r.segment<6>(6 * n);
+  out.joint.assign(model_->joints.size(), Vec6::Zero());
+  for (auto it = tree_order_.rbegin(); it != tree_order_.rend(); ++it) {
+    const auto& e = tree_edges_[*it];
+    const Vec6& a = acc[e.child];
+    if (e.kind == ConstraintEdge::Kind::Joint) out.joint[e.index] = e.forward ? a : Vec6(-a);
+    acc[e.parent].head<3>() += a.head<3>();
+    acc[e.parent].tail<3>() += a.tail<3>() + (x_[e.child] - x_[e.parent]).cross(a.head<3>());
+  }
+  for (int c = 0; c < m; ++c)
+    if (extra_[c].joint >= 0) out.joint[extra_[c].joint][extra_[c].joint_row] = lambda[c];
+  return out;
+}
+
+}  // namespace beamfea

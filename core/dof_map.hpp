@@ -1,0 +1,158 @@
+#pragma once
+// DofMap: numbering of degrees of freedom and elimination of constraints.
+//
+// Glossary
+//   raw DOF       a node component (ux uy uz rx ry rz; 6 per node) or a joint coordinate; what
+//                 elements, loads and supports refer to. Raw index: 6*node + comp for nodes, then
+//                 the joint coordinates, joint by joint.
+//   released      the relative rotations a joint frees; each is a raw DOF of its own, the joint
+//                 coordinate q_i (revolute 1, universal 2, spherical 3).
+//   slave         a node whose motion follows another node through a rigid link or a joint: the
+//                 rigid links and joints form a graph; a spanning forest of it is rooted at
+//                 supported nodes where possible, and every non-root node of a tree is a slave
+//                 of its parent. Its raw DOFs are eliminated exactly (no penalty numbers).
+//   independent   a raw DOF of a non-slave node, or a joint coordinate.
+//   prescribed    an independent DOF whose value is given: a support (value 0) or an entry of
+//                 "prescribed" (an imposed displacement or actuator motion). Also the value of
+//                 a support or prescription that falls on a slave node.
+//   dependent     an independent DOF eliminated by an extra constraint: a loop of rigid links
+//                 and joints closed by an edge outside the forest, or a support on a slave.
+//   free          independent, neither prescribed nor dependent: the unknowns of the system.
+//   condensation  eliminating all free DOFs but those of one node (the stiffness analysis).
+//
+// The map is linear about a configuration: raw u = T_f u_free + T_p u_prescribed. For the
+// reference configuration it is exact for linear analyses; nonlinear analyses rebuild T about
+// the current configuration (Configuration), since rigid offsets and joint axes turn with bodies.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/model.hpp"
+
+namespace beamfea {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;                 // column-major CSC
+using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+// The current geometry that the linearised constraints depend on.
+struct Configuration {
+  std::vector<Vec3> x;        // node positions
+  std::vector<Mat3> R;        // node rotations (from the reference)
+  std::vector<std::vector<Vec3>> joint_axes;  // current spatial axes of each joint's coordinates
+};
+// The reference configuration of a model: x = X, R = I, axes as given.
+Configuration reference_configuration(const Model& m);
+
+// One edge of the constraint graph (a rigid link or a joint).
+struct ConstraintEdge {
+  enum class Kind { Rigid, Joint };
+  Kind kind = Kind::Rigid;
+  int index = -1;   // element index (rigid) or joint index
+  int parent = -1;  // node whose motion is carried over
+  int child = -1;   // the slave node
+  bool forward = true;  // joint only: parent is the joint's nodes[0]
+};
+
+class DofMap {
+ public:
+  DofMap(const Model& model, const Configuration& configuration);
+  explicit DofMap(const Model& model) : DofMap(model, reference_configuration(model)) {}
+
+  int raw_size() const { return n_raw_; }
+  int free_size() const { return n_free_; }
+  int prescribed_size() const { return static_cast<int>(prescribed_.size()); }
+
+  int raw_node(int node, int comp) const { return 6 * node + comp; }
+  int raw_joint(int joint, int coord) const { return joint_offset_[joint] + coord; }
+  int raw_index(const DofRef& d) const;
+  DofRef raw_ref(int raw) const;
+
+  // raw u = T_free * u_free + T_prescribed * u_prescribed
+  const SparseRowMatrix& T_free() const { return Tf_; }
+  const SparseRowMatrix& T_prescribed() const { return Tp_; }
+
+  // What each free DOF is (an independent raw DOF).
+  const std::vector<DofRef>& free_dofs() const { return free_refs_; }
+  // What each prescribed value is, and its value in the model (supports: 0).
+  struct PrescribedValue {
+    DofRef dof;
+    double value = 0.0;
+    bool support = false;  // from "supports" (reaction reported) rather than "prescribed"
+  };
+  const std::vector<PrescribedValue>& prescribed() const { return prescribed_; }
+  Eigen::VectorXd prescribed_values() const;
+
+  // Free index of an independent raw DOF, or -1 when it is not free.
+  int free_index(int raw) const { return raw_to_free_[raw]; }
+  // Prescribed index of a raw DOF that is prescribed, or -1.
+  int prescribed_index(int raw) const;
+
+  bool is_slave(int node) const { return parent_edge_[node] >= 0; }
+  const std::vector<ConstraintEdge>& tree_edges() const { return tree_edges_; }
+  // Tree edges in an order where parents come before children.
+  const std::vector<int>& tree_order() const { return tree_order_; }
+
+  Eigen::VectorXd expand(const Eigen::VectorXd& u_free, const Eigen::VectorXd& u_prescribed) const;
+  Eigen::VectorXd reduce(const Eigen::VectorXd& f_raw) const { return Tf_.transpose() * f_raw; }
+
+  // Constraint forces from the raw residual r = f_int - f_ext at an equilibrium.
+  struct ConstraintForces {
+    std::vector<double> prescribed;        // one per prescribed value: reaction (force or moment)
+    std::vector<Vec6> joint;               // per joint: force and moment that the body of
+                                           // nodes[0] exerts on the body of nodes[1], global axes
+  };
+  ConstraintForces constraint_forces(const Eigen::VectorXd& r_raw) const;
+
+  // Prescribed values that must agree (redundant supports on one rigid body): returns the
+  // message of the first conflict for these values, or "" when consistent.
+  std::string check_consistency(const Eigen::VectorXd& u_prescribed) const;
+
+ private:
+  struct Term {
+    int ind;
+    double coef;
+  };
+  using Row = std::vector<Term>;
+  void build_forest(const Model& m);
+  void build_tree_rows(const Model& m, const Configuration& c);
+  void build_extra_rows(const Model& m, const Configuration& c);
+  void eliminate(const Model& m);
+  Row edge_row_raw(const Model& m, const Configuration& c, const ConstraintEdge& e, int k) const;
+
+  const Model* model_;
+  int n_nodes_ = 0;
+  int n_raw_ = 0;
+  int n_ind_ = 0;
+  int n_free_ = 0;
+  std::vector<int> joint_offset_;
+  std::vector<int> parent_edge_;            // per node: index into tree_edges_ or -1
+  std::vector<ConstraintEdge> tree_edges_;
+  std::vector<int> tree_order_;
+  std::vector<ConstraintEdge> loop_edges_;
+  std::vector<int> raw_to_ind_;             // -1 for slave raw DOFs
+  std::vector<int> ind_to_raw_;
+  std::vector<Row> tree_rows_;              // per raw DOF: combination of independent DOFs
+  // Extra constraints: sum(row over raw) = sum(coef * prescribed) (loop edges, slave supports).
+  struct ExtraRow {
+    Row raw;                               // over raw DOFs
+    std::vector<Term> rhs;                 // over prescribed indices
+    int joint = -1, joint_row = -1;        // loop joint rows: which joint and component (0..5)
+    int prescribed = -1;                   // slave support rows: which prescribed value
+  };
+  std::vector<ExtraRow> extra_;
+  std::vector<int> ind_prescribed_;         // per independent DOF: prescribed index or -1
+  std::vector<PrescribedValue> prescribed_;
+  std::vector<int> raw_prescribed_;         // per raw DOF: prescribed index or -1
+  std::vector<int> raw_to_free_;
+  std::vector<DofRef> free_refs_;
+  std::vector<Row> redundant_;              // rows over prescribed indices that must vanish
+  std::vector<std::map<int, double>> extra_ind_;  // extra rows over independent DOFs
+  std::vector<char> ind_dependent_;
+  std::vector<Vec3> x_;                     // node positions of the configuration
+  SparseRowMatrix Tf_, Tp_;
+  SparseRowMatrix Tind_;                    // raw <- independent (tree only)
+};
+
+}  // namespace beamfea

@@ -1,0 +1,59 @@
+#include "core/model.hpp"
+
+#include <algorithm>
+
+namespace beamfea {
+
+int dof_index(const std::string& name) {
+  for (int i = 0; i < 6; ++i)
+    if (name == kDofNames[i]) return i;
+  return -1;
+}
+
+const char* joint_type_name(JointType t) {
+  switch (t) {
+    case JointType::Revolute: return "revolute";
+    case JointType::Universal: return "universal";
+    case JointType::Spherical: return "spherical";
+  }
+  return "?";
+}
+
+int joint_coordinate_count(JointType t) {
+  switch (t) {
+    case JointType::Revolute: return 1;
+    case JointType::Universal: return 2;
+    case JointType::Spherical: return 3;
+  }
+  return 0;
+}
+
+template <class V>
+static int find_by_id(const V& v, const std::string& id) {
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (v[i].id == id) return static_cast<int>(i);
+  return -1;
+}
+
+int Model::find_node(const std::string& id) const { return find_by_id(nodes, id); }
+int Model::find_member(const std::string& id) const { return find_by_id(members, id); }
+int Model::find_joint(const std::string& id) const { return find_by_id(joints, id); }
+
+std::string Model::describe(const DofRef& d) const {
+  if (d.owner == DofRef::Owner::Node)
+    return "node '" + nodes.at(d.index).id + "' dof " + kDofNames.at(d.comp);
+  return "joint '" + joints.at(d.index).id + "' coordinate " + std::to_string(d.comp);
+}
+
+double Model::length_scale() const {
+  if (nodes.empty()) return 1.0;
+  Vec3 lo = nodes[0].x, hi = nodes[0].x;
+  for (const auto& n : nodes) {
+    lo = lo.cwiseMin(n.x);
+    hi = hi.cwiseMax(n.x);
+  }
+  const double d = (hi - lo).norm();
+  return d > 0.0 ? d : 1.0;
+}
+
+}  // namespace beamfea

@@ -1,0 +1,144 @@
+#pragma once
+// The structural model: what the user described, after parsing and meshing.
+//
+// Units are the user's consistent set (e.g. N, m, Pa or N, mm, MPa); beamfea never converts.
+// Indices (int) refer to the vectors of Model; the user's ids are kept for messages and output.
+//
+// A *member* is what the user wrote in "elements"; a beam member with "divisions": n is meshed
+// into n *elements* of equal length with n-1 internal nodes named "<member>#1" ... "<member>#(n-1)".
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/rotation.hpp"
+
+namespace beamfea {
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+// Node DOF components, in this order everywhere: ux uy uz rx ry rz.
+inline constexpr std::array<const char*, 6> kDofNames{"ux", "uy", "uz", "rx", "ry", "rz"};
+// Index of a DOF name ("ux" ... "rz"), or -1.
+int dof_index(const std::string& name);
+
+struct Node {
+  std::string id;
+  Vec3 x;                     // reference position
+  int member = -1;            // >= 0 for a node made by meshing a member
+};
+
+struct Material {
+  std::string id;
+  double E = 0.0;
+  double G = 0.0;
+};
+
+struct Section {
+  std::string id;
+  double A = 0.0;
+  double Iy = 0.0;   // second moment about local y: bending in the local x-z plane
+  double Iz = 0.0;   // second moment about local z: bending in the local x-y plane
+  double J = 0.0;    // torsion constant
+  double ky = 0.0;   // shear correction factors (virtual-force shear term only; beams are Euler-Bernoulli)
+  double kz = 0.0;
+};
+
+enum class MemberType { Beam, Rigid };
+
+// A member as the user wrote it.
+struct Member {
+  std::string id;
+  MemberType type = MemberType::Beam;
+  std::array<int, 2> nodes{};     // end nodes
+  int material = -1;              // beams only
+  int section = -1;               // beams only
+  Vec3 orientation = Vec3::Zero();  // a vector in the local x-z plane (OpenSees' vecxz)
+  int divisions = 1;
+  std::vector<int> elements;      // the elements meshed from it, in order from nodes[0] to nodes[1]
+};
+
+// An analysis element: a beam between two nodes, or an exact rigid link.
+struct Element {
+  std::string id;
+  MemberType type = MemberType::Beam;
+  std::array<int, 2> nodes{};
+  int material = -1;
+  int section = -1;
+  Vec3 orientation = Vec3::Zero();
+  int member = -1;
+};
+
+enum class JointType { Revolute, Universal, Spherical };
+const char* joint_type_name(JointType t);
+int joint_coordinate_count(JointType t);
+
+// A joint joins two coincident nodes and frees relative rotations about its axes.
+// The axes are fixed in the body of nodes[0]. Revolute: R2 = R1 exp(q a); universal (Cardan):
+// R2 = R1 exp(q1 a1) exp(q2 a2), a2 carried by the cross; spherical: three rotations.
+// stiffness[i] = 0 means a passive (free) coordinate, > 0 an actuator spring on q_i.
+struct Joint {
+  std::string id;
+  JointType type = JointType::Revolute;
+  std::array<int, 2> nodes{};
+  std::vector<Vec3> axes;         // unit vectors, one per coordinate
+  std::vector<double> stiffness;  // one per coordinate
+  int coordinates() const { return static_cast<int>(axes.size()); }
+};
+
+// A raw degree of freedom: component `comp` of node `index`, or coordinate `comp` of joint `index`.
+struct DofRef {
+  enum class Owner { Node, Joint };
+  Owner owner = Owner::Node;
+  int index = -1;
+  int comp = -1;
+  bool operator==(const DofRef&) const = default;
+};
+
+struct Support {
+  int node = -1;
+  std::array<bool, 6> fixed{};
+};
+
+struct Prescribed {
+  DofRef dof;
+  double value = 0.0;
+};
+
+struct NodalLoad {
+  int node = -1;
+  Vec3 force = Vec3::Zero();
+  Vec3 moment = Vec3::Zero();
+};
+
+// A generalised force (actuator torque or force) on a joint coordinate.
+struct JointLoad {
+  int joint = -1;
+  int coordinate = 0;
+  double value = 0.0;
+};
+
+struct Model {
+  std::vector<Node> nodes;
+  std::vector<Material> materials;
+  std::vector<Section> sections;
+  std::vector<Member> members;
+  std::vector<Element> elements;
+  std::vector<Joint> joints;
+  std::vector<Support> supports;
+  std::vector<Prescribed> prescribed;
+  std::vector<NodalLoad> loads;
+  std::vector<JointLoad> joint_loads;
+
+  int find_node(const std::string& id) const;    // -1 if absent
+  int find_member(const std::string& id) const;  // -1 if absent
+  int find_joint(const std::string& id) const;   // -1 if absent
+  // "node 'A' dof uz", "joint 'j1' coordinate 0"
+  std::string describe(const DofRef& d) const;
+  // Length scale of the model (bounding-box diagonal, at least 1e-300); used to make
+  // rotations and translations commensurable in rank decisions.
+  double length_scale() const;
+};
+
+}  // namespace beamfea

@@ -1,0 +1,78 @@
+#include "elements/beam.hpp"
+
+#include <cmath>
+
+#include "core/errors.hpp"
+
+namespace beamfea {
+
+Mat3 beam_local_axes(const Vec3& x1, const Vec3& x2, const Vec3& orientation) {
+  const Vec3 d = x2 - x1;
+  const double L = d.norm();
+  if (!(L > 0.0)) throw ModelError("", "zero-length member");
+  const Vec3 ex = d / L;
+  const double on = orientation.norm();
+  if (!(on > 0.0)) throw ModelError("", "orientation vector is zero");
+  Vec3 ey = (orientation / on).cross(ex);
+  if (ey.norm() < 1e-8) throw ModelError("", "orientation vector is parallel to the member");
+  ey.normalize();
+  const Vec3 ez = ex.cross(ey);
+  Mat3 R;
+  R.row(0) = ex;
+  R.row(1) = ey;
+  R.row(2) = ez;
+  return R;
+}
+
+Mat12 beam_transformation(const Mat3& R) {
+  Mat12 T = Mat12::Zero();
+  for (int b = 0; b < 4; ++b) T.block<3, 3>(3 * b, 3 * b) = R;
+  return T;
+}
+
+Mat12 beam_local_stiffness(const BeamSection& s, double L) {
+  Mat12 k = Mat12::Zero();
+  const double L2 = L * L, L3 = L2 * L;
+  const double EA = s.E * s.A / L, GJ = s.G * s.J / L;
+  // axial and torsion
+  k(0, 0) = k(6, 6) = EA;
+  k(0, 6) = k(6, 0) = -EA;
+  k(3, 3) = k(9, 9) = GJ;
+  k(3, 9) = k(9, 3) = -GJ;
+  // bending in x-y: v (1, 7), rz (5, 11), Iz
+  const double a = 12 * s.E * s.Iz / L3, b = 6 * s.E * s.Iz / L2, c = 4 * s.E * s.Iz / L, d = 2 * s.E * s.Iz / L;
+  k(1, 1) = k(7, 7) = a;
+  k(1, 7) = k(7, 1) = -a;
+  k(1, 5) = k(5, 1) = k(1, 11) = k(11, 1) = b;
+  k(7, 5) = k(5, 7) = k(7, 11) = k(11, 7) = -b;
+  k(5, 5) = k(11, 11) = c;
+  k(5, 11) = k(11, 5) = d;
+  // bending in x-z: w (2, 8), ry (4, 10), Iy; note the sign change (w' = -ry)
+  const double e = 12 * s.E * s.Iy / L3, f = 6 * s.E * s.Iy / L2, g = 4 * s.E * s.Iy / L, h = 2 * s.E * s.Iy / L;
+  k(2, 2) = k(8, 8) = e;
+  k(2, 8) = k(8, 2) = -e;
+  k(2, 4) = k(4, 2) = k(2, 10) = k(10, 2) = -f;
+  k(8, 4) = k(4, 8) = k(8, 10) = k(10, 8) = f;
+  k(4, 4) = k(10, 10) = g;
+  k(4, 10) = k(10, 4) = h;
+  return k;
+}
+
+LinearBeam::LinearBeam(const BeamSection& section, const Vec3& x1, const Vec3& x2, const Vec3& orientation)
+    : L_((x2 - x1).norm()), R_(beam_local_axes(x1, x2, orientation)), T_(beam_transformation(R_)),
+      kl_(beam_local_stiffness(section, L_)), K_(T_.transpose() * kl_ * T_) {}
+
+Vec3 beam_displacement_at(const Mat3& R, double L, const Vec12& u_global, double xi) {
+  const Vec12 ul = beam_transformation(R) * u_global;
+  const double N1 = 1 - 3 * xi * xi + 2 * xi * xi * xi;
+  const double N2 = L * (xi - 2 * xi * xi + xi * xi * xi);
+  const double N3 = 3 * xi * xi - 2 * xi * xi * xi;
+  const double N4 = L * (-xi * xi + xi * xi * xi);
+  Vec3 local;
+  local.x() = (1 - xi) * ul(0) + xi * ul(6);
+  local.y() = N1 * ul(1) + N2 * ul(5) + N3 * ul(7) + N4 * ul(11);
+  local.z() = N1 * ul(2) - N2 * ul(4) + N3 * ul(8) - N4 * ul(10);
+  return R.transpose() * local;
+}
+
+}  // namespace beamfea

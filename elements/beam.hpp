@@ -1,0 +1,65 @@
+#pragma once
+// 3-D Euler-Bernoulli beam, 12 DOF: the linear-elastic basic element.
+//
+// DOF order (global and local): [u1 v1 w1 rx1 ry1 rz1  u2 v2 w2 rx2 ry2 rz2], node 1 then node 2.
+// Local axes: x from node 1 to node 2; `orientation` is a vector in the local x-z plane;
+//   y = orientation x x (normalised), z = x x y  (OpenSees' vecxz convention).
+// Iz governs bending in the local x-y plane (v, rz); Iy bending in the local x-z plane (w, ry).
+// Stiffness: the exact Euler-Bernoulli matrix (Przemieniecki, Theory of Matrix Structural Analysis,
+// 1968, eq. 5.116 without shear deformation; McGuire, Gallagher & Ziemian, Matrix Structural
+// Analysis, 2nd ed., eq. 4.34). Not supported: shear deformation, warping, offsets, member loads.
+//
+// An element answers three questions and never touches the global system: internal force,
+// tangent stiffness, strain energy, for given nodal kinematics.
+#include <Eigen/Core>
+
+#include "core/model.hpp"
+
+namespace beamfea {
+
+using Vec12 = Eigen::Matrix<double, 12, 1>;
+using Mat12 = Eigen::Matrix<double, 12, 12>;
+
+struct BeamSection {
+  double E = 0, G = 0, A = 0, Iy = 0, Iz = 0, J = 0;
+};
+
+// Rows are the local axes (x, y, z) in global components: v_local = R * v_global.
+// Throws ModelError if the orientation is parallel to the member or the length is zero.
+Mat3 beam_local_axes(const Vec3& x1, const Vec3& x2, const Vec3& orientation);
+
+// 12x12 block-diagonal transformation diag(R, R, R, R).
+Mat12 beam_transformation(const Mat3& R);
+
+// Local elastic stiffness of a member of length L.
+Mat12 beam_local_stiffness(const BeamSection& s, double L);
+
+// The linear beam in global axes: kinematics are the 12 global nodal displacements/rotations.
+class LinearBeam {
+ public:
+  LinearBeam(const BeamSection& section, const Vec3& x1, const Vec3& x2, const Vec3& orientation);
+
+  const Mat12& stiffness() const { return K_; }                      // global tangent
+  Vec12 internal_force(const Vec12& u) const { return K_ * u; }      // global
+  double strain_energy(const Vec12& u) const { return 0.5 * u.dot(K_ * u); }
+  // Forces exerted on the element at its ends, local axes: [N1 Vy1 Vz1 T1 My1 Mz1 N2 ... Mz2].
+  Vec12 local_end_forces(const Vec12& u) const { return kl_ * (T_ * u); }
+
+  double length() const { return L_; }
+  const Mat3& axes() const { return R_; }
+  const Mat12& local_stiffness() const { return kl_; }
+  const Mat12& transformation() const { return T_; }
+
+ private:
+  double L_;
+  Mat3 R_;
+  Mat12 T_;
+  Mat12 kl_;
+  Mat12 K_;
+};
+
+// Cubic (Hermite) interpolation of a beam's displacement at xi in [0, 1], in global axes,
+// from the 12 global end displacements: used to draw the deformed shape.
+Vec3 beam_displacement_at(const Mat3& R, double L, const Vec12& u_global, double xi);
+
+}  // namespace beamfea

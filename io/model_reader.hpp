@@ -1,0 +1,24 @@
+#pragma once
+// Reading a model from JSON (docs/input-format.md): parse, validate, mesh.
+// Every error is an InputError carrying the JSON pointer of the field at fault and naming the
+// entity (node, element, joint...). Nothing is analysed here.
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/model.hpp"
+
+namespace beamfea {
+
+// Parses JSON text; malformed JSON becomes an InputError naming the byte offset.
+nlohmann::json parse_json_text(const std::string& text, const std::string& source);
+// Reads and parses a file.
+nlohmann::json read_json_file(const std::string& path);
+
+// Builds the model from a parsed document (the "analyses" entry is not read here).
+Model read_model(const nlohmann::json& doc);
+
+// The node index for a node id given as a JSON value at `pointer`; throws InputError if unknown.
+int node_ref(const Model& m, const nlohmann::json& v, const std::string& pointer);
+int joint_ref(const Model& m, const nlohmann::json& v, const std::string& pointer);
+
+}  // namespace beamfea

@@ -1,0 +1,41 @@
+#pragma once
+// Linear static analysis: K_ff u_f = T_f^T f - K_fp u_p, then reactions, end forces and joint
+// forces by back-substitution. A singular K is diagnosed (zero-energy modes named), never solved.
+#include <string>
+#include <vector>
+
+#include "core/dof_map.hpp"
+#include "core/model.hpp"
+#include "elements/beam.hpp"
+#include "solvers/mechanism.hpp"
+
+namespace beamfea {
+
+enum class SolveStatus {
+  Converged,   // a solution was found
+  Mechanism,   // the structure has zero-energy modes (see modes)
+  Failed,      // the factorisation failed for another reason
+};
+const char* to_string(SolveStatus s);
+
+struct LinearStaticOptions {
+  double singular_rcond = 1e-13;  // reciprocal condition (Jacobi-scaled) below which K is checked for mechanisms
+  double zero_energy_tolerance = 1e-10;  // eigenvalue (Jacobi-scaled) of a zero-energy mode
+  void validate() const;
+};
+
+struct LinearStaticResult {
+  SolveStatus status = SolveStatus::Failed;
+  std::string message;                 // one line: outcome and key figures
+  int free_dofs = 0;
+  Eigen::VectorXd u;                   // raw displacements (node components, joint coordinates)
+  std::vector<Vec6> reactions;         // per node (zero where unsupported)
+  std::vector<char> supported;         // per node: has at least one support or prescribed DOF
+  std::vector<Vec12> end_forces;       // per element, local, forces on the element at its ends
+  std::vector<Vec6> joint_forces;      // per joint: force and moment from body 1 on body 2, global
+  std::vector<ZeroEnergyMode> modes;   // when status == Mechanism
+};
+
+LinearStaticResult solve_linear_static(const Model& model, const LinearStaticOptions& options = {});
+
+}  // namespace beamfea

@@ -1,0 +1,109 @@
+#include "solvers/sparse_factor.hpp"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/UmfPackSupport>
+#include <cmath>
+
+#include "core/errors.hpp"
+
+namespace beamfea {
+
+const char* to_string(FactorStatus s) {
+  switch (s) {
+    case FactorStatus::Ok: return "ok";
+    case FactorStatus::NotPositiveDefinite: return "not positive definite";
+    case FactorStatus::Singular: return "singular";
+  }
+  return "?";
+}
+
+void FactorOptions::validate() const {
+  if (!(singular_rcond > 0.0 && singular_rcond < 1.0)) throw Error("FactorOptions: singular_rcond must be in (0, 1)");
+}
+
+namespace {
+// Gives access to CHOLMOD's factor for the reciprocal condition estimate.
+class Cholesky : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
+ public:
+  double rcond() { return m_cholmodFactor ? cholmod_rcond(m_cholmodFactor, &this->cholmod()) : 0.0; }
+};
+}  // namespace
+
+struct SparseFactor::Impl {
+  Cholesky llt;
+  Eigen::UmfPackLU<SparseMatrix> lu;
+  Eigen::Index rows = -1, nnz = -1;
+  bool analysed = false, lu_analysed = false;
+};
+
+SparseFactor::SparseFactor() : impl_(std::make_unique<Impl>()) {}
+SparseFactor::~SparseFactor() = default;
+
+SparseMatrix scaled(const SparseMatrix& K, const Eigen::VectorXd& s) {
+  SparseMatrix A = K;
+  for (int j = 0; j < A.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it) it.valueRef() *= s[it.row()] * s[j];
+  return A;
+}
+
+FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions& options) {
+  options.validate();
+  const Eigen::Index n = K.rows();
+  s_.resize(n);
+  unrestrained_.clear();
+  const Eigen::VectorXd d = K.diagonal();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (d[i] > 0.0) {
+      s_[i] = 1.0 / std::sqrt(d[i]);
+    } else {
+      s_[i] = 1.0;
+      unrestrained_.push_back(static_cast<int>(i));
+    }
+  }
+  const SparseMatrix A = scaled(K, s_);
+  if (!impl_->analysed || impl_->rows != n || impl_->nnz != A.nonZeros()) {
+    impl_->llt.analyzePattern(A);
+    impl_->analysed = true;
+    impl_->lu_analysed = false;
+    impl_->rows = n;
+    impl_->nnz = A.nonZeros();
+  }
+  cholesky_ok_ = lu_ok_ = false;
+  rcond_ = 0.0;
+  if (n == 0) {
+    cholesky_ok_ = true;
+    rcond_ = 1.0;
+    return FactorStatus::Ok;
+  }
+  impl_->llt.factorize(A);
+  if (impl_->llt.info() == Eigen::Success) {
+    rcond_ = impl_->llt.rcond();
+    cholesky_ok_ = true;
+    if (rcond_ >= options.singular_rcond && unrestrained_.empty()) return FactorStatus::Ok;
+    return FactorStatus::NotPositiveDefinite;
+  }
+  if (!options.allow_lu) return FactorStatus::NotPositiveDefinite;
+  if (!impl_->lu_analysed) {
+    impl_->lu.analyzePattern(A);
+    impl_->lu_analysed = true;
+  }
+  impl_->lu.factorize(A);
+  lu_ok_ = impl_->lu.info() == Eigen::Success;
+  return lu_ok_ ? FactorStatus::NotPositiveDefinite : FactorStatus::Singular;
+}
+
+Eigen::VectorXd SparseFactor::solve(const Eigen::VectorXd& b) const {
+  if (s_.size() == 0) return Eigen::VectorXd(0);
+  const Eigen::VectorXd sb = s_.cwiseProduct(b);
+  const Eigen::VectorXd y = cholesky_ok_ ? Eigen::VectorXd(impl_->llt.solve(sb)) : Eigen::VectorXd(impl_->lu.solve(sb));
+  return s_.cwiseProduct(y);
+}
+
+Eigen::MatrixXd SparseFactor::solve(const Eigen::MatrixXd& B) const {
+  if (s_.size() == 0) return Eigen::MatrixXd(0, B.cols());
+  const Eigen::MatrixXd SB = s_.asDiagonal() * B;
+  const Eigen::MatrixXd Y = cholesky_ok_ ? Eigen::MatrixXd(impl_->llt.solve(SB)) : Eigen::MatrixXd(impl_->lu.solve(SB));
+  return s_.asDiagonal() * Y;
+}
+
+}  // namespace beamfea

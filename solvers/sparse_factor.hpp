@@ -1,0 +1,60 @@
+#pragma once
+// Factorisation of the reduced stiffness matrix, with the symbolic analysis reused.
+//
+// The matrix is Jacobi-scaled (S K S, S = diag(K)^-1/2) so that decisions about singularity
+// do not depend on units. CHOLMOD's supernodal Cholesky is used for positive definite systems;
+// UMFPACK's LU otherwise. A zero-energy mode (mechanism) shows as a failed Cholesky or as a
+// reciprocal condition estimate below `singular_rcond`.
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+
+#include "core/dof_map.hpp"
+
+namespace beamfea {
+
+enum class FactorStatus {
+  Ok,                  // factorised; solves are meaningful
+  NotPositiveDefinite, // Cholesky failed: singular or indefinite (LU may still have succeeded)
+  Singular,            // no factorisation could be made
+};
+const char* to_string(FactorStatus s);
+
+struct FactorOptions {
+  double singular_rcond = 1e-13;  // below this (scaled) the matrix is treated as singular
+  bool allow_lu = true;           // fall back to LU for indefinite matrices
+  void validate() const;
+};
+
+class SparseFactor {
+ public:
+  SparseFactor();
+  ~SparseFactor();
+  SparseFactor(const SparseFactor&) = delete;
+  SparseFactor& operator=(const SparseFactor&) = delete;
+
+  // Factorises K; the symbolic analysis is reused while the sparsity pattern is unchanged.
+  FactorStatus factorize(const SparseMatrix& K, const FactorOptions& options = {});
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+
+  bool cholesky() const { return cholesky_ok_; }
+  double rcond() const { return rcond_; }             // of the scaled matrix (Cholesky only)
+  const Eigen::VectorXd& scaling() const { return s_; }  // S
+  // DOFs with a zero or negative diagonal (no stiffness at all), if any.
+  const std::vector<int>& unrestrained() const { return unrestrained_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  Eigen::VectorXd s_;
+  bool cholesky_ok_ = false;
+  bool lu_ok_ = false;
+  double rcond_ = 0.0;
+  std::vector<int> unrestrained_;
+};
+
+// S K S for S = scaling.
+SparseMatrix scaled(const SparseMatrix& K, const Eigen::VectorXd& s);
+
+}  // namespace beamfea

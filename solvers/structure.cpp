@@ -1,0 +1,92 @@
+#include "solvers/structure.hpp"
+
+#include "core/errors.hpp"
+
+namespace beamfea {
+
+BeamSection beam_section(const Model& m, const Element& e) {
+  const auto& mat = m.materials.at(e.material);
+  const auto& sec = m.sections.at(e.section);
+  return {mat.E, mat.G, sec.A, sec.Iy, sec.Iz, sec.J};
+}
+
+LinearStructure::LinearStructure(const Model& model) : model_(&model), beams_(model.elements.size()) {
+  for (std::size_t e = 0; e < model.elements.size(); ++e) {
+    const auto& el = model.elements[e];
+    if (el.type != MemberType::Beam) continue;
+    try {
+      beams_[e].emplace(beam_section(model, el), model.nodes[el.nodes[0]].x, model.nodes[el.nodes[1]].x,
+                        el.orientation);
+    } catch (const ModelError& err) {
+      throw ModelError("element '" + el.id + "'", err.what());
+    }
+  }
+}
+
+std::array<int, 12> LinearStructure::element_dofs(const DofMap& map, int element) const {
+  const auto& el = model_->elements[element];
+  std::array<int, 12> d{};
+  for (int k = 0; k < 6; ++k) {
+    d[k] = map.raw_node(el.nodes[0], k);
+    d[6 + k] = map.raw_node(el.nodes[1], k);
+  }
+  return d;
+}
+
+void LinearStructure::assemble(const DofMap& map, SystemAssembler& assembler) const {
+  for (std::size_t e = 0; e < beams_.size(); ++e) {
+    if (!beams_[e]) continue;
+    const auto dofs = element_dofs(map, static_cast<int>(e));
+    assembler.add(dofs, beams_[e]->stiffness());
+  }
+  for (std::size_t j = 0; j < model_->joints.size(); ++j) {
+    const auto& jt = model_->joints[j];
+    for (int q = 0; q < jt.coordinates(); ++q) {
+      if (jt.stiffness[q] == 0.0) continue;
+      const int r = map.raw_joint(static_cast<int>(j), q);
+      Eigen::Matrix<double, 1, 1> k;
+      k(0, 0) = jt.stiffness[q];
+      assembler.add(std::span<const int>(&r, 1), k);
+    }
+  }
+}
+
+Eigen::VectorXd LinearStructure::internal_force(const DofMap& map, const Eigen::VectorXd& u) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(map.raw_size());
+  for (std::size_t e = 0; e < beams_.size(); ++e) {
+    if (!beams_[e]) continue;
+    const auto dofs = element_dofs(map, static_cast<int>(e));
+    Vec12 ue;
+    for (int k = 0; k < 12; ++k) ue[k] = u[dofs[k]];
+    const Vec12 fe = beams_[e]->internal_force(ue);
+    for (int k = 0; k < 12; ++k) f[dofs[k]] += fe[k];
+  }
+  for (std::size_t j = 0; j < model_->joints.size(); ++j) {
+    const auto& jt = model_->joints[j];
+    for (int q = 0; q < jt.coordinates(); ++q) {
+      const int r = map.raw_joint(static_cast<int>(j), q);
+      f[r] += jt.stiffness[q] * u[r];
+    }
+  }
+  return f;
+}
+
+Vec12 LinearStructure::end_forces(const DofMap& map, int element, const Eigen::VectorXd& u) const {
+  if (!beams_[element]) return Vec12::Zero();
+  const auto dofs = element_dofs(map, element);
+  Vec12 ue;
+  for (int k = 0; k < 12; ++k) ue[k] = u[dofs[k]];
+  return beams_[element]->local_end_forces(ue);
+}
+
+Eigen::VectorXd external_force(const Model& m, const DofMap& map) {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(map.raw_size());
+  for (const auto& l : m.loads) {
+    f.segment<3>(map.raw_node(l.node, 0)) += l.force;
+    f.segment<3>(map.raw_node(l.node, 3)) += l.moment;
+  }
+  for (const auto& l : m.joint_loads) f[map.raw_joint(l.joint, l.coordinate)] += l.value;
+  return f;
+}
+
+}  // namespace beamfea

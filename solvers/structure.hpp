@@ -1,0 +1,40 @@
+#pragma once
+// The model's elements in their linear form, built once per analysis: beams (LinearBeam) and
+// joint springs; rigid links and joints themselves are constraints handled by the DofMap.
+#include <optional>
+#include <vector>
+
+#include "core/assembly.hpp"
+#include "core/dof_map.hpp"
+#include "core/model.hpp"
+#include "elements/beam.hpp"
+
+namespace beamfea {
+
+BeamSection beam_section(const Model& m, const Element& e);
+
+class LinearStructure {
+ public:
+  explicit LinearStructure(const Model& model);
+
+  // Assembles the elastic stiffness (beams and joint springs) into `assembler`.
+  void assemble(const DofMap& map, SystemAssembler& assembler) const;
+  // Internal force over raw DOFs for raw displacements u.
+  Eigen::VectorXd internal_force(const DofMap& map, const Eigen::VectorXd& u_raw) const;
+  // Raw DOFs of an element: its two nodes' 12 components.
+  std::array<int, 12> element_dofs(const DofMap& map, int element) const;
+  // Local end forces [N Vy Vz T My Mz] x 2 of a beam element for raw displacements u.
+  Vec12 end_forces(const DofMap& map, int element, const Eigen::VectorXd& u_raw) const;
+
+  const std::optional<LinearBeam>& beam(int element) const { return beams_[element]; }
+  const Model& model() const { return *model_; }
+
+ private:
+  const Model* model_;
+  std::vector<std::optional<LinearBeam>> beams_;
+};
+
+// External nodal and joint loads over raw DOFs.
+Eigen::VectorXd external_force(const Model& m, const DofMap& map);
+
+}  // namespace beamfea
