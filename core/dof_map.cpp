@@ -145,7 +145,7 @@ void DofMap::build_forest(const Model& m) {
 // Raw rows of the slaves in terms of independent DOFs, parents first.
 //   rigid link p -> s, d = x_s - x_p:  u_s = u_p + theta_p x d,  theta_s = theta_p
 //   joint p -> s:                       u_s = u_p,  theta_s = theta_p +/- sum_i a_i dq_i
-void DofMap::build_tree_rows(const Model&, const Configuration& c) {
+void DofMap::build_tree_rows(const Model& m, const Configuration& c) {
   raw_to_ind_.assign(n_raw_, -1);
   for (int n = 0; n < n_nodes_; ++n)
     if (!is_slave(n))
@@ -172,9 +172,11 @@ void DofMap::build_tree_rows(const Model&, const Configuration& c) {
     } else {
       const double sign = e.forward ? 1.0 : -1.0;
       const auto& axes = c.joint_axes[e.index];
+      const int nt = m.joints[e.index].translations;
       for (int q = 0; q < static_cast<int>(axes.size()); ++q) {
         const int rq = raw_joint(e.index, q);
-        for (int i = 0; i < 3; ++i) add_scaled(rows[6 * s + 3 + i], rows[rq], sign * axes[q][i]);
+        const int offset = q < nt ? 0 : 3;  // translations move u, rotations move theta
+        for (int i = 0; i < 3; ++i) add_scaled(rows[6 * s + offset + i], rows[rq], sign * axes[q][i]);
       }
     }
   }
@@ -192,26 +194,23 @@ void DofMap::build_tree_rows(const Model&, const Configuration& c) {
 }
 
 // Row k (0..5) of a loop edge over raw DOFs, from nodes[0] (parent) to nodes[1] (child).
-DofMap::Row DofMap::edge_row_raw(const Model&, const Configuration& c, const ConstraintEdge& e, int k) const {
+DofMap::Row DofMap::edge_row_raw(const Model& m, const Configuration& c, const ConstraintEdge& e, int k) const {
   Row row;
   const int p = e.parent, s = e.child;
-  if (k < 3) {
-    row.push_back({6 * s + k, 1.0});
-    row.push_back({6 * p + k, -1.0});
-    if (e.kind == ConstraintEdge::Kind::Rigid) {
-      const Mat3 D = skew(c.x[s] - c.x[p]);  // u_s - u_p + [d] theta_p = 0
-      for (int j = 0; j < 3; ++j)
-        if (D(k, j) != 0.0) row.push_back({6 * p + 3 + j, D(k, j)});
-    }
-  } else {
-    const int i = k - 3;
-    row.push_back({6 * s + 3 + i, 1.0});
-    row.push_back({6 * p + 3 + i, -1.0});
-    if (e.kind == ConstraintEdge::Kind::Joint) {
-      const auto& axes = c.joint_axes[e.index];
-      for (int q = 0; q < static_cast<int>(axes.size()); ++q)
-        if (axes[q][i] != 0.0) row.push_back({raw_joint(e.index, q), -axes[q][i]});
-    }
+  const int i = k % 3;
+  row.push_back({6 * s + k, 1.0});
+  row.push_back({6 * p + k, -1.0});
+  if (k < 3 && e.kind == ConstraintEdge::Kind::Rigid) {
+    const Mat3 D = skew(c.x[s] - c.x[p]);  // u_s - u_p + [d] theta_p = 0
+    for (int j = 0; j < 3; ++j)
+      if (D(k, j) != 0.0) row.push_back({6 * p + 3 + j, D(k, j)});
+  }
+  if (e.kind == ConstraintEdge::Kind::Joint) {
+    // u_s - u_p - sum_t a_t q_t = 0 and theta_s - theta_p - sum_r a_r q_r = 0
+    const auto& axes = c.joint_axes[e.index];
+    const int nt = m.joints[e.index].translations;
+    for (int q = 0; q < static_cast<int>(axes.size()); ++q)
+      if ((q < nt) == (k < 3) && axes[q][i] != 0.0) row.push_back({raw_joint(e.index, q), -axes[q][i]});
   }
   return row;
 }

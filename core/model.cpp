@@ -15,6 +15,7 @@ const char* joint_type_name(JointType t) {
     case JointType::Revolute: return "revolute";
     case JointType::Universal: return "universal";
     case JointType::Spherical: return "spherical";
+    case JointType::VirtualSpring: return "virtual_spring";
   }
   return "?";
 }
@@ -24,8 +25,23 @@ int joint_coordinate_count(JointType t) {
     case JointType::Revolute: return 1;
     case JointType::Universal: return 2;
     case JointType::Spherical: return 3;
+    case JointType::VirtualSpring: return 6;
   }
   return 0;
+}
+
+Eigen::MatrixXd Joint::stiffness_as_matrix() const {
+  if (stiffness_matrix.size() > 0) return stiffness_matrix;
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(coordinates(), coordinates());
+  for (int i = 0; i < coordinates() && i < static_cast<int>(stiffness.size()); ++i) K(i, i) = stiffness[i];
+  return K;
+}
+
+bool Joint::has_stiffness() const {
+  if (stiffness_matrix.size() > 0) return stiffness_matrix.cwiseAbs().maxCoeff() > 0.0;
+  for (double k : stiffness)
+    if (k != 0.0) return true;
+  return false;
 }
 
 template <class V>

@@ -70,21 +70,31 @@ struct Element {
   int member = -1;
 };
 
-enum class JointType { Revolute, Universal, Spherical };
+enum class JointType { Revolute, Universal, Spherical, VirtualSpring };
 const char* joint_type_name(JointType t);
 int joint_coordinate_count(JointType t);
 
-// A joint joins two coincident nodes and frees relative rotations about its axes.
+// A joint joins two coincident nodes and frees relative motions along/about its axes.
 // The axes are fixed in the body of nodes[0]. Revolute: R2 = R1 exp(q a); universal (Cardan):
 // R2 = R1 exp(q1 a1) exp(q2 a2), a2 carried by the cross; spherical: three rotations.
-// stiffness[i] = 0 means a passive (free) coordinate, > 0 an actuator spring on q_i.
+// A virtual spring (the 6-D virtual joint of the VJM, Pashkevich et al. 2010, eq. 1) has six
+// coordinates, three translations then three rotations along/about the axes of its frame:
+// T_3D(theta) = Tx Ty Tz Rx Ry Rz.
+// stiffness[i] = 0 means a passive (free) coordinate, > 0 an actuator spring on q_i; a full
+// (symmetric) stiffness_matrix, when given, replaces the diagonal: energy 1/2 q^T K q.
 struct Joint {
   std::string id;
   JointType type = JointType::Revolute;
   std::array<int, 2> nodes{};
   std::vector<Vec3> axes;         // unit vectors, one per coordinate
+  int translations = 0;           // the first `translations` coordinates are translations
   std::vector<double> stiffness;  // one per coordinate
+  Eigen::MatrixXd stiffness_matrix;  // empty, or coordinates() x coordinates()
   int coordinates() const { return static_cast<int>(axes.size()); }
+  bool is_translation(int c) const { return c < translations; }
+  // The stiffness as a matrix (the diagonal when no full matrix was given).
+  Eigen::MatrixXd stiffness_as_matrix() const;
+  bool has_stiffness() const;
 };
 
 // A raw degree of freedom: component `comp` of node `index`, or coordinate `comp` of joint `index`.

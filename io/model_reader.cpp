@@ -1,5 +1,6 @@
 #include "io/model_reader.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -305,7 +306,8 @@ Model read_model(const json& doc) {
       if (type == "revolute") j.type = JointType::Revolute;
       else if (type == "universal") j.type = JointType::Universal;
       else if (type == "spherical") j.type = JointType::Spherical;
-      else throw InputError(child(p, "type"), what + ": unknown type '" + type + "' (expected revolute, universal, spherical)");
+      else if (type == "virtual_spring") j.type = JointType::VirtualSpring;
+      else throw InputError(child(p, "type"), what + ": unknown type '" + type + "' (expected revolute, universal, spherical, virtual_spring)");
       const auto& nodes = require(o, p, "nodes", what);
       if (!nodes.is_array() || nodes.size() != 2) throw InputError(child(p, "nodes"), what + ": expected two node ids");
       for (int k = 0; k < 2; ++k) j.nodes[k] = node_ref(m, nodes[k], child(child(p, "nodes"), k));
@@ -314,34 +316,92 @@ Model read_model(const json& doc) {
         throw InputError(child(p, "nodes"), what + ": nodes '" + m.nodes[j.nodes[0]].id + "' and '" +
                                                 m.nodes[j.nodes[1]].id + "' do not coincide");
       const int nc = joint_coordinate_count(j.type);
+      // Axes: one per rotation coordinate; a virtual spring gives its frame (x, y, z), used for
+      // its three translations and its three rotations alike.
+      const int naxes = j.type == JointType::VirtualSpring ? 3 : nc;
+      std::vector<Vec3> axes_in;
       if (o.contains("axes")) {
         const auto& axes = array(o["axes"], child(p, "axes"), what + " axes");
-        if (static_cast<int>(axes.size()) != nc)
-          throw InputError(child(p, "axes"), what + ": a " + type + " joint needs " + std::to_string(nc) + " axes");
+        if (static_cast<int>(axes.size()) != naxes)
+          throw InputError(child(p, "axes"), what + ": a " + type + " joint needs " + std::to_string(naxes) + " axes");
         for (std::size_t k = 0; k < axes.size(); ++k) {
           Vec3 a = vec3(axes[k], child(child(p, "axes"), k), what + " axis");
           if (a.norm() == 0.0) throw InputError(child(child(p, "axes"), k), what + ": axis is zero");
-          j.axes.push_back(a.normalized());
+          axes_in.push_back(a.normalized());
         }
-      } else if (j.type == JointType::Spherical) {
-        j.axes = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+      } else if (j.type == JointType::Spherical || j.type == JointType::VirtualSpring) {
+        axes_in = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
       } else {
         throw InputError(child(p, "axes"), what + ": missing field 'axes'");
       }
-      for (int a = 0; a < nc; ++a)
-        for (int b = a + 1; b < nc; ++b)
-          if (j.axes[a].cross(j.axes[b]).norm() < 1e-6)
+      for (int a = 0; a < naxes; ++a)
+        for (int b = a + 1; b < naxes; ++b)
+          if (axes_in[a].cross(axes_in[b]).norm() < 1e-6)
             throw InputError(child(p, "axes"), what + ": axes " + std::to_string(a) + " and " + std::to_string(b) + " are parallel");
+      if (j.type == JointType::VirtualSpring) {
+        for (int a = 0; a < 3; ++a)
+          for (int b = a + 1; b < 3; ++b)
+            if (std::abs(axes_in[a].dot(axes_in[b])) > 1e-9)
+              throw InputError(child(p, "axes"), what + ": the axes of a virtual spring must be orthogonal");
+        j.translations = 3;
+        j.axes = axes_in;
+        j.axes.insert(j.axes.end(), axes_in.begin(), axes_in.end());
+      } else {
+        j.axes = axes_in;
+      }
       j.stiffness.assign(nc, 0.0);
       if (o.contains("stiffness")) {
-        auto k = numbers(o["stiffness"], child(p, "stiffness"), what + " stiffness");
-        if (static_cast<int>(k.size()) != nc)
-          throw InputError(child(p, "stiffness"), what + ": expected " + std::to_string(nc) + " stiffness value(s)");
-        for (int c = 0; c < nc; ++c)
-          if (k[c] < 0.0) throw InputError(child(child(p, "stiffness"), c), what + ": stiffness must not be negative");
-        j.stiffness = k;
+        const auto& st = o["stiffness"];
+        const std::string sp = child(p, "stiffness");
+        if (st.is_array() && !st.empty() && st[0].is_array()) {
+          // A full matrix, symmetric, positive semi-definite.
+          if (static_cast<int>(st.size()) != nc)
+            throw InputError(sp, what + ": expected a " + std::to_string(nc) + "x" + std::to_string(nc) + " stiffness matrix");
+          Eigen::MatrixXd K(nc, nc);
+          for (int r = 0; r < nc; ++r) {
+            auto row = numbers(st[r], child(sp, r), what + " stiffness");
+            if (static_cast<int>(row.size()) != nc)
+              throw InputError(child(sp, r), what + ": expected " + std::to_string(nc) + " values in each row");
+            for (int c = 0; c < nc; ++c) K(r, c) = row[c];
+          }
+          if ((K - K.transpose()).cwiseAbs().maxCoeff() > 1e-9 * K.cwiseAbs().maxCoeff())
+            throw InputError(sp, what + ": the stiffness matrix must be symmetric");
+          Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(K);
+          if (es.eigenvalues().minCoeff() < -1e-9 * K.cwiseAbs().maxCoeff())
+            throw InputError(sp, what + ": the stiffness matrix must be positive semi-definite");
+          j.stiffness_matrix = K;
+          for (int c = 0; c < nc; ++c) j.stiffness[c] = K(c, c);
+        } else {
+          auto k = numbers(st, sp, what + " stiffness");
+          if (static_cast<int>(k.size()) != nc)
+            throw InputError(sp, what + ": expected " + std::to_string(nc) + " stiffness value(s)");
+          for (int c = 0; c < nc; ++c)
+            if (k[c] < 0.0) throw InputError(child(sp, c), what + ": stiffness must not be negative");
+          j.stiffness = k;
+        }
       }
-      warn_unknown_keys(o, p, {"id", "type", "nodes", "axes", "stiffness"});
+      if (o.contains("stiffness_from_beam")) {
+        // The tip stiffness of a cantilever of the given section and length, in the joint frame
+        // (x along the link): Pashkevich et al. (2010) eq. 39 = the end-2 block of the beam matrix.
+        if (j.type != JointType::VirtualSpring)
+          throw InputError(child(p, "stiffness_from_beam"), what + ": stiffness_from_beam needs a virtual_spring joint");
+        const std::string bp = child(p, "stiffness_from_beam");
+        const auto& b = object(o["stiffness_from_beam"], bp, what + " stiffness_from_beam");
+        const std::string mid = json_in::id(require(b, bp, "material", what), child(bp, "material"), what + " material");
+        const std::string sid = json_in::id(require(b, bp, "section", what), child(bp, "section"), what + " section");
+        int mi = -1, si = -1;
+        for (std::size_t k = 0; k < m.materials.size(); ++k) if (m.materials[k].id == mid) mi = static_cast<int>(k);
+        for (std::size_t k = 0; k < m.sections.size(); ++k) if (m.sections[k].id == sid) si = static_cast<int>(k);
+        if (mi < 0) throw InputError(child(bp, "material"), what + ": unknown material '" + mid + "'");
+        if (si < 0) throw InputError(child(bp, "section"), what + ": unknown section '" + sid + "'");
+        const double L = positive(require(b, bp, "length", what), child(bp, "length"), what + " length");
+        const auto& mat = m.materials[mi];
+        const auto& sec = m.sections[si];
+        const BeamSection bs{mat.E, mat.G, sec.A, sec.Iy, sec.Iz, sec.J};
+        j.stiffness_matrix = beam_local_stiffness(bs, L).bottomRightCorner<6, 6>();
+        for (int c = 0; c < nc; ++c) j.stiffness[c] = j.stiffness_matrix(c, c);
+      }
+      warn_unknown_keys(o, p, {"id", "type", "nodes", "axes", "stiffness", "stiffness_from_beam"});
       m.joints.push_back(j);
     }
   }

@@ -41,13 +41,10 @@ void LinearStructure::assemble(const DofMap& map, SystemAssembler& assembler) co
   }
   for (std::size_t j = 0; j < model_->joints.size(); ++j) {
     const auto& jt = model_->joints[j];
-    for (int q = 0; q < jt.coordinates(); ++q) {
-      if (jt.stiffness[q] == 0.0) continue;
-      const int r = map.raw_joint(static_cast<int>(j), q);
-      Eigen::Matrix<double, 1, 1> k;
-      k(0, 0) = jt.stiffness[q];
-      assembler.add(std::span<const int>(&r, 1), k);
-    }
+    if (!jt.has_stiffness()) continue;
+    std::vector<int> dofs(jt.coordinates());
+    for (int q = 0; q < jt.coordinates(); ++q) dofs[q] = map.raw_joint(static_cast<int>(j), q);
+    assembler.add(dofs, jt.stiffness_as_matrix());
   }
 }
 
@@ -63,10 +60,9 @@ Eigen::VectorXd LinearStructure::internal_force(const DofMap& map, const Eigen::
   }
   for (std::size_t j = 0; j < model_->joints.size(); ++j) {
     const auto& jt = model_->joints[j];
-    for (int q = 0; q < jt.coordinates(); ++q) {
-      const int r = map.raw_joint(static_cast<int>(j), q);
-      f[r] += jt.stiffness[q] * u[r];
-    }
+    if (!jt.has_stiffness()) continue;
+    const int r = map.raw_joint(static_cast<int>(j), 0);
+    f.segment(r, jt.coordinates()) += jt.stiffness_as_matrix() * u.segment(r, jt.coordinates());
   }
   return f;
 }
