@@ -1,6 +1,7 @@
 // beamfea: the command-line program.
 //   beamfea run model.json --out DIR     run every analysis, write DIR/results.json and VTK files
 //   beamfea check model.json             validate only
+//   beamfea sweep sweep.json --out DIR   many cases, one table DIR/cases.csv (cli/sweep_command.cpp)
 // Exit codes: 0 success, 1 an analysis failed, 2 bad input.
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -8,6 +9,7 @@
 #include "core/errors.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
+#include "cli/sweep_command.hpp"
 
 namespace {
 
@@ -37,6 +39,8 @@ int main(int argc, char** argv) {
   auto* check = app.add_subcommand("check", "Validate a model file without analysing it");
   check->add_option("model", check_path, "Model file (JSON)")->required();
 
+  const auto sweep = beamfea::cli::add_sweep_command(app);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -44,6 +48,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
 
+  if (*sweep->app) return beamfea::cli::run_sweep_command(*sweep);
   try {
     if (*check) {
       const auto doc = beamfea::read_json_file(check_path);

@@ -1,0 +1,1078 @@
+#include "io/sweep.hpp"
+
+#include <dlfcn.h>
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <thread>
+#include <unordered_map>
+
+#include "core/errors.hpp"
+#include "io/atomic_file.hpp"
+#include "io/json_util.hpp"
+#include "io/model_reader.hpp"
+#include "io/run.hpp"
+
+namespace beamfea {
+
+using json = nlohmann::json;
+using json_in::child;
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Reading the sweep file
+
+const char* kind_name(const json& v) {
+  switch (v.type()) {
+    case json::value_t::null: return "null";
+    case json::value_t::boolean: return "a boolean";
+    case json::value_t::string: return "a string";
+    case json::value_t::array: return "an array";
+    case json::value_t::object: return "an object";
+    default: return "a number";
+  }
+}
+
+// A value may replace another of the same kind: numbers of any representation, arrays of the
+// same length whose elements are of the same kinds, any object for an object.
+bool same_kind(const json& base, const json& v) {
+  if (base.is_number()) return v.is_number();
+  if (base.is_array()) {
+    if (!v.is_array() || v.size() != base.size()) return false;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (!same_kind(base[i], v[i])) return false;
+    return true;
+  }
+  return base.type() == v.type();
+}
+
+json::json_pointer read_pointer(const json& v, const std::string& where) {
+  if (!v.is_string()) throw InputError(where, "expected a JSON pointer (a string such as \"/nodes/1/xyz\")");
+  try {
+    return json::json_pointer(v.get<std::string>());
+  } catch (const json::exception& e) {
+    throw InputError(where, "invalid JSON pointer '" + v.get<std::string>() + "': " + e.what());
+  }
+}
+
+// A pointer must name an existing value of the base model.
+void check_exists(const json& base, const json::json_pointer& p, const std::string& where) {
+  if (!base.contains(p)) throw InputError(where, "'" + p.to_string() + "' does not exist in the base model");
+}
+
+void check_value(const json& base, const json::json_pointer& p, const json& v, const std::string& where) {
+  const json& old = base.at(p);
+  if (!same_kind(old, v)) {
+    std::string expected = kind_name(old);
+    if (old.is_array()) expected = "an array of " + std::to_string(old.size()) + " like " + old.dump();
+    throw InputError(where, "wrong type for '" + p.to_string() + "': expected " + expected + " as in the base model, got " +
+                                v.dump());
+  }
+}
+
+void check_patch(const json& base, const json& patch, const std::string& where) {
+  if (!patch.is_array()) throw InputError(where, "a JSON Patch must be an array of operations");
+  for (std::size_t k = 0; k < patch.size(); ++k) {
+    const auto& op = patch[k];
+    if (!op.is_object() || !op.contains("op") || !op.contains("path"))
+      throw InputError(child(where, k), "a JSON Patch operation needs \"op\" and \"path\"");
+    // Type check for a plain replacement of an existing value, as for "set".
+    if (op["op"] == "replace" && op.contains("value") && op["path"].is_string()) {
+      const auto p = read_pointer(op["path"], child(child(where, k), "path"));
+      check_exists(base, p, child(child(where, k), "path"));
+      check_value(base, p, op["value"], child(child(where, k), "value"));
+    }
+  }
+  try {
+    json copy = base;
+    copy.patch_inplace(patch);
+  } catch (const json::exception& e) {
+    throw InputError(where, std::string("the JSON Patch does not apply to the base model: ") + e.what());
+  }
+}
+
+void check_keys(const json& obj, const std::string& where, std::initializer_list<const char*> known) {
+  for (const auto& [k, v] : obj.items()) {
+    if (!k.empty() && k[0] == '_') continue;
+    if (k == "comment" || k == "description" || k == "title") continue;
+    bool found = false;
+    for (const char* n : known) found = found || k == n;
+    if (!found) {
+      std::string list;
+      for (const char* n : known) list += (list.empty() ? "" : ", ") + std::string(n);
+      throw InputError(child(where, k), "unknown field '" + k + "' (expected " + list + ")");
+    }
+  }
+}
+
+std::vector<json::json_pointer> read_pointers(const json& base, const json& v, const std::string& where) {
+  std::vector<json::json_pointer> out;
+  if (v.is_array()) {
+    if (v.empty()) throw InputError(where, "no pointers");
+    for (std::size_t i = 0; i < v.size(); ++i) out.push_back(read_pointer(v[i], child(where, i)));
+    for (std::size_t i = 0; i < v.size(); ++i) check_exists(base, out[i], child(where, i));
+  } else {
+    out.push_back(read_pointer(v, where));
+    check_exists(base, out[0], where);
+  }
+  return out;
+}
+
+SweepOutput read_output(const json& v, const std::string& where) {
+  SweepOutput o;
+  std::string path;
+  if (v.is_string()) {
+    path = v.get<std::string>();
+    o.name = path;
+  } else if (v.is_object()) {
+    check_keys(v, where, {"name", "path"});
+    path = json_in::string(json_in::require(v, where, "path", "output"), child(where, "path"), "output path");
+    o.name = v.contains("name") ? json_in::string(v["name"], child(where, "name"), "output name") : path;
+  } else {
+    throw InputError(where, "an output is a path string or {\"name\": ..., \"path\": ...}");
+  }
+  if (path.empty()) throw InputError(where, "empty output path");
+  if (path[0] == '/') {
+    read_pointer(json(path), where);  // validates the syntax
+    std::size_t start = 1;
+    for (;;) {
+      const auto slash = path.find('/', start);
+      const std::string raw = path.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+      std::string t;  // RFC 6901 unescaping: ~1 is '/', ~0 is '~'
+      for (std::size_t k = 0; k < raw.size(); ++k) {
+        if (raw[k] == '~' && k + 1 < raw.size()) t += raw[++k] == '1' ? '/' : '~';
+        else t += raw[k];
+      }
+      o.path.push_back({t, -1});
+      if (slash == std::string::npos) break;
+      start = slash + 1;
+    }
+    return o;
+  }
+  // Dotted form: key.key[3][0].key
+  std::size_t i = 0;
+  std::string key;
+  auto flush_key = [&] {
+    if (!key.empty()) o.path.push_back({key, -1});
+    key.clear();
+  };
+  while (i < path.size()) {
+    const char c = path[i];
+    if (c == '.') {
+      flush_key();
+      ++i;
+    } else if (c == '[') {
+      flush_key();
+      const auto close = path.find(']', i);
+      const std::string digits = close == std::string::npos ? "" : path.substr(i + 1, close - i - 1);
+      if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos)
+        throw InputError(where, "output path '" + path + "': expected [index] at character " + std::to_string(i));
+      o.path.push_back({"", std::stol(digits)});
+      i = close + 1;
+    } else {
+      key += c;
+      ++i;
+    }
+  }
+  flush_key();
+  return o;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cells and rows
+
+std::string sanitize(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  return s;
+}
+
+template <class J>
+std::string cell_text(const J& v) {
+  switch (v.type()) {
+    case J::value_t::null: return "";
+    case J::value_t::boolean: return v.template get<bool>() ? "true" : "false";
+    case J::value_t::string: return sanitize(v.template get<std::string>());
+    case J::value_t::number_integer: return std::to_string(v.template get<std::int64_t>());
+    case J::value_t::number_unsigned: return std::to_string(v.template get<std::uint64_t>());
+    case J::value_t::number_float: return fmt::format("{}", v.template get<double>());  // shortest round trip
+    default: return v.dump();
+  }
+}
+
+void flatten(const ojson& v, const std::string& name, std::vector<std::pair<std::string, std::string>>& out) {
+  if (v.is_array()) {
+    for (std::size_t i = 0; i < v.size(); ++i) flatten(v[i], name + "[" + std::to_string(i) + "]", out);
+  } else if (v.is_object()) {
+    for (const auto& [k, x] : v.items()) flatten(x, name + "." + k, out);
+  } else {
+    out.emplace_back(name, cell_text(v));
+  }
+}
+
+const ojson* find_path(const ojson& root, const SweepOutput& o) {
+  const ojson* v = &root;
+  for (const auto& t : o.path) {
+    if (t.index >= 0 || (v->is_array() && !t.key.empty() &&
+                         t.key.find_first_not_of("0123456789") == std::string::npos)) {
+      const std::size_t i = t.index >= 0 ? static_cast<std::size_t>(t.index) : std::stoul(t.key);
+      if (!v->is_array() || i >= v->size()) return nullptr;
+      v = &(*v)[i];
+    } else {
+      if (!v->is_object()) return nullptr;
+      auto it = v->find(t.key);
+      if (it == v->end()) return nullptr;
+      v = &*it;
+    }
+  }
+  return v;
+}
+
+// The table's columns: case, parameters, each output's flattened columns, status, message, time.
+struct Columns {
+  std::vector<std::vector<std::string>> outputs;
+  std::vector<std::string> header(const Sweep& s) const {
+    std::vector<std::string> h{"case"};
+    h.insert(h.end(), s.parameter_names.begin(), s.parameter_names.end());
+    for (const auto& o : outputs) h.insert(h.end(), o.begin(), o.end());
+    h.insert(h.end(), {"status", "message", "wall_time_s"});
+    return h;
+  }
+};
+
+std::string join_row(const std::vector<std::string>& cells) {
+  std::string line;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (i) line += ',';
+    line += csv_field(cells[i]);
+  }
+  line += '\n';
+  return line;
+}
+
+std::string format_row(const Sweep& s, std::size_t index, const Columns& cols, const SweepCaseResult& r) {
+  std::vector<std::string> cells{s.case_id(index)};
+  for (const auto& p : s.parameters(index)) cells.push_back(p.is_null() ? "" : cell_text(p));
+  for (std::size_t o = 0; o < cols.outputs.size(); ++o) {
+    const auto& names = cols.outputs[o];
+    const auto& got = r.outputs[o];
+    bool same = got.size() == names.size();
+    for (std::size_t k = 0; same && k < names.size(); ++k) same = got[k].first == names[k];
+    if (same) {
+      for (const auto& g : got) cells.push_back(g.second);
+      continue;
+    }
+    std::unordered_map<std::string, const std::string*> byname;
+    for (const auto& g : got) byname.emplace(g.first, &g.second);
+    for (const auto& n : names) {
+      auto it = byname.find(n);
+      cells.push_back(it == byname.end() ? "" : *it->second);
+    }
+  }
+  cells.push_back(to_string(r.status));
+  cells.push_back(sanitize(r.message));
+  cells.push_back(fmt::format("{:.6f}", r.wall_time_s));
+  return join_row(cells);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Process-wide matters of a run, each undone on exit.
+
+std::atomic<bool> g_stop{false};
+
+extern "C" void on_stop_signal(int) {
+  if (g_stop.load()) _exit(130);  // a second Ctrl-C: stop now (the table is valid CSV already)
+  g_stop.store(true);
+}
+
+class SignalGuard {
+ public:
+  SignalGuard() {
+    g_stop = false;
+    old_int_ = std::signal(SIGINT, on_stop_signal);
+    old_term_ = std::signal(SIGTERM, on_stop_signal);
+  }
+  ~SignalGuard() {
+    std::signal(SIGINT, old_int_);
+    std::signal(SIGTERM, old_term_);
+  }
+
+ private:
+  void (*old_int_)(int);
+  void (*old_term_)(int);
+};
+
+// The model reader warns on std::cerr; the base model's warnings were shown once when the sweep
+// was read, so the cases' identical warnings are silenced while they run. (Progress goes to
+// stderr through stdio, not std::cerr.)
+class CerrSilencer {
+ public:
+  CerrSilencer() : old_(std::cerr.rdbuf(nullptr)) {}
+  ~CerrSilencer() { std::cerr.rdbuf(old_); }
+
+ private:
+  std::streambuf* old_;
+};
+
+// Cases run one per thread: OpenBLAS's own threads would only oversubscribe the cores.
+void single_threaded_blas() {
+  using SetThreads = void (*)(int);
+  if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
+}
+
+void write_all(int fd, const std::string& text, const std::filesystem::path& path) {
+  const char* p = text.data();
+  std::size_t left = text.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw Error("error writing '" + path.string() + "'");
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string duration_text(double s) {
+  if (!(s >= 0.0) || s > 1e7) return "--:--";
+  const long t = static_cast<long>(s + 0.5);
+  if (t >= 3600) return fmt::format("{}:{:02}:{:02}", t / 3600, (t / 60) % 60, t % 60);
+  return fmt::format("{}:{:02}", t / 60, t % 60);
+}
+
+// Index of a case id; throws when the id is not one of the sweep's.
+class CaseIndex {
+ public:
+  explicit CaseIndex(const Sweep& s) : sweep_(s) {
+    if (s.grid.empty())
+      for (std::size_t i = 0; i < s.list.size(); ++i) ids_.emplace(s.list[i].id, i);
+  }
+  bool find(const std::string& id, std::size_t& index) const {
+    if (!sweep_.grid.empty()) {
+      if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos || id.size() > 18) return false;
+      index = std::stoull(id);
+      return index < sweep_.size();
+    }
+    auto it = ids_.find(id);
+    if (it == ids_.end()) return false;
+    index = it->second;
+    return true;
+  }
+
+ private:
+  const Sweep& sweep_;
+  std::unordered_map<std::string, std::size_t> ids_;
+};
+
+// The table as read back: header and complete rows (a trailing line without '\n' is dropped).
+struct Table {
+  std::vector<std::string> header;
+  std::vector<std::string> rows;  // each with its '\n'
+  bool partial_tail = false;
+};
+
+Table read_table(const std::filesystem::path& path) {
+  Table t;
+  const std::string text = read_text(path);
+  std::size_t pos = 0;
+  bool first = true;
+  while (pos < text.size()) {
+    const auto nl = text.find('\n', pos);
+    if (nl == std::string::npos) {
+      t.partial_tail = true;
+      break;
+    }
+    std::string line = text.substr(pos, nl - pos + 1);
+    pos = nl + 1;
+    if (first) {
+      line.pop_back();
+      t.header = csv_split(line);
+      first = false;
+    } else if (line.size() > 1) {
+      t.rows.push_back(std::move(line));
+    }
+  }
+  return t;
+}
+
+std::string first_field(const std::string& row) {
+  std::string line = row;
+  if (!line.empty() && line.back() == '\n') line.pop_back();
+  const auto f = csv_split(line);
+  return f.empty() ? "" : f[0];
+}
+
+// Columns of an existing table, matched to this sweep; throws when they differ.
+Columns columns_from_header(const Sweep& s, const std::vector<std::string>& h, const std::string& table) {
+  const std::size_t P = s.parameter_names.size();
+  auto differ = [&](const std::string& why) {
+    return InputError("", "--resume: " + table + " is not a table of this sweep (" + why + "); remove it or use another --out");
+  };
+  if (h.size() < 4 + P || h[0] != "case" || h[h.size() - 3] != "status" || h[h.size() - 2] != "message" ||
+      h.back() != "wall_time_s")
+    throw differ("unexpected columns");
+  for (std::size_t i = 0; i < P; ++i)
+    if (h[1 + i] != s.parameter_names[i]) throw differ("parameter column '" + h[1 + i] + "'");
+  Columns c;
+  std::size_t k = 1 + P;
+  const std::size_t end = h.size() - 3;
+  for (const auto& o : s.outputs) {
+    std::vector<std::string> mine;
+    while (k < end && (h[k] == o.name || h[k].rfind(o.name + "[", 0) == 0 || h[k].rfind(o.name + ".", 0) == 0))
+      mine.push_back(h[k++]);
+    if (mine.empty()) throw differ("no column for output '" + o.name + "'");
+    c.outputs.push_back(std::move(mine));
+  }
+  if (k != end) throw differ("column '" + h[k] + "' is not an output of this sweep");
+  return c;
+}
+
+// What rank 0 decides before the cases run: the columns and the cases already in the table.
+struct Plan {
+  Columns columns;
+  std::vector<std::size_t> done;  // in the table already: resumed rows and the probe's rows
+  std::size_t probed = 0;         // of which run now by the probe
+  std::string error;
+};
+
+json plan_to_json(const Plan& p) {
+  return json{{"columns", p.columns.outputs}, {"done", p.done}, {"probed", p.probed}, {"error", p.error}};
+}
+Plan plan_from_json(const json& j) {
+  Plan p;
+  p.columns.outputs = j.at("columns").get<std::vector<std::vector<std::string>>>();
+  p.done = j.at("done").get<std::vector<std::size_t>>();
+  p.probed = j.at("probed").get<std::size_t>();
+  p.error = j.at("error").get<std::string>();
+  return p;
+}
+
+constexpr std::size_t kProbeLimit = 64;
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+const char* to_string(SweepCaseResult::Status s) {
+  switch (s) {
+    case SweepCaseResult::Status::Ok: return "ok";
+    case SweepCaseResult::Status::AnalysisFailed: return "analysis failed";
+    case SweepCaseResult::Status::BadInput: return "bad input";
+  }
+  return "?";
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) {
+    if (c == '"') q += '"';
+    q += c;
+  }
+  q += '"';
+  return q;
+}
+
+std::vector<std::string> csv_split(const std::string& line) {
+  std::vector<std::string> out;
+  std::string f;
+  bool quoted = false, in_quotes = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (in_quotes) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        f += '"';
+        ++i;
+      } else if (c == '"') {
+        in_quotes = false;
+      } else {
+        f += c;
+      }
+    } else if (c == '"' && f.empty() && !quoted) {
+      in_quotes = quoted = true;
+    } else if (c == ',') {
+      out.push_back(std::move(f));
+      f.clear();
+      quoted = false;
+    } else if (c != '\r') {
+      f += c;
+    }
+  }
+  out.push_back(std::move(f));
+  return out;
+}
+
+std::size_t Sweep::size() const {
+  if (grid.empty()) return list.size();
+  std::size_t n = 1;
+  for (const auto& a : grid) n *= a.values.size();
+  return n;
+}
+
+std::string Sweep::case_id(std::size_t index) const {
+  return grid.empty() ? list[index].id : std::to_string(index);
+}
+
+namespace {
+// Per-axis value indices of grid case `index`, last axis fastest.
+std::vector<std::size_t> grid_indices(const std::vector<SweepAxis>& grid, std::size_t index) {
+  std::vector<std::size_t> k(grid.size());
+  for (std::size_t a = grid.size(); a-- > 0;) {
+    k[a] = index % grid[a].values.size();
+    index /= grid[a].values.size();
+  }
+  return k;
+}
+}  // namespace
+
+std::vector<json> Sweep::parameters(std::size_t index) const {
+  std::vector<json> out;
+  if (!grid.empty()) {
+    const auto k = grid_indices(grid, index);
+    for (std::size_t a = 0; a < grid.size(); ++a) out.push_back(grid[a].values[k[a]]);
+    return out;
+  }
+  const auto& c = list[index];
+  for (const auto& n : parameter_names) {
+    auto it = c.parameters.find(n);
+    out.push_back(it == c.parameters.end() ? json() : *it);
+  }
+  return out;
+}
+
+std::vector<SweepChange> Sweep::changes(std::size_t index) const {
+  if (grid.empty()) return list[index].changes;
+  std::vector<SweepChange> out;
+  const auto k = grid_indices(grid, index);
+  for (std::size_t a = 0; a < grid.size(); ++a) {
+    SweepChange c;
+    if (grid[a].patches.empty()) {
+      c.pointers = grid[a].pointers;
+      c.value = grid[a].values[k[a]];
+    } else {
+      c.patch = grid[a].patches[k[a]];
+    }
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+json Sweep::document(std::size_t index) const {
+  json doc = base;
+  for (const auto& c : changes(index)) {
+    try {
+      if (c.patch.is_null())
+        for (const auto& p : c.pointers) doc[p] = c.value;
+      else
+        doc.patch_inplace(c.patch);
+    } catch (const json::exception& e) {
+      throw InputError("", std::string("cannot apply the case's changes: ") + e.what());
+    }
+  }
+  return doc;
+}
+
+Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
+  Sweep s;
+  if (!doc.is_object()) throw InputError("", "a sweep must be a JSON object");
+  check_keys(doc, "", {"base", "model", "grid", "cases", "outputs", "analyses"});
+
+  // The base model, parsed once.
+  if (doc.contains("base") == doc.contains("model"))
+    throw InputError("/base", "name the base model: \"base\": \"model.json\" (or an inline \"model\": {...}), not both");
+  if (doc.contains("base")) {
+    const std::string file = json_in::string(doc["base"], "/base", "base model file");
+    s.base_path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : directory / file;
+    try {
+      s.base = read_json_file(s.base_path.string());
+    } catch (const InputError& e) {
+      throw InputError("/base", e.what());
+    }
+  } else {
+    s.base = json_in::object(doc["model"], "/model", "inline base model");
+  }
+  const std::string base_ptr = doc.contains("base") ? "/base" : "/model";
+  try {
+    load_and_check(s.base);
+  } catch (const Error& e) {
+    throw InputError(base_ptr, std::string("the base model is invalid: ") + e.what());
+  }
+  std::set<std::string> analysis_ids;
+  if (auto it = s.base.find("analyses"); it != s.base.end())
+    for (const auto& a : *it) analysis_ids.insert(json_in::id(a.at("id"), "", "analysis"));
+
+  // Cases.
+  if (doc.contains("grid") == doc.contains("cases"))
+    throw InputError("/grid", "give the cases either as a \"grid\" or as a \"cases\" list (exactly one)");
+  if (doc.contains("grid")) {
+    const auto& g = json_in::array(doc["grid"], "/grid", "grid");
+    if (g.empty()) throw InputError("/grid", "empty grid: no axes");
+    long double n = 1;
+    for (std::size_t a = 0; a < g.size(); ++a) {
+      const std::string p = child("/grid", a);
+      const auto& ax = json_in::object(g[a], p, "grid axis");
+      check_keys(ax, p, {"name", "pointer", "values", "patches"});
+      SweepAxis axis;
+      if (ax.contains("patches")) {
+        if (ax.contains("pointer")) throw InputError(child(p, "pointer"), "a grid axis has \"pointer\" or \"patches\", not both");
+        const auto& ps = json_in::array(ax["patches"], child(p, "patches"), "grid axis patches");
+        if (ps.empty()) throw InputError(child(p, "patches"), "empty grid axis: no patches");
+        for (std::size_t k = 0; k < ps.size(); ++k) {
+          check_patch(s.base, ps[k], child(child(p, "patches"), k));
+          axis.patches.push_back(ps[k]);
+        }
+        if (ax.contains("values")) {
+          const auto& vs = json_in::array(ax["values"], child(p, "values"), "grid axis values");
+          if (vs.size() != ps.size())
+            throw InputError(child(p, "values"), "expected one value (label) per patch: " + std::to_string(ps.size()));
+          axis.values.assign(vs.begin(), vs.end());
+        } else {
+          for (std::size_t k = 0; k < ps.size(); ++k) axis.values.emplace_back(k);
+        }
+        if (!ax.contains("name")) throw InputError(child(p, "name"), "a grid axis of patches needs a \"name\"");
+      } else {
+        axis.pointers = read_pointers(s.base, json_in::require(ax, p, "pointer", "grid axis"), child(p, "pointer"));
+        const auto& vs = json_in::array(json_in::require(ax, p, "values", "grid axis"), child(p, "values"), "grid axis values");
+        if (vs.empty()) throw InputError(child(p, "values"), "empty grid axis: no values");
+        for (std::size_t k = 0; k < vs.size(); ++k) {
+          for (const auto& ptr : axis.pointers) check_value(s.base, ptr, vs[k], child(child(p, "values"), k));
+          axis.values.push_back(vs[k]);
+        }
+      }
+      axis.name = ax.contains("name") ? json_in::string(ax["name"], child(p, "name"), "grid axis name")
+                                      : axis.pointers.front().to_string();
+      n *= axis.values.size();
+      if (n > 1e9) throw InputError(p, "the grid has more than 1e9 cases");
+      s.parameter_names.push_back(axis.name);
+      s.grid.push_back(std::move(axis));
+    }
+  } else {
+    const auto& cs = json_in::array(doc["cases"], "/cases", "cases");
+    if (cs.empty()) throw InputError("/cases", "empty list of cases");
+    std::set<std::string> ids;
+    for (std::size_t i = 0; i < cs.size(); ++i) {
+      const std::string p = child("/cases", i);
+      const auto& c = json_in::object(cs[i], p, "case");
+      check_keys(c, p, {"id", "parameters", "set", "patch"});
+      SweepListCase lc;
+      lc.id = c.contains("id") ? json_in::id(c["id"], child(p, "id"), "case") : std::to_string(i);
+      if (lc.id.empty() || lc.id == "." || lc.id == ".." ||
+          lc.id.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.+-=") != std::string::npos)
+        throw InputError(child(p, "id"), "case id '" + lc.id + "': use letters, digits and _ . + - = only (it names a folder)");
+      if (!ids.insert(lc.id).second) throw InputError(child(p, "id"), "duplicate case id '" + lc.id + "'");
+      json implicit_parameters = json::object();
+      if (c.contains("set")) {
+        const auto& set = json_in::object(c["set"], child(p, "set"), "case set");
+        for (const auto& [k, v] : set.items()) {
+          const std::string where = child(child(p, "set"), k);
+          const auto ptr = read_pointer(json(k), where);
+          check_exists(s.base, ptr, where);
+          check_value(s.base, ptr, v, where);
+          lc.changes.push_back({{ptr}, v, json()});
+          implicit_parameters[k] = v;
+        }
+      }
+      if (c.contains("patch")) {
+        // Checked on the base with this case's "set" changes applied.
+        json b = s.base;
+        for (const auto& ch : lc.changes) b[ch.pointers[0]] = ch.value;
+        check_patch(b, c["patch"], child(p, "patch"));
+        lc.changes.push_back({{}, json(), c["patch"]});
+      }
+      lc.parameters = c.contains("parameters") ? json_in::object(c["parameters"], child(p, "parameters"), "case parameters")
+                                               : implicit_parameters;
+      for (const auto& [k, v] : lc.parameters.items())
+        if (std::find(s.parameter_names.begin(), s.parameter_names.end(), k) == s.parameter_names.end())
+          s.parameter_names.push_back(k);
+      s.list.push_back(std::move(lc));
+    }
+  }
+
+  // Analyses to run.
+  if (doc.contains("analyses")) {
+    const auto& as = json_in::array(doc["analyses"], "/analyses", "analyses");
+    for (std::size_t i = 0; i < as.size(); ++i) {
+      const std::string id = json_in::id(as[i], child("/analyses", i), "analysis id");
+      if (!analysis_ids.count(id)) throw InputError(child("/analyses", i), "no analysis '" + id + "' in the base model");
+      s.analyses.push_back(id);
+    }
+  }
+
+  // Outputs.
+  if (doc.contains("outputs")) {
+    const auto& os = json_in::array(doc["outputs"], "/outputs", "outputs");
+    for (std::size_t i = 0; i < os.size(); ++i) {
+      const std::string p = child("/outputs", i);
+      SweepOutput o = read_output(os[i], p);
+      const auto& t = o.path;
+      if (t.empty() || (t[0].key != "analyses" && t[0].key != "model"))
+        throw InputError(p, "output '" + o.name + "': a path into the results starts with 'analyses.<id>' or 'model'");
+      if (t[0].key == "analyses") {
+        if (t.size() < 2 || !analysis_ids.count(t[1].key)) {
+          std::string known;
+          for (const auto& a : analysis_ids) known += (known.empty() ? "" : ", ") + a;
+          throw InputError(p, "output '" + o.name + "': no analysis '" + (t.size() < 2 ? "" : t[1].key) +
+                                  "' in the base model (analyses: " + known + ")");
+        }
+        if (!s.analyses.empty() && std::find(s.analyses.begin(), s.analyses.end(), t[1].key) == s.analyses.end())
+          throw InputError(p, "output '" + o.name + "': analysis '" + t[1].key + "' is not among \"analyses\"");
+      }
+      s.outputs.push_back(std::move(o));
+    }
+  }
+
+  // Column names must be unique.
+  std::set<std::string> names{"case", "status", "message", "wall_time_s"};
+  for (std::size_t i = 0; i < s.parameter_names.size(); ++i)
+    if (!names.insert(s.parameter_names[i]).second)
+      throw InputError(s.grid.empty() ? "/cases" : child(child("/grid", i), "name"),
+                       "parameter name '" + s.parameter_names[i] + "' is used twice or clashes with a column");
+  for (std::size_t i = 0; i < s.outputs.size(); ++i)
+    if (!names.insert(s.outputs[i].name).second)
+      throw InputError(child("/outputs", i), "output name '" + s.outputs[i].name + "' is used twice or clashes with a column");
+  return s;
+}
+
+Sweep read_sweep_file(const std::string& path) {
+  const json doc = read_json_file(path);
+  return read_sweep(doc, std::filesystem::path(path).parent_path());
+}
+
+SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SweepCaseResult r;
+  r.outputs.resize(sweep.outputs.size());
+  try {
+    const json doc = sweep.document(index);
+    const Model model = load_and_check(doc);
+    RunOptions opt;
+    opt.out_dir = keep_dir;
+    opt.write_vtk = !keep_dir.empty();
+    opt.only = sweep.analyses;
+    const RunReport report = run_document(model, doc, opt);
+    std::string missing;
+    for (std::size_t o = 0; o < sweep.outputs.size(); ++o) {
+      if (const ojson* v = find_path(report.results, sweep.outputs[o])) flatten(*v, sweep.outputs[o].name, r.outputs[o]);
+      else missing += (missing.empty() ? "" : ", ") + sweep.outputs[o].name;
+    }
+    if (report.failed) {
+      r.status = SweepCaseResult::Status::AnalysisFailed;
+      for (const auto& [id, a] : report.results["analyses"].items()) {
+        if (!a.is_object() || !a.contains("status") || a["status"] == "ok") continue;
+        const std::string m = a.contains("message") && a["message"].is_string() ? a["message"].get<std::string>()
+                                                                                : a["status"].dump();
+        r.message += (r.message.empty() ? "" : "; ") + id + ": " + m;
+      }
+      if (r.message.empty()) r.message = "an analysis failed";
+    } else if (!missing.empty()) {
+      r.message = "not in the results: " + missing;
+    }
+  } catch (const InputError& e) {
+    r.status = SweepCaseResult::Status::BadInput;
+    r.message = e.what();
+  } catch (const ModelError& e) {
+    r.status = SweepCaseResult::Status::BadInput;
+    r.message = e.what();
+  } catch (const std::exception& e) {
+    r.status = SweepCaseResult::Status::AnalysisFailed;
+    r.message = e.what();
+  }
+  r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+void SweepOptions::validate() const {
+  if (out_dir.empty()) throw InputError("", "sweep: the output folder must not be empty");
+  if (jobs < 0) throw InputError("", "sweep: --jobs must be at least 1 (or 0 for all cores)");
+  if (!(line_interval_s > 0.0)) throw InputError("", "sweep: the progress line interval must be positive");
+}
+
+std::string SweepSummary::report() const {
+  return fmt::format("{} cases ({} run now, {} already in the table): {} ok, {} analysis failed, {} bad input; {:.2f} s{}; table {}",
+                     cases, ran, skipped, ok, analysis_failed, bad_input, wall_time_s,
+                     interrupted ? " (interrupted: the table holds the finished cases)" : "", table.string());
+}
+
+int SweepSummary::exit_code() const {
+  if (interrupted) return 130;
+  return analysis_failed + bad_input > 0 ? 1 : 0;
+}
+
+SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepComm* comm) {
+  options.validate();
+  const auto t_start = std::chrono::steady_clock::now();
+  const int rank = comm ? comm->rank() : 0, ranks = comm ? comm->size() : 1;
+  const bool root = rank == 0;
+  const std::size_t total = sweep.size();
+  const auto table = options.out_dir / "cases.csv";
+  const CaseIndex case_index(sweep);
+  auto keep_dir = [&](std::size_t i) {
+    return options.keep ? options.out_dir / "cases" / sweep.case_id(i) : std::filesystem::path();
+  };
+  SignalGuard signals;
+  CerrSilencer quiet_cerr;
+
+  // Rank 0 settles the columns and the cases already done, and starts the table.
+  Plan plan;
+  if (root) {
+    try {
+      std::filesystem::create_directories(options.out_dir);
+      std::vector<char> done(total, 0);
+      bool have_columns = false;
+      if (options.resume && std::filesystem::exists(table)) {
+        Table t = read_table(table);
+        if (!t.header.empty()) {
+          plan.columns = columns_from_header(sweep, t.header, table.string());
+          have_columns = true;
+          for (const auto& row : t.rows) {
+            std::size_t i;
+            if (!case_index.find(first_field(row), i))
+              throw InputError("", "--resume: " + table.string() + " has a row for case '" + first_field(row) +
+                                       "', which is not in this sweep");
+            done[i] = 1;
+          }
+          if (t.partial_tail) {  // cannot happen with whole-row writes; repair anyway
+            std::string text = join_row(t.header);
+            for (const auto& row : t.rows) text += row;
+            write_text_atomic(table, text);
+          }
+        }
+      }
+      if (!have_columns) {
+        // The columns of each output are those of the first case that succeeds (arrays are
+        // flattened to name[i][j]); the probe's cases are rows of the table like any other.
+        std::vector<std::pair<std::size_t, SweepCaseResult>> probe;
+        const SweepCaseResult* ok = nullptr;
+        for (std::size_t i = 0; i < total && probe.size() < kProbeLimit && !g_stop; ++i) {
+          if (done[i]) continue;
+          probe.emplace_back(i, run_sweep_case(sweep, i, keep_dir(i)));
+          if (probe.back().second.status == SweepCaseResult::Status::Ok) {
+            ok = &probe.back().second;
+            break;
+          }
+        }
+        plan.columns.outputs.resize(sweep.outputs.size());
+        for (std::size_t o = 0; o < sweep.outputs.size(); ++o) {
+          if (ok && !ok->outputs[o].empty())
+            for (const auto& kv : ok->outputs[o]) plan.columns.outputs[o].push_back(kv.first);
+          else
+            plan.columns.outputs[o].push_back(sweep.outputs[o].name);
+        }
+        std::string text = join_row(plan.columns.header(sweep));
+        for (const auto& [i, r] : probe) {
+          text += format_row(sweep, i, plan.columns, r);
+          done[i] = 1;
+        }
+        plan.probed = probe.size();
+        write_text_atomic(table, text);
+      }
+      for (std::size_t i = 0; i < total; ++i)
+        if (done[i]) plan.done.push_back(i);
+    } catch (const std::exception& e) {
+      plan.error = e.what();
+    }
+  }
+  if (ranks > 1) {
+    std::string text = root ? plan_to_json(plan).dump() : std::string();
+    comm->broadcast(text);
+    if (!root) plan = plan_from_json(json::parse(text));
+  }
+  if (!plan.error.empty()) throw InputError("", plan.error);
+
+  // This rank's share: every ranks-th case not yet done.
+  std::vector<std::size_t> pending;
+  {
+    std::vector<char> done(total, 0);
+    for (auto i : plan.done) done[i] = 1;
+    for (std::size_t i = 0; i < total; ++i)
+      if (!done[i] && static_cast<int>(i % ranks) == rank) pending.push_back(i);
+  }
+  const std::size_t todo_all = total - plan.done.size();
+
+  int jobs = options.jobs;
+  if (jobs == 0) {
+    jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    if (ranks > 1) {
+      int local = ranks;
+      if (const char* l = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE")) local = std::max(1, std::atoi(l));
+      jobs = std::max(1, jobs / local);
+    }
+  }
+  jobs = static_cast<int>(std::max<std::size_t>(1, std::min<std::size_t>(jobs, pending.size())));
+  if (jobs > 1 || ranks > 1) single_threaded_blas();
+
+  // Workers run cases and hand whole rows to this thread, the only one that writes or sends.
+  std::mutex mutex;
+  std::condition_variable cv;
+  std::string batch;
+  std::size_t batch_rows = 0, batch_failed = 0;
+  int finished_workers = 0;
+  std::atomic<std::size_t> next{0};
+  std::vector<std::thread> workers;
+  for (int w = 0; w < jobs; ++w) {
+    workers.emplace_back([&] {
+      for (;;) {
+        if (g_stop) break;
+        const std::size_t k = next++;
+        if (k >= pending.size()) break;
+        const std::size_t i = pending[k];
+        const SweepCaseResult r = run_sweep_case(sweep, i, keep_dir(i));
+        std::string row = format_row(sweep, i, plan.columns, r);
+        {
+          std::lock_guard lock(mutex);
+          batch += row;
+          ++batch_rows;
+          if (r.status != SweepCaseResult::Status::Ok) ++batch_failed;
+        }
+        cv.notify_one();
+      }
+      std::lock_guard lock(mutex);
+      ++finished_workers;
+      cv.notify_one();
+    });
+  }
+
+  int fd = -1;
+  if (root) {
+    fd = ::open(table.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+    if (fd < 0) {
+      g_stop = true;
+      for (auto& t : workers) t.join();
+      throw Error("cannot append to '" + table.string() + "'");
+    }
+  }
+  SweepProgress mode = options.progress;
+  if (mode == SweepProgress::Auto) mode = ::isatty(2) ? SweepProgress::Bar : SweepProgress::Lines;
+  if (!root) mode = SweepProgress::None;
+  std::size_t done_now = 0, failed_now = 0;
+  int ranks_finished = 0;
+  const auto t_cases = std::chrono::steady_clock::now();
+  auto last_draw = t_cases;
+  bool drew_bar = false;
+  auto draw = [&](bool final) {
+    const auto now = std::chrono::steady_clock::now();
+    const double elapsed = std::chrono::duration<double>(now - t_cases).count();
+    const double since = std::chrono::duration<double>(now - last_draw).count();
+    const double rate = elapsed > 0 ? done_now / elapsed : 0.0;
+    const double left = rate > 0 ? (todo_all - done_now) / rate : -1.0;
+    if (mode == SweepProgress::Bar && (final || since >= 0.1)) {
+      constexpr int width = 30;
+      const int filled = todo_all ? static_cast<int>(width * done_now / todo_all) : width;
+      std::fprintf(stderr, "\r[%s%s] %zu/%zu cases  %zu failed  %.0f cases/s  %s left \033[K",
+                   std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), done_now, todo_all,
+                   failed_now, rate, duration_text(left).c_str());
+      if (final) std::fputc('\n', stderr);
+      std::fflush(stderr);
+      last_draw = now;
+      drew_bar = true;
+    } else if (mode == SweepProgress::Lines && (final || since >= options.line_interval_s)) {
+      std::fprintf(stderr, "beamfea sweep: %zu/%zu cases, %zu failed, %.0f cases/s, %s left\n", done_now, todo_all,
+                   failed_now, rate, duration_text(left).c_str());
+      std::fflush(stderr);
+      last_draw = now;
+    }
+  };
+
+  bool sent_last = false;
+  for (;;) {
+    std::string mine;
+    std::size_t rows = 0, failed = 0;
+    bool workers_done;
+    {
+      std::unique_lock lock(mutex);
+      cv.wait_for(lock, std::chrono::milliseconds(50), [&] { return !batch.empty() || finished_workers == jobs; });
+      mine.swap(batch);
+      rows = batch_rows;
+      failed = batch_failed;
+      batch_rows = batch_failed = 0;
+      workers_done = finished_workers == jobs;
+    }
+    if (root) {
+      if (!mine.empty()) write_all(fd, mine, table);
+      done_now += rows;
+      failed_now += failed;
+      std::string remote;
+      bool last = false;
+      while (comm && ranks > 1 && comm->receive(remote, last)) {
+        const auto nl = remote.find('\n');
+        std::size_t r = 0, f = 0;
+        std::sscanf(remote.c_str(), "%zu %zu", &r, &f);
+        if (nl + 1 < remote.size()) write_all(fd, remote.substr(nl + 1), table);
+        done_now += r;
+        failed_now += f;
+        if (last) ++ranks_finished;
+      }
+      draw(false);
+      if (workers_done && ranks_finished == ranks - 1) break;
+    } else {
+      if (!mine.empty() || workers_done) {
+        comm->send(fmt::format("{} {}\n", rows, failed) + mine, workers_done);
+        sent_last = workers_done;
+      }
+      if (sent_last) break;
+    }
+  }
+  for (auto& t : workers) t.join();
+  if (drew_bar || mode == SweepProgress::Lines) draw(true);
+
+  SweepSummary summary;
+  summary.cases = total;
+  summary.skipped = plan.done.size() - plan.probed;
+  summary.ran = done_now + plan.probed;
+  summary.interrupted = g_stop;
+  summary.table = table;
+  if (root) {
+    ::close(fd);
+    // Sort by case order (one row per case, the last written wins) and replace atomically.
+    Table t = read_table(table);
+    std::vector<std::pair<std::size_t, std::string>> rows;
+    std::map<std::size_t, std::size_t> where;
+    const std::size_t status_col = t.header.size() - 3;
+    for (auto& row : t.rows) {
+      std::size_t i;
+      if (!case_index.find(first_field(row), i)) continue;
+      auto [it, fresh] = where.emplace(i, rows.size());
+      if (fresh) rows.emplace_back(i, std::move(row));
+      else rows[it->second].second = std::move(row);
+    }
+    std::sort(rows.begin(), rows.end());
+    std::string text = join_row(t.header);
+    for (const auto& [i, row] : rows) {
+      text += row;
+      std::string line = row;
+      line.pop_back();
+      const auto f = csv_split(line);
+      const std::string status = f.size() > status_col ? f[status_col] : "";
+      if (status == "ok") ++summary.ok;
+      else if (status == "bad input") ++summary.bad_input;
+      else ++summary.analysis_failed;
+    }
+    write_text_atomic(table, text);
+  }
+  summary.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  return summary;
+}
+
+}  // namespace beamfea
