@@ -55,5 +55,6 @@ ojson to_json(const Mat6& m);
 // Registered analyses (io/analysis_*.cpp).
 AnalysisType linear_static_analysis();
 AnalysisType stiffness_analysis();
+AnalysisType actuator_allocation_analysis();
 
 }  // namespace beamfea

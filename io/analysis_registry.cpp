@@ -10,6 +10,7 @@ const std::vector<AnalysisType>& analysis_types() {
   static const std::vector<AnalysisType> types = {
       linear_static_analysis(),
       stiffness_analysis(),
+      actuator_allocation_analysis(),
   };
   return types;
 }

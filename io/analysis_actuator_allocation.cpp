@@ -1,0 +1,484 @@
+// Analysis "actuator_allocation": every choice of actuated joints among candidates (W. Bu 2012,
+// eq. 20), with the actuated, structural and total stiffness of each at a set of poses, and a
+// ranking by a chosen stiffness component, worst case over the poses. docs/analyses/actuator-allocation.md.
+//
+// {"id": "alloc", "type": "actuator_allocation",
+//  "platform_node": "P",
+//  "candidate_joints": ["J1", "J2", {"joint": "U1", "coordinate": 1}],
+//  "actuators": 3,                         number of actuated candidates per scheme (N_dof)
+//  "actuator_stiffness": 1.0,              one number, or one per candidate
+//  "directions": ["rz", "ux", "uy"],       platform DOFs reported, in this order
+//  "structural_terms": ["bending"],        terms of eq. 12 (axial, shear, torsion, bending); default all
+//  "poses": [{"id": "P1", "nodes": [{"node": "J2", "xyz": [x, y, z]}, ...]}],   default: the model as given
+//  "schemes": [["J1", "J2", "J3"]],        optional: only these schemes (default: all C(N, n))
+//  "rank_by": {"stiffness": "total", "direction": "uy"}}
+//     stiffness: actuated (K_A,dd), structural (1/C_S,dd), total_eq19 (eq. 19), total (1/C_dd, C = K_A^-1 + C_S)
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "io/analysis.hpp"
+#include "io/atomic_file.hpp"
+#include "io/json_util.hpp"
+#include "io/model_reader.hpp"
+#include "solvers/actuator_allocation.hpp"
+
+namespace beamfea {
+
+namespace {
+
+using json = nlohmann::json;
+using namespace json_in;
+
+constexpr const char* kComponents[] = {"actuated", "structural", "total_eq19", "total", "total_fea"};
+constexpr std::size_t kMaxSchemes = 20000;
+
+struct Pose {
+  std::string id;
+  std::vector<std::pair<int, Vec3>> nodes;
+};
+
+struct Spec {
+  AllocationOptions options;
+  int actuators = 0;
+  std::vector<Pose> poses;
+  std::vector<std::vector<int>> schemes;
+  int rank_component = 3;  // index into kComponents
+  int rank_direction = 0;  // index into options.directions
+};
+
+Spec read_spec(const Model& model, const json& spec, const std::string& p) {
+  Spec s;
+  const std::string what = "actuator_allocation analysis";
+  auto& o = s.options;
+  o.platform_node = node_ref(model, require(spec, p, "platform_node", what), child(p, "platform_node"));
+  // Candidates
+  const std::string pc = child(p, "candidate_joints");
+  const auto& cands = array(require(spec, p, "candidate_joints", what), pc, what + " candidate_joints");
+  if (cands.empty()) throw InputError(pc, what + ": no candidate joints");
+  for (std::size_t i = 0; i < cands.size(); ++i) {
+    const std::string pi = child(pc, i);
+    ActuatorCandidate c;
+    if (cands[i].is_object()) {
+      c.joint = joint_ref(model, require(cands[i], pi, "joint", "candidate"), child(pi, "joint"));
+      if (cands[i].contains("coordinate")) c.coordinate = integer(cands[i]["coordinate"], child(pi, "coordinate"), "coordinate");
+      if (c.coordinate < 0 || c.coordinate >= model.joints[c.joint].coordinates())
+        throw InputError(child(pi, "coordinate"), "joint '" + model.joints[c.joint].id + "' has " +
+                                                      std::to_string(model.joints[c.joint].coordinates()) + " coordinate(s)");
+    } else {
+      c.joint = joint_ref(model, cands[i], pi);
+      if (model.joints[c.joint].coordinates() != 1)
+        throw InputError(pi, "joint '" + model.joints[c.joint].id +
+                                 "' has several coordinates: name one as {\"joint\": ..., \"coordinate\": k}");
+    }
+    for (const auto& d : o.candidates)
+      if (d.joint == c.joint && d.coordinate == c.coordinate)
+        throw InputError(pi, "joint '" + model.joints[c.joint].id + "' is a candidate twice");
+    o.candidates.push_back(c);
+  }
+  const int n_all = static_cast<int>(o.candidates.size());
+  // Number of actuators
+  s.actuators = integer(require(spec, p, "actuators", what), child(p, "actuators"), what + " actuators");
+  if (s.actuators < 1) throw InputError(child(p, "actuators"), what + ": the number of actuators must be at least 1");
+  if (s.actuators > n_all)
+    throw InputError(child(p, "actuators"), fmt::format("{}: {} actuators but only {} candidate joint(s)", what,
+                                                        s.actuators, n_all));
+  // Stiffness
+  const std::string pk = child(p, "actuator_stiffness");
+  const auto& k = require(spec, p, "actuator_stiffness", what);
+  if (k.is_array()) {
+    auto v = numbers(k, pk, what + " actuator_stiffness");
+    if (static_cast<int>(v.size()) != n_all)
+      throw InputError(pk, fmt::format("{}: expected {} actuator stiffness values (one per candidate)", what, n_all));
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (!(v[i] > 0.0)) throw InputError(child(pk, i), what + ": actuator stiffness must be positive");
+    o.actuator_stiffness = v;
+  } else {
+    o.actuator_stiffness.assign(n_all, positive(k, pk, what + " actuator_stiffness"));
+  }
+  // Directions
+  const std::string pd = child(p, "directions");
+  const auto& dirs = array(require(spec, p, "directions", what), pd, what + " directions");
+  if (dirs.empty()) throw InputError(pd, what + ": no directions");
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    const std::string name = string(dirs[i], child(pd, i), "direction");
+    const int d = dof_index(name);
+    if (d < 0) throw InputError(child(pd, i), "unknown direction '" + name + "' (expected ux uy uz rx ry rz)");
+    for (int e : o.directions)
+      if (e == d) throw InputError(child(pd, i), "direction '" + name + "' repeated");
+    o.directions.push_back(d);
+  }
+  // Structural terms
+  if (spec.contains("structural_terms")) {
+    const std::string pt = child(p, "structural_terms");
+    const auto& t = array(spec["structural_terms"], pt, what + " structural_terms");
+    if (t.empty()) throw InputError(pt, what + ": no structural terms");
+    o.terms.clear();
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const std::string name = string(t[i], child(pt, i), "structural term");
+      bool found = false;
+      for (int q = 0; q < kStructuralTermCount; ++q)
+        if (name == to_string(static_cast<StructuralTerm>(q))) {
+          o.terms.push_back(static_cast<StructuralTerm>(q));
+          found = true;
+        }
+      if (!found) throw InputError(child(pt, i), "unknown structural term '" + name + "' (expected axial, shear, torsion, bending)");
+    }
+  }
+  // Poses
+  if (spec.contains("poses")) {
+    const std::string pp = child(p, "poses");
+    const auto& poses = array(spec["poses"], pp, what + " poses");
+    if (poses.empty()) throw InputError(pp, what + ": empty list of poses");
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      const std::string pi = child(pp, i);
+      const auto& po = object(poses[i], pi, "pose");
+      Pose pose;
+      pose.id = po.contains("id") ? json_in::id(po["id"], child(pi, "id"), "pose") : "pose" + std::to_string(i + 1);
+      for (const auto& q : s.poses)
+        if (q.id == pose.id) throw InputError(child(pi, "id"), "duplicate pose id '" + pose.id + "'");
+      if (po.contains("nodes")) {
+        const std::string pn = child(pi, "nodes");
+        const auto& nodes = array(po["nodes"], pn, "pose '" + pose.id + "' nodes");
+        for (std::size_t j = 0; j < nodes.size(); ++j) {
+          const std::string pj = child(pn, j);
+          const auto& nj = object(nodes[j], pj, "pose node");
+          const int n = node_ref(model, require(nj, pj, "node", "pose node"), child(pj, "node"));
+          pose.nodes.emplace_back(n, vec3(require(nj, pj, "xyz", "pose node"), child(pj, "xyz"), "pose node xyz"));
+        }
+      }
+      // The pose must be a valid geometry (joints coincide, members have a length).
+      Model moved = model;
+      try {
+        apply_node_positions(moved, pose.nodes);
+      } catch (const ModelError& e) {
+        throw InputError(pi, "pose '" + pose.id + "': " + e.what());
+      }
+      s.poses.push_back(std::move(pose));
+    }
+  } else {
+    s.poses.push_back({"reference", {}});
+  }
+  // Schemes
+  if (spec.contains("schemes")) {
+    const std::string ps = child(p, "schemes");
+    const auto& sch = array(spec["schemes"], ps, what + " schemes");
+    for (std::size_t i = 0; i < sch.size(); ++i) {
+      const std::string pi = child(ps, i);
+      const auto& list = array(sch[i], pi, "scheme");
+      if (static_cast<int>(list.size()) != s.actuators)
+        throw InputError(pi, fmt::format("scheme has {} joints, expected {} (actuators)", list.size(), s.actuators));
+      std::vector<int> idx;
+      for (std::size_t j = 0; j < list.size(); ++j) {
+        const int jt = joint_ref(model, list[j], child(pi, j));
+        int found = -1;
+        for (int c = 0; c < n_all; ++c)
+          if (o.candidates[c].joint == jt && std::find(idx.begin(), idx.end(), c) == idx.end()) {
+            found = c;
+            break;
+          }
+        if (found < 0) throw InputError(child(pi, j), "joint '" + model.joints[jt].id + "' is not a candidate (or repeated)");
+        idx.push_back(found);
+      }
+      std::sort(idx.begin(), idx.end());
+      s.schemes.push_back(idx);
+    }
+  } else {
+    // C(n, k) without overflow for the check.
+    double count = 1.0;
+    for (int i = 0; i < s.actuators; ++i) count = count * (n_all - i) / (i + 1);
+    if (count > static_cast<double>(kMaxSchemes))
+      throw InputError(child(p, "candidate_joints"), fmt::format("{}: {:.0f} schemes exceed the limit of {}; list "
+                                                                 "\"schemes\" explicitly",
+                                                                 what, count, kMaxSchemes));
+    s.schemes = combinations(n_all, s.actuators);
+  }
+  // Ranking
+  s.rank_direction = 0;
+  if (spec.contains("rank_by")) {
+    const std::string pr = child(p, "rank_by");
+    const auto& r = object(spec["rank_by"], pr, what + " rank_by");
+    if (r.contains("stiffness")) {
+      const std::string c = string(r["stiffness"], child(pr, "stiffness"), "rank_by stiffness");
+      s.rank_component = -1;
+      for (int i = 0; i < 4; ++i)
+        if (c == kComponents[i]) s.rank_component = i;
+      if (s.rank_component < 0)
+        throw InputError(child(pr, "stiffness"), "unknown stiffness '" + c + "' (expected actuated, structural, total_eq19, total)");
+    }
+    if (r.contains("direction")) {
+      const std::string d = string(r["direction"], child(pr, "direction"), "rank_by direction");
+      const int di = dof_index(d);
+      s.rank_direction = -1;
+      for (std::size_t i = 0; i < o.directions.size(); ++i)
+        if (o.directions[i] == di) s.rank_direction = static_cast<int>(i);
+      if (s.rank_direction < 0) throw InputError(child(pr, "direction"), "rank_by direction '" + d + "' is not among \"directions\"");
+    }
+  }
+  o.validate(model);
+  return s;
+}
+
+ojson matrix_json(const Eigen::MatrixXd& m) {
+  ojson a = ojson::array();
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    ojson row = ojson::array();
+    for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(m(i, j));
+    a.push_back(row);
+  }
+  return a;
+}
+
+// A number for JSON/CSV: NaN for "not available".
+ojson num(double v) { return std::isfinite(v) ? ojson(v) : ojson(nullptr); }
+std::string csv_num(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : std::string(); }
+
+std::string scheme_name(const Model& model, const AllocationOptions& o, const std::vector<int>& s) {
+  std::string n;
+  for (int i : s) {
+    if (!n.empty()) n += '+';
+    n += model.joints[o.candidates[i].joint].id;
+    if (model.joints[o.candidates[i].joint].coordinates() > 1) {
+      n += ':';
+      n += std::to_string(o.candidates[i].coordinate);
+    }
+  }
+  return n;
+}
+
+// Components per direction: actuated, structural, total_eq19, total, total_fea (NaN when absent).
+std::array<Eigen::VectorXd, 5> components(const SchemeResult& r, int nd) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::array<Eigen::VectorXd, 5> c;
+  for (auto& v : c) v = Eigen::VectorXd::Constant(nd, nan);
+  const auto& A = r.actuated_stiffness;
+  if (A.ok() || A.condensed_ok)
+    for (int d = 0; d < nd; ++d) c[0][d] = A.K()(d, d);
+  if (r.structural.ok)
+    for (int d = 0; d < nd; ++d) c[1][d] = 1.0 / r.structural.C(d, d);
+  if (r.total.eq19.size() == nd) c[2] = r.total.eq19;
+  if (r.total.ok) {
+    const Eigen::MatrixXd C = r.total.K_series.inverse();
+    for (int d = 0; d < nd; ++d) c[3][d] = 1.0 / C(d, d);
+  }
+  if (r.total.fea_ok) {
+    const Eigen::MatrixXd C = r.total.K_fea.inverse();
+    for (int d = 0; d < nd; ++d) c[4][d] = 1.0 / C(d, d);
+  }
+  return c;
+}
+
+void check_actuator_allocation(const Model& model, const json& spec, const std::string& p) { read_spec(model, spec, p); }
+
+AnalysisOutcome run_actuator_allocation(const AnalysisContext& ctx) {
+  const Model& model = ctx.model;
+  const Spec s = read_spec(model, ctx.spec, ctx.pointer);
+  const auto& o = s.options;
+  const int nd = static_cast<int>(o.directions.size());
+  AnalysisOutcome out;
+  auto& res = out.result;
+  res["type"] = "actuator_allocation";
+  res["platform_node"] = model.nodes[o.platform_node].id;
+  ojson dirs = ojson::array();
+  for (int d : o.directions) dirs.push_back(kDofNames[d]);
+  res["directions"] = dirs;
+  ojson cands = ojson::array();
+  for (const auto& c : o.candidates)
+    cands.push_back(ojson{{"joint", model.joints[c.joint].id}, {"coordinate", c.coordinate}});
+  res["candidate_joints"] = cands;
+  res["actuators"] = s.actuators;
+  ojson terms = ojson::array();
+  for (auto t : o.terms) terms.push_back(to_string(t));
+  res["structural_terms"] = terms;
+  res["schemes_count"] = s.schemes.size();
+  res["rank_by"] = ojson{{"stiffness", kComponents[s.rank_component]}, {"direction", kDofNames[o.directions[s.rank_direction]]}};
+  ojson pose_ids = ojson::array();
+  for (const auto& p : s.poses) pose_ids.push_back(p.id);
+  res["poses"] = pose_ids;
+
+  std::ostringstream csv_k, csv_l, csv_r;
+  csv_k << "scheme,pose,status,det_J,direction,actuated,structural,total_eq19,total,total_fea,vf_fea_mismatch\n";
+  csv_l << "scheme,pose,direction,member,int_N2,int_Qy2,int_Qz2,int_T2,int_My2,int_Mz2,c_axial,c_shear,c_torsion,"
+           "c_bending,c_sum\n";
+
+  std::vector<Model> pose_models;
+  for (const auto& p : s.poses) {
+    Model m = model;
+    apply_node_positions(m, p.nodes);
+    pose_models.push_back(std::move(m));
+  }
+  struct Rank {
+    std::string name, status;
+    double value;
+    std::string pose;
+  };
+  std::vector<Rank> ranks;
+  ojson schemes = ojson::array();
+  int n_valid = 0;
+  double worst_mismatch = 0.0;
+  for (std::size_t si = 0; si < s.schemes.size(); ++si) {
+    const auto& sch = s.schemes[si];
+    const std::string name = scheme_name(model, o, sch);
+    if (ctx.progress) ctx.progress(fmt::format("scheme {}/{}: {}", si + 1, s.schemes.size(), name));
+    ojson so;
+    so["scheme"] = name;
+    ojson act = ojson::array();
+    for (int i : sch) act.push_back(model.joints[o.candidates[i].joint].id);
+    so["actuated"] = act;
+    Rank rank{name, "ok", std::numeric_limits<double>::infinity(), ""};
+    ojson per_pose = ojson::array();
+    for (std::size_t pi = 0; pi < s.poses.size(); ++pi) {
+      const Model& m = pose_models[pi];
+      const std::string& pose = s.poses[pi].id;
+      const SchemeResult r = evaluate_scheme(m, o, sch);
+      ojson po;
+      po["pose"] = pose;
+      po["status"] = r.status;
+      po["message"] = r.message;
+      const auto& A = r.actuated_stiffness;
+      ojson ka;
+      ka["jacobian_message"] = A.jacobian_message;
+      if (A.jacobian_ok) ka["J"] = matrix_json(A.J);
+      if (A.J.rows() == A.J.cols() && A.jacobian_ok) ka["det_J"] = A.det_J;
+      ka["form"] = A.form;
+      if (A.ok()) ka["K_jacobian"] = matrix_json(A.K_jacobian);
+      ka["condensed_message"] = A.condensed_message;
+      if (A.condensed_ok) ka["K_condensed"] = matrix_json(A.K_condensed);
+      if (A.ok() && A.condensed_ok)
+        ka["jacobian_vs_condensed"] = (A.K_jacobian - A.K_condensed).cwiseAbs().maxCoeff() /
+                                      std::max(A.K_condensed.cwiseAbs().maxCoeff(), 1e-300);
+      po["actuated"] = ka;
+      const auto& S = r.structural;
+      ojson ks;
+      ks["message"] = S.message;
+      if (!S.modes.empty()) {
+        ojson modes = ojson::array();
+        for (const auto& md : S.modes) modes.push_back(md.description);
+        ks["mechanism"] = modes;
+      }
+      if (S.ok) {
+        ks["C_fea"] = matrix_json(S.C_fea);
+        if (S.K_fea.size()) ks["K_fea"] = matrix_json(S.K_fea);
+        ojson vf;
+        for (int t = 0; t < kStructuralTermCount; ++t) vf[to_string(static_cast<StructuralTerm>(t))] = matrix_json(S.C_terms[t]);
+        ks["C_virtual_force"] = vf;
+        ks["C"] = matrix_json(S.C);
+        ks["K"] = matrix_json(S.C.inverse());
+        ks["virtual_force_vs_fea"] = S.fea_mismatch;
+        worst_mismatch = std::max(worst_mismatch, S.fea_mismatch);
+        ojson links = ojson::array();
+        for (const auto& li : S.links) {
+          ojson lo;
+          lo["member"] = model.members[li.member].id;
+          ojson raw, comp;
+          for (int d = 0; d < nd; ++d) {
+            const auto& rw = li.raw[d];
+            raw[kDofNames[o.directions[d]]] =
+                ojson{{"N2", rw[0]}, {"Qy2", rw[1]}, {"Qz2", rw[2]}, {"T2", rw[3]}, {"My2", rw[4]}, {"Mz2", rw[5]}};
+            ojson c;
+            for (int t = 0; t < kStructuralTermCount; ++t) c[to_string(static_cast<StructuralTerm>(t))] = li.compliance[d][t];
+            comp[kDofNames[o.directions[d]]] = c;
+            double sum = 0.0;
+            for (auto t : o.terms) sum += li.compliance[d][static_cast<int>(t)];
+            csv_l << fmt::format("{},{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n",
+                                 name, pose, kDofNames[o.directions[d]], model.members[li.member].id, rw[0], rw[1], rw[2],
+                                 rw[3], rw[4], rw[5], li.compliance[d][0], li.compliance[d][1], li.compliance[d][2],
+                                 li.compliance[d][3], sum);
+          }
+          lo["integrals"] = raw;
+          lo["compliance"] = comp;
+          links.push_back(lo);
+        }
+        ks["links"] = links;
+      }
+      po["structural"] = ks;
+      ojson tot;
+      tot["message"] = r.total.message;
+      if (r.total.eq19.size()) tot["eq19"] = to_json(r.total.eq19);
+      if (r.total.ok) tot["K_series"] = matrix_json(r.total.K_series);
+      if (r.total.fea_ok) tot["K_fea"] = matrix_json(r.total.K_fea);
+      po["total"] = tot;
+      const auto comp = components(r, nd);
+      ojson co;
+      for (int c = 0; c < 5; ++c) {
+        ojson v;
+        for (int d = 0; d < nd; ++d) v[kDofNames[o.directions[d]]] = num(comp[c][d]);
+        co[kComponents[c]] = v;
+      }
+      po["components"] = co;
+      for (int d = 0; d < nd; ++d)
+        csv_k << fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", name, pose, r.status,
+                             A.jacobian_ok && A.J.rows() == A.J.cols() ? csv_num(A.det_J) : std::string(),
+                             kDofNames[o.directions[d]], csv_num(comp[0][d]), csv_num(comp[1][d]), csv_num(comp[2][d]),
+                             csv_num(comp[3][d]), csv_num(comp[4][d]), S.ok ? csv_num(S.fea_mismatch) : std::string());
+      // Worst case over poses.
+      if (!r.valid) {
+        if (rank.status == "ok") rank.status = r.status + " at " + pose;
+      } else {
+        const double v = comp[s.rank_component][s.rank_direction];
+        if (std::isfinite(v) && v < rank.value) {
+          rank.value = v;
+          rank.pose = pose;
+        }
+      }
+      per_pose.push_back(po);
+    }
+    so["valid"] = rank.status == "ok";
+    if (rank.status != "ok") so["invalid"] = rank.status;
+    else n_valid++;
+    so["poses"] = per_pose;
+    schemes.push_back(so);
+    ranks.push_back(rank);
+  }
+  res["schemes"] = schemes;
+  std::stable_sort(ranks.begin(), ranks.end(), [](const Rank& a, const Rank& b) {
+    const bool va = a.status == "ok", vb = b.status == "ok";
+    if (va != vb) return va;
+    return va && a.value > b.value;
+  });
+  ojson ranking = ojson::array();
+  csv_r << "rank,scheme,status,worst_value,worst_pose\n";
+  for (std::size_t i = 0; i < ranks.size(); ++i) {
+    const auto& r = ranks[i];
+    const bool ok = r.status == "ok";
+    ranking.push_back(ojson{{"rank", ok ? ojson(i + 1) : ojson(nullptr)},
+                            {"scheme", r.name},
+                            {"status", r.status},
+                            {"worst_value", ok ? num(r.value) : ojson(nullptr)},
+                            {"worst_pose", r.pose}});
+    csv_r << fmt::format("{},{},{},{},{}\n", ok ? std::to_string(i + 1) : std::string(), r.name, r.status,
+                         ok ? csv_num(r.value) : std::string(), r.pose);
+  }
+  res["ranking"] = ranking;
+  res["valid_schemes"] = n_valid;
+  res["virtual_force_vs_fea_max"] = worst_mismatch;
+  if (!ctx.out_dir.empty()) {
+    ojson files = ojson::array();
+    const std::pair<std::string, std::string> f[] = {{ctx.id + "_stiffness.csv", csv_k.str()},
+                                                     {ctx.id + "_links.csv", csv_l.str()},
+                                                     {ctx.id + "_ranking.csv", csv_r.str()}};
+    for (const auto& [file, text] : f) {
+      write_text_atomic(ctx.out_dir / file, text);
+      files.push_back(file);
+    }
+    res["files"] = files;
+  }
+  out.message = fmt::format("actuator allocation: {} schemes, {} valid at every pose; best by {} {}: {}", s.schemes.size(),
+                            n_valid, kComponents[s.rank_component], kDofNames[o.directions[s.rank_direction]],
+                            ranks.empty() || ranks.front().status != "ok" ? std::string("none") : ranks.front().name);
+  res["status"] = n_valid > 0 ? "ok" : "no_valid_scheme";
+  res["message"] = out.message;
+  out.failed = n_valid == 0;
+  return out;
+}
+
+}  // namespace
+
+AnalysisType actuator_allocation_analysis() {
+  return {"actuator_allocation", check_actuator_allocation, run_actuator_allocation};
+}
+
+}  // namespace beamfea
