@@ -1,0 +1,122 @@
+// Bad input: exit code 2, a message naming the field (JSON pointer) and the entity, no results.
+#include <gtest/gtest.h>
+
+#include "support/models.hpp"
+
+using namespace beamfea;
+using nlohmann::json;
+
+namespace {
+
+json base() {
+  json d = test::cantilever(2.0, 2.1e11, 8.1e10, 1e-3, 2e-6, 3e-6, 1e-6);
+  d["loads"] = {{{"node", "B"}, {"force", {0, -1, 0}}}};
+  d["analyses"] = {{{"id", "lin"}, {"type", "linear_static"}}};
+  return d;
+}
+
+struct Outcome {
+  int code;
+  std::string message;
+  bool results_written;
+};
+
+Outcome run_text(const std::string& name, const std::string& text) {
+  const auto dir = test::temp_dir(name);
+  test::write_file(dir / "model.json", text);
+  const auto r = test::run_cli("run " + (dir / "model.json").string() + " --out " + (dir / "out").string() + " -q");
+  return {r.exit_code, r.output, std::filesystem::exists(dir / "out" / "results.json")};
+}
+
+Outcome run_doc(const std::string& name, const json& d) { return run_text(name, d.dump()); }
+
+void expect_bad(const Outcome& o, const std::vector<std::string>& fragments) {
+  EXPECT_EQ(o.code, 2) << o.message;
+  EXPECT_FALSE(o.results_written);
+  for (const auto& f : fragments) EXPECT_NE(o.message.find(f), std::string::npos) << "missing '" << f << "' in: " << o.message;
+}
+
+}  // namespace
+
+TEST(BadInput, GoodModelRunsAndWritesResults) {
+  const auto o = run_doc("good", base());
+  EXPECT_EQ(o.code, 0) << o.message;
+  EXPECT_TRUE(o.results_written);
+}
+
+TEST(BadInput, MalformedJsonIsRejected) { expect_bad(run_text("malformed", "{\"nodes\": [}"), {"malformed JSON", "byte"}); }
+
+TEST(BadInput, UnknownNodeIsNamedWithItsPointer) {
+  json d = base();
+  d["elements"][0]["nodes"][1] = "Z";
+  expect_bad(run_doc("unknown", d), {"/elements/0/nodes/1", "unknown node 'Z'"});
+}
+
+TEST(BadInput, DuplicateIdIsNamedWithBothPlaces) {
+  json d = base();
+  d["nodes"].push_back({{"id", "A"}, {"xyz", {5, 0, 0}}});
+  expect_bad(run_doc("duplicate", d), {"/nodes/2/id", "duplicate node id 'A'", "/nodes/0"});
+}
+
+TEST(BadInput, ZeroLengthElementIsRejected) {
+  json d = base();
+  d["nodes"][1]["xyz"] = {0, 0, 0};
+  expect_bad(run_doc("zerolength", d), {"/elements/0/nodes", "element 'e'", "zero length"});
+}
+
+TEST(BadInput, OrientationParallelToTheMemberIsRejected) {
+  json d = base();
+  d["elements"][0]["orientation"] = {3, 0, 0};
+  expect_bad(run_doc("parallel", d), {"/elements/0/orientation", "element 'e'", "parallel"});
+}
+
+TEST(BadInput, MissingOrNonPositivePropertyIsRejected) {
+  json d = base();
+  d["sections"][0].erase("Iz");
+  expect_bad(run_doc("missing", d), {"/sections/0/Iz", "section 's'", "missing"});
+  json e = base();
+  e["materials"][0]["E"] = -1;
+  expect_bad(run_doc("negative", e), {"/materials/0/E", "material 'm'", "positive"});
+}
+
+TEST(BadInput, SupportOnAnUnknownDofIsRejected) {
+  json d = base();
+  d["supports"][0]["fix"] = {"ux", "uw"};
+  expect_bad(run_doc("dof", d), {"/supports/0/fix/1", "node 'A'", "unknown DOF 'uw'"});
+}
+
+TEST(BadInput, UnknownAnalysisTypeIsRejected) {
+  json d = base();
+  d["analyses"].push_back({{"id", "x"}, {"type", "dynamics"}});
+  expect_bad(run_doc("analysis", d), {"/analyses/1/type", "unknown type 'dynamics'"});
+}
+
+TEST(BadInput, JointBetweenDistantNodesIsRejected) {
+  json d = base();
+  d["joints"] = {{{"id", "j"}, {"type", "revolute"}, {"nodes", {"A", "B"}}, {"axes", {{0, 0, 1}}}}};
+  expect_bad(run_doc("joint", d), {"/joints/0/nodes", "joint 'j'", "do not coincide"});
+}
+
+TEST(BadInput, CheckCommandValidatesWithoutRunning) {
+  const auto dir = test::temp_dir("check");
+  test::write_file(dir / "model.json", base().dump());
+  auto r = test::run_cli("check " + (dir / "model.json").string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  json d = base();
+  d["elements"][0]["section"] = "nope";
+  test::write_file(dir / "bad.json", d.dump());
+  r = test::run_cli("check " + (dir / "bad.json").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("/elements/0/section"), std::string::npos) << r.output;
+}
+
+TEST(AnalysisFailure, MechanismExitsWithOneAndNamesTheJoint) {
+  json d = base();
+  d["nodes"].push_back({{"id", "C"}, {"xyz", {2, 0, 0}}});
+  d["nodes"].push_back({{"id", "D"}, {"xyz", {3, 0, 0}}});
+  d["elements"].push_back({{"id", "cd"}, {"type", "beam"}, {"nodes", {"C", "D"}}, {"material", "m"}, {"section", "s"}});
+  d["joints"] = {{{"id", "hinge"}, {"type", "revolute"}, {"nodes", {"B", "C"}}, {"axes", {{0, 0, 1}}}}};
+  const auto o = run_doc("mechanism", d);
+  EXPECT_EQ(o.code, 1) << o.message;
+  EXPECT_TRUE(o.results_written);
+}

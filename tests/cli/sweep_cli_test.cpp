@@ -1,0 +1,171 @@
+// `beamfea sweep` as a program: exit codes, kills and interrupts, resume, MPI ranks.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <set>
+#include <thread>
+
+#include "../io/sweep_test_util.hpp"
+
+extern char** environ;
+
+using namespace sweep_test;
+
+namespace {
+
+// Runs a shell command; returns its exit status.
+int sh(const std::string& command) {
+  const int s = std::system(command.c_str());
+  return WIFEXITED(s) ? WEXITSTATUS(s) : -1;
+}
+
+std::string exe() { return BEAMFEA_EXE; }
+
+// Starts `beamfea args...` with stderr into `err`; returns the process id.
+pid_t spawn(const std::vector<std::string>& args, const fs::path& err) {
+  std::vector<std::string> all{exe()};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  return rc == 0 ? pid : -1;
+}
+
+int wait_exit(pid_t pid, bool* signalled = nullptr) {
+  int s = 0;
+  waitpid(pid, &s, 0);
+  if (signalled) *signalled = WIFSIGNALED(s);
+  return WIFEXITED(s) ? WEXITSTATUS(s) : -1;
+}
+
+// A grid of n1 x n2 load and length values on the cantilever.
+json load_length_grid(int n1, int n2) {
+  std::vector<double> P, L;
+  for (int i = 0; i < n1; ++i) P.push_back(-10.0 * (i + 1));
+  for (int i = 0; i < n2; ++i) L.push_back(0.5 + 0.001 * i);
+  return {{"grid", {json{{"name", "P"}, {"pointer", "/loads/0/force/1"}, {"values", P}},
+                    json{{"name", "L"}, {"pointer", "/nodes/1/xyz/0"}, {"values", L}}}},
+          {"outputs", {"analyses.lin.nodes.B.displacement[1]", "analyses.K.matrix[1]"}}};
+}
+
+// Rows in case order, each case once, every line complete.
+void expect_sorted_valid(const Csv& t, bool well_formed) {
+  EXPECT_TRUE(well_formed);
+  for (std::size_t i = 0; i < t.rows.size(); ++i)
+    if (i > 0) ASSERT_LT(std::stoul(t.rows[i - 1][0]), std::stoul(t.rows[i][0]));
+}
+
+}  // namespace
+
+TEST(SweepCommand, BadSweepFileExitsWithCode2AndNamesTheEntry) {
+  const auto dir = temp_dir("cli_bad");
+  const json sweep = {{"grid", {json{{"pointer", "/loads/0/force/7"}, {"values", {1, 2}}}}}};
+  const auto file = write_sweep(dir, sweep);
+  const auto err = dir / "err.txt";
+  EXPECT_EQ(sh(exe() + " sweep " + file.string() + " --out " + (dir / "out").string() + " 2> " + err.string()), 2);
+  const std::string msg = read(err);
+  EXPECT_NE(msg.find("/grid/0/pointer"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("/loads/0/force/7"), std::string::npos) << msg;
+
+  const json wrong_type = {{"grid", {json{{"pointer", "/materials/0/E"}, {"values", {1e9, "soft"}}}}}};
+  EXPECT_EQ(sh(exe() + " sweep " + write_sweep(dir, wrong_type).string() + " --out " + (dir / "out").string() + " 2> " +
+               err.string()),
+            2);
+  EXPECT_NE(read(err).find("/grid/0/values/1"), std::string::npos) << read(err);
+}
+
+TEST(SweepCommand, PlainProgressLinesAndSummaryWhenNotATerminal) {
+  const auto dir = temp_dir("cli_lines");
+  const auto file = write_sweep(dir, load_length_grid(5, 4));
+  const auto err = dir / "err.txt";
+  EXPECT_EQ(sh(exe() + " sweep " + file.string() + " --out " + (dir / "out").string() + " 2> " + err.string()), 0);
+  const std::string msg = read(err);
+  EXPECT_NE(msg.find("beamfea sweep: 19/19 cases, 0 failed"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("20 ok"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find('\r'), std::string::npos);
+}
+
+TEST(SweepCommand, KilledSweepLeavesAValidTableAndResumeCompletesIt) {
+  const auto dir = temp_dir("cli_kill");
+  const auto file = write_sweep(dir, load_length_grid(100, 200));
+  const auto out = dir / "out";
+  const pid_t pid = spawn({"sweep", file.string(), "--out", out.string(), "--jobs", "2"}, dir / "err.txt");
+  ASSERT_GT(pid, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  kill(pid, SIGKILL);
+  bool signalled = false;
+  wait_exit(pid, &signalled);
+  ASSERT_TRUE(signalled) << "the sweep ended before it was killed; make it longer";
+
+  bool well_formed = false;
+  const Csv partial = read_csv(out / "cases.csv", &well_formed);
+  EXPECT_TRUE(well_formed);
+  EXPECT_GT(partial.rows.size(), 0u);
+  EXPECT_LT(partial.rows.size(), 20000u);
+
+  EXPECT_EQ(sh(exe() + " sweep " + file.string() + " --out " + out.string() + " --resume -q"), 0);
+  const Csv full = read_csv(out / "cases.csv", &well_formed);
+  ASSERT_EQ(full.rows.size(), 20000u);
+  expect_sorted_valid(full, well_formed);
+  // The rows finished before the kill were kept, not run again.
+  std::set<std::string> before;
+  for (const auto& r : partial.rows) before.insert(r[0] + "," + r.back());
+  std::size_t kept = 0;
+  for (const auto& r : full.rows) kept += before.count(r[0] + "," + r.back());
+  EXPECT_EQ(kept, partial.rows.size());
+}
+
+TEST(SweepCommand, InterruptStopsCleanlyWithASortedTableOfTheFinishedCases) {
+  const auto dir = temp_dir("cli_int");
+  const auto file = write_sweep(dir, load_length_grid(100, 200));
+  const auto out = dir / "out";
+  const pid_t pid = spawn({"sweep", file.string(), "--out", out.string(), "--jobs", "2"}, dir / "err.txt");
+  ASSERT_GT(pid, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  kill(pid, SIGINT);
+  EXPECT_EQ(wait_exit(pid), 130) << read(dir / "err.txt");
+  bool well_formed = false;
+  const Csv t = read_csv(out / "cases.csv", &well_formed);
+  EXPECT_GT(t.rows.size(), 0u);
+  EXPECT_LT(t.rows.size(), 20000u);
+  expect_sorted_valid(t, well_formed);
+  EXPECT_NE(read(dir / "err.txt").find("interrupted"), std::string::npos);
+}
+
+// MPI: the same command under mpirun splits the cases across the ranks and rank 0 writes one
+// table, identical to the serial one. Not skippable: a beamfea built without MPI refuses to run
+// under mpirun (exit 2), and a machine without mpirun fails here.
+TEST(SweepCommand, UnderMpirunRanksShareTheCasesAndWriteTheSerialTable) {
+  ASSERT_EQ(sh("command -v mpirun > /dev/null"), 0) << "mpirun not found: install openmpi-bin libopenmpi-dev "
+                                                        "(scripts/install-deps.sh) and rebuild";
+  const auto dir = temp_dir("cli_mpi");
+  const auto file = write_sweep(dir, load_length_grid(25, 7));
+  ASSERT_EQ(sh(exe() + " sweep " + file.string() + " --out " + (dir / "serial").string() + " --jobs 1 -q"), 0);
+  bool well_formed = false;
+  const Csv serial = read_csv(dir / "serial" / "cases.csv", &well_formed);
+  ASSERT_EQ(serial.rows.size(), 175u);
+  for (int ranks : {2, 3}) {
+    const auto out = dir / ("mpi" + std::to_string(ranks));
+    const auto err = dir / ("mpi" + std::to_string(ranks) + ".txt");
+    const int rc = sh("mpirun --allow-run-as-root --oversubscribe -n " + std::to_string(ranks) + " " + exe() + " sweep " +
+                      file.string() + " --out " + out.string() + " --jobs 1 > " + err.string() + " 2>&1");
+    ASSERT_EQ(rc, 0) << read(err);
+    const Csv t = read_csv(out / "cases.csv", &well_formed);
+    EXPECT_TRUE(well_formed);
+    EXPECT_EQ(t.header, serial.header);
+    EXPECT_EQ(t.without_time(), serial.without_time()) << ranks << " ranks";
+    // One summary (rank 0's), counting every rank's cases.
+    const std::string log = read(err);
+    EXPECT_NE(log.find("175 ok"), std::string::npos) << log;
+  }
+}

@@ -1,0 +1,52 @@
+// results.json keys (the contract of issue 2) and the VTK file.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "support/models.hpp"
+
+using namespace beamfea;
+using nlohmann::json;
+
+TEST(ResultsOutput, ContainsTheContractKeysAndAVtuFile) {
+  json d = test::cantilever(2.0, 2.1e11, 8.1e10, 1e-3, 2e-6, 3e-6, 1e-6, 4);
+  d["nodes"].push_back({{"id", "D"}, {"xyz", {2, 0, 0}}});
+  d["joints"] = {{{"id", "j1"}, {"type", "revolute"}, {"nodes", {"B", "D"}}, {"axes", {{0, 0, 1}}}, {"stiffness", {1e4}}}};
+  d["loads"] = {{{"node", "D"}, {"force", {0, -1000, 0}}}};
+  d["analyses"] = {{{"id", "lin"}, {"type", "linear_static"}}, {{"id", "K"}, {"type", "stiffness"}, {"node", "D"}}};
+  const auto dir = test::temp_dir("results");
+  test::write_file(dir / "model.json", d.dump());
+  const auto r = test::run_cli("run " + (dir / "model.json").string() + " --out " + (dir / "out").string() + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(dir / "out" / "results.json");
+  const json res = json::parse(in);
+  const auto& lin = res["analyses"]["lin"];
+  ASSERT_TRUE(lin["nodes"]["D"]["displacement"].is_array());
+  EXPECT_EQ(lin["nodes"]["D"]["displacement"].size(), 6u);
+  EXPECT_EQ(lin["nodes"]["A"]["reaction"].size(), 6u);
+  EXPECT_FALSE(lin["nodes"]["D"].contains("reaction"));
+  EXPECT_EQ(lin["elements"]["e"]["end_forces"].size(), 2u);
+  EXPECT_EQ(lin["elements"]["e"]["segments"].size(), 4u);
+  EXPECT_EQ(lin["joints"]["j1"]["coordinates"].size(), 1u);
+  // Hinge rotation of the spring: M / k with M = P * 0 (the load acts at the joint) -> 0, and the
+  // reaction carries the load across.
+  EXPECT_NEAR(lin["joints"]["j1"]["reaction"][1].get<double>(), 1000.0, 1e-6);
+  // Reaction balances the load.
+  EXPECT_NEAR(lin["nodes"]["A"]["reaction"][1].get<double>(), 1000.0, 1e-6);
+  const auto& K = res["analyses"]["K"];
+  EXPECT_EQ(K["matrix"].size(), 6u);
+  EXPECT_EQ(K["matrix"][0].size(), 6u);
+  EXPECT_EQ(K["rank"].get<int>(), 6);
+  // VTK: a .vtu with the documented arrays.
+  std::ifstream vin(dir / "out" / "lin.vtu");
+  ASSERT_TRUE(vin.good());
+  std::stringstream ss;
+  ss << vin.rdbuf();
+  const std::string vtu = ss.str();
+  for (const char* name : {"UnstructuredGrid", "\"displacement\"", "\"rotation\"", "\"section_forces\"", "\"id\""})
+    EXPECT_NE(vtu.find(name), std::string::npos) << name;
+  // No temporary files are left behind.
+  for (const auto& e : std::filesystem::directory_iterator(dir / "out"))
+    EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
+}
