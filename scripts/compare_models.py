@@ -101,7 +101,8 @@ def unloaded_stiffness(exe, doc, node, dof, out_dir, log):
     d["analyses"] = [{"id": "K", "type": "stiffness", "node": node}]
     res, _, err = run_beamfea(exe, d, out_dir, log)
     if not res or "K" not in res.get("analyses", {}):
-        return None, err
+        # beamfea refuses a node that the constraints fix (a rigid straight chain): unbounded.
+        return (math.inf, err) if "unbounded" in err else (None, err)
     a = res["analyses"]["K"]
     if a.get("status") != "ok":
         return math.inf, a.get("message", "")  # e.g. a rigid straight chain: unbounded

@@ -186,12 +186,24 @@ REFERENCE = {
     ("B", "Pi"): {"critical_force": None, "unloaded": 2.3970, "large": 0.6375, "P_at_L": 1.0434},
     ("B", "Z"): {"critical_force": 1.545, "unloaded": 33.195, "large": 0.0744, "P_at_L": 1.9191,
                  "_note": "knee (imperfect bifurcation), not a true critical point"},
-    ("C", "S"): {"critical_force": 0.16 / 0.16 * 0.25321, "unloaded": 1600.0, "near_after": 0.03816,
+    ("C", "S"): {"critical_force": 0.16 * (math.sqrt(21) - 3), "unloaded": 1600.0, "near_after": 0.03816,
                  "large": 0.04518, "P_at_L": 0.2957},
     ("C", "Pi"): {"critical_force": 0.2720, "unloaded": 2.3970, "near_before": 1.576, "near_after": 0.0326,
                   "large": -0.047, "P_at_L": 0.2679},
     ("C", "Z"): {"critical_force": 0.2679, "unloaded": 33.195, "near_before": 32.97, "near_after": 0.0502,
                  "large": -0.064, "P_at_L": 0.3009},
+}
+# Curve samples (delta/L, P) of the reference note, sections 6-7 (lumped model, 1 spring per link).
+CURVES = {
+    ("A", "S"): [(0.02, 1.0033), (0.10, 1.0170), (0.20, 1.0347), (0.40, 1.0725), (1.00, 1.2092)],
+    ("A", "Pi"): [(0.02, 0.0380), (0.10, 0.1604), (0.20, 0.2716), (0.40, 0.4268), (1.00, 0.7226)],
+    ("A", "Z"): [(0.02, 0.2923), (0.10, 0.9719), (0.20, 1.0520), (0.40, 1.0976), (1.00, 1.2821)],
+    ("B", "S"): [(0.02, 1.5878), (0.10, 1.6072), (0.20, 1.6319), (0.40, 1.6832), (1.00, 1.8485)],
+    ("B", "Pi"): [(0.02, 0.0463), (0.10, 0.2043), (0.20, 0.3591), (0.40, 0.5893), (1.00, 1.0434)],
+    ("B", "Z"): [(0.02, 0.6538), (0.10, 1.6241), (0.20, 1.6708), (0.40, 1.7513), (1.00, 1.9191)],
+    ("C", "S"): [(0.02, 0.2540), (0.10, 0.2571), (0.20, 0.2610), (0.40, 0.2693), (0.60, 0.2778), (1.00, 0.2957)],
+    ("C", "Pi"): [(0.02, 0.0463), (0.10, 0.2043), (0.20, 0.2739), (0.40, 0.2794), (0.60, 0.2820), (1.00, 0.2679)],
+    ("C", "Z"): [(0.02, 0.2685), (0.10, 0.2725), (0.20, 0.2777), (0.40, 0.2882), (0.60, 0.2982), (1.00, 0.3009)],
 }
 PRINTED = {  # Tables 2-4 of the paper as printed: F_cr, unloaded, F<F_cr, F>F_cr, delta ~ L
     ("A", "S"): {"critical_force": 1.0, "unloaded": math.inf, "near_after": 0.20, "large": 0.22},
@@ -211,7 +223,8 @@ def main():
     here = os.path.dirname(os.path.abspath(__file__))
     ap.add_argument("--out", default=os.path.join(here, "models"))
     ap.add_argument("--beam-elements", type=int, default=8, help="N elements per link of the beam models")
-    ap.add_argument("--convergence", action="store_true", help="also write the mesh/spring-count series")
+    ap.add_argument("--convergence", metavar="DIR", default=None,
+                    help="also write the mesh / spring-count series (N, n = 1, 2, 4, 8, 16) into DIR")
     args = ap.parse_args()
     pairs = []
     for model in "ABC":
@@ -230,12 +243,13 @@ def main():
                 "beam": {"file": f"models/{beam}", "label": f"beam ({args.beam_elements} el./link)"},
                 "paper": PRINTED[(model, posture)],
                 "reference": {k: v for k, v in REFERENCE[(model, posture)].items() if not k.startswith("_")},
+                "reference_curve": {"label": "reference VJM (note)", "points": CURVES[(model, posture)]},
             })
             if args.convergence and model in "BC":
                 for n in (1, 2, 4, 8, 16):
-                    write(build(model, posture, "beam", n), os.path.join(args.out, "conv", f"{model}_{posture}_beam_N{n}.json"))
+                    write(build(model, posture, "beam", n), os.path.join(args.convergence, f"{model}_{posture}_beam_N{n}.json"))
                     write(build(model, posture, "lumped", n, control=control),
-                          os.path.join(args.out, "conv", f"{model}_{posture}_lumped_n{n}.json"))
+                          os.path.join(args.convergence, f"{model}_{posture}_lumped_n{n}.json"))
     spec = {
         "title": "Pashkevich, Klimchik & Chablat (2010), chain U_p R_a R_a S_p: lumped (VJM) vs beam",
         "path_analysis": "path",

@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""The comparison report of the Pashkevich chain: one command regenerates everything.
+
+  /usr/bin/python3 examples/05_pashkevich_chain/report.py --beamfea build/cli/beamfea \\
+      --out examples/05_pashkevich_chain/out [--skip-convergence]
+
+1. writes the models (generate.py: models A, B, C x postures S, Pi, Z, lumped and beam, and the
+   mesh / spring-count series under OUT/conv_models/);
+2. runs the general driver scripts/compare_models.py on comparison_spec.json: OUT/summary.md
+   (lumped vs beam vs paper vs verified reference), OUT/<pair>.png, OUT/<pair>/<model>.csv,
+   OUT/<pair>/<model>/path.pvd (ParaView series of the posture's evolution);
+3. the convergence study: critical force (S posture: the "buckling" analysis of the straight
+   chain; Pi, Z: the first critical point of the path) of the beam model for N = 1, 2, 4, 8, 16
+   elements per link and of the lumped model for n = 1, 2, 4, 8, 16 springs per link:
+   OUT/convergence.md and OUT/convergence.csv.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import compare_models as cm  # noqa: E402
+
+NS = (1, 2, 4, 8, 16)
+
+
+def critical_force(exe, file, out_dir, log):
+    doc = cm.load(file)
+    res, missing, err = cm.run_beamfea(exe, doc, out_dir, log)
+    if not res:
+        return None, f"error: {err}"
+    an = res.get("analyses", {})
+    if "buckling" in an and an["buckling"].get("load_factors"):
+        return an["buckling"]["load_factors"][0], "buckling"
+    p = an.get("path")
+    if p is None:
+        return None, "missing: " + ", ".join(missing)
+    if p.get("critical_points"):
+        return p["critical_points"][0]["load_factor"], p["critical_points"][0].get("type", "critical")
+    return None, "no critical point"
+
+
+def convergence(exe, out, log):
+    rows = []
+    for model in "BC":
+        for posture in ("S", "Pi", "Z"):
+            for kind, letter in (("beam", "N"), ("lumped", "n")):
+                vals = []
+                for n in NS:
+                    f = os.path.join(out, "conv_models", f"{model}_{posture}_{kind}_{letter}{n}.json")
+                    doc = cm.load(f)
+                    if posture == "S":  # the straight chain: buckling analysis only (the path is in the report)
+                        doc["analyses"] = [a for a in doc["analyses"] if a["type"] == "buckling"]
+                    tmp = os.path.join(out, "conv", f"{model}_{posture}_{kind}_{letter}{n}")
+                    os.makedirs(tmp, exist_ok=True)
+                    with open(os.path.join(tmp, "in.json"), "w") as fh:
+                        json.dump(doc, fh)
+                    v, how = critical_force(exe, os.path.join(tmp, "in.json"), tmp, log)
+                    log(f"  {model} {posture} {kind} {letter}={n}: {v} ({how})")
+                    vals.append((v, how))
+                rows.append((model, posture, kind, vals))
+    with open(os.path.join(out, "convergence.csv"), "w") as f:
+        f.write("model,posture,kind," + ",".join(f"n{n}" for n in NS) + "\n")
+        for model, posture, kind, vals in rows:
+            f.write(f"{model},{posture},{kind}," + ",".join("" if v is None else f"{v:.8g}" for v, _ in vals) + "\n")
+    with open(os.path.join(out, "convergence.md"), "w") as f:
+        f.write("Critical force [K_theta/L] against N elements per link (beam) or n springs per link (lumped).\n"
+                "Relative change = |F(16) - F(8)| / F(16).\n\n")
+        f.write("| model | posture | model kind | " + " | ".join(str(n) for n in NS) + " | rel. change 8->16 |\n")
+        f.write("|---|---|---|" + "---|" * (len(NS) + 1) + "\n")
+        for model, posture, kind, vals in rows:
+            cells = [cm.fmt(v) if v is not None else how for v, how in vals]
+            a, b = vals[-2][0], vals[-1][0]
+            rel = f"{abs(b - a) / abs(b):.1e}" if a is not None and b is not None and b != 0 else "—"
+            f.write(f"| {model} | {posture} | {kind} | " + " | ".join(cells) + f" | {rel} |\n")
+        f.write(f"\nEuler load of the pinned-pinned column of length 3L: pi^2/9 = {math.pi ** 2 / 9:.6f} (B, in plane), "
+                f"0.16 pi^2/9 = {0.16 * math.pi ** 2 / 9:.6f} (C, out of plane).\n")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--beamfea", default=os.path.join(ROOT, "build", "cli", "beamfea"))
+    ap.add_argument("--out", default=os.path.join(HERE, "out"))
+    ap.add_argument("--skip-convergence", action="store_true")
+    ap.add_argument("--only", nargs="*", default=None)
+    args = ap.parse_args()
+    exe = os.path.abspath(args.beamfea)
+    log = lambda s: print(s, file=sys.stderr, flush=True)
+    subprocess.run([sys.executable, os.path.join(HERE, "generate.py"), "--convergence",
+                    os.path.join(args.out, "conv_models")], check=True)
+    cmd = [sys.executable, os.path.join(ROOT, "scripts", "compare_models.py"), os.path.join(HERE, "comparison_spec.json"),
+           "--beamfea", exe, "--out", args.out]
+    if args.only:
+        cmd += ["--only"] + args.only
+    subprocess.run(cmd, check=True)
+    if not args.skip_convergence:
+        log("convergence study")
+        convergence(exe, args.out, log)
+    log(f"report in {args.out}")
+
+
+if __name__ == "__main__":
+    main()
