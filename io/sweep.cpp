@@ -810,8 +810,9 @@ void SweepOptions::validate() const {
 }
 
 std::string SweepSummary::report() const {
-  return fmt::format("{} cases ({} run now, {} already in the table): {} ok, {} analysis failed, {} bad input; {:.2f} s{}; table {}",
+  return fmt::format("{} cases ({} run now, {} already in the table): {} ok, {} analysis failed, {} bad input; {:.2f} s{}{}; table {}",
                      cases, ran, skipped, ok, analysis_failed, bad_input, wall_time_s,
+                     processes > 1 ? fmt::format(" on {} processes", processes) : std::string(),
                      interrupted ? " (interrupted: the table holds the finished cases)" : "", table.string());
 }
 
@@ -1042,6 +1043,7 @@ SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepCom
   summary.skipped = plan.done.size() - plan.probed;
   summary.ran = done_now + plan.probed;
   summary.interrupted = g_stop;
+  summary.processes = ranks;
   summary.table = table;
   if (root) {
     ::close(fd);

@@ -129,6 +129,7 @@ struct SweepSummary {
   std::size_t skipped = 0;   // already in the table (--resume)
   std::size_t ran = 0;       // run now (all ranks)
   std::size_t ok = 0, analysis_failed = 0, bad_input = 0;  // over the whole table
+  int processes = 1;         // MPI ranks
   bool interrupted = false;  // SIGINT/SIGTERM: the table holds the finished cases
   double wall_time_s = 0.0;
   std::filesystem::path table;

@@ -1,5 +1,6 @@
 // `beamfea sweep` as a program: exit codes, kills and interrupts, resume, MPI ranks.
 #include <gtest/gtest.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -61,8 +62,9 @@ json load_length_grid(int n1, int n2) {
 // Rows in case order, each case once, every line complete.
 void expect_sorted_valid(const Csv& t, bool well_formed) {
   EXPECT_TRUE(well_formed);
-  for (std::size_t i = 0; i < t.rows.size(); ++i)
-    if (i > 0) ASSERT_LT(std::stoul(t.rows[i - 1][0]), std::stoul(t.rows[i][0]));
+  for (std::size_t i = 1; i < t.rows.size(); ++i) {
+    ASSERT_LT(std::stoul(t.rows[i - 1][0]), std::stoul(t.rows[i][0]));
+  }
 }
 
 }  // namespace
@@ -167,5 +169,6 @@ TEST(SweepCommand, UnderMpirunRanksShareTheCasesAndWriteTheSerialTable) {
     // One summary (rank 0's), counting every rank's cases.
     const std::string log = read(err);
     EXPECT_NE(log.find("175 ok"), std::string::npos) << log;
+    EXPECT_NE(log.find("on " + std::to_string(ranks) + " processes"), std::string::npos) << log;
   }
 }
