@@ -31,19 +31,19 @@ json chain() {
                          {"directions", {"rz", "uy"}}}}}};
 }
 
-struct Run {
+struct CliRun {
   int code = -1;
   std::string output;
 };
 
-Run run(const json& doc, const std::string& name) {
+CliRun run(const json& doc, const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("beamfea_alloc_cli_" + name);
   fs::create_directories(dir);
   const fs::path file = dir / "model.json";
   std::ofstream(file) << doc.dump(1);
   const std::string cmd = std::string("\"") + BEAMFEA_EXE + "\" run \"" + file.string() + "\" --out \"" +
                           (dir / "out").string() + "\" --quiet --no-vtk 2>&1";
-  Run r;
+  CliRun r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
   std::array<char, 512> buf{};
@@ -54,14 +54,14 @@ Run run(const json& doc, const std::string& name) {
 }
 
 TEST(ActuatorAllocationCli, ValidChainRunsAndRanksOneScheme) {
-  const Run r = run(chain(), "valid");
+  const CliRun r = run(chain(), "valid");
   EXPECT_EQ(r.code, 0) << r.output;
 }
 
 TEST(ActuatorAllocationCli, UnknownCandidateJointExitsTwoNamingIt) {
   json d = chain();
   d["analyses"][0]["candidate_joints"] = {"JA", "J9"};
-  const Run r = run(d, "unknown_joint");
+  const CliRun r = run(d, "unknown_joint");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("J9"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("/analyses/0/candidate_joints/1"), std::string::npos) << r.output;
@@ -70,7 +70,7 @@ TEST(ActuatorAllocationCli, UnknownCandidateJointExitsTwoNamingIt) {
 TEST(ActuatorAllocationCli, MoreActuatorsThanCandidatesExitsTwo) {
   json d = chain();
   d["analyses"][0]["actuators"] = 3;
-  const Run r = run(d, "too_many");
+  const CliRun r = run(d, "too_many");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("3 actuators but only 2 candidate"), std::string::npos) << r.output;
 }
@@ -78,7 +78,7 @@ TEST(ActuatorAllocationCli, MoreActuatorsThanCandidatesExitsTwo) {
 TEST(ActuatorAllocationCli, PlatformNodeNotOnTheModelExitsTwoNamingIt) {
   json d = chain();
   d["analyses"][0]["platform_node"] = "Q";
-  const Run r = run(d, "no_node");
+  const CliRun r = run(d, "no_node");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("'Q'"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("/analyses/0/platform_node"), std::string::npos) << r.output;
@@ -89,7 +89,7 @@ TEST(ActuatorAllocationCli, PoseThatSeparatesAJointExitsTwoNamingTheJoint) {
   // B1 moves, its partner B2 follows automatically; moving both apart is an error.
   d["analyses"][0]["poses"] = {{{"id", "bad"}, {"nodes", {{{"node", "B1"}, {"xyz", {0, 1, 0}}},
                                                           {{"node", "B2"}, {"xyz", {0, 1.5, 0}}}}}}};
-  const Run r = run(d, "bad_pose");
+  const CliRun r = run(d, "bad_pose");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("joint 'JB'"), std::string::npos) << r.output;
 }
