@@ -158,17 +158,29 @@ void DofMap::build_tree_rows(const Model& m, const Configuration& c) {
     }
   n_ind_ = static_cast<int>(ind_to_raw_.size());
 
-  std::vector<Expr> rows(n_raw_);
-  for (int r = 0; r < n_raw_; ++r)
-    if (raw_to_ind_[r] >= 0) rows[r][raw_to_ind_[r]] = 1.0;
+  // Expressions only for slave DOFs; an independent DOF's row is itself.
+  std::vector<int> slave_slot(n_raw_, -1);
+  std::vector<Expr> slave_rows;
+  for (int ei : tree_order_) {
+    const int s = tree_edges_[ei].child;
+    for (int k = 0; k < 6; ++k) {
+      slave_slot[6 * s + k] = static_cast<int>(slave_rows.size());
+      slave_rows.emplace_back();
+    }
+  }
+  auto add_row = [&](Expr& dst, int raw, double f) {
+    if (raw_to_ind_[raw] >= 0) dst[raw_to_ind_[raw]] += f;
+    else add_scaled(dst, slave_rows[slave_slot[raw]], f);
+  };
   for (int ei : tree_order_) {
     const auto& e = tree_edges_[ei];
     const int p = e.parent, s = e.child;
-    for (int k = 0; k < 6; ++k) rows[6 * s + k] = rows[6 * p + k];
+    for (int k = 0; k < 6; ++k) add_row(slave_rows[slave_slot[6 * s + k]], 6 * p + k, 1.0);
     if (e.kind == ConstraintEdge::Kind::Rigid) {
       const Mat3 D = -skew(c.x[s] - c.x[p]);  // u_s += -[d] theta_p
       for (int i = 0; i < 3; ++i)
-        for (int k = 0; k < 3; ++k) add_scaled(rows[6 * s + i], rows[6 * p + 3 + k], D(i, k));
+        for (int k = 0; k < 3; ++k)
+          if (D(i, k) != 0.0) add_row(slave_rows[slave_slot[6 * s + i]], 6 * p + 3 + k, D(i, k));
     } else {
       const double sign = e.forward ? 1.0 : -1.0;
       const auto& axes = c.joint_axes[e.index];
@@ -176,18 +188,20 @@ void DofMap::build_tree_rows(const Model& m, const Configuration& c) {
       for (int q = 0; q < static_cast<int>(axes.size()); ++q) {
         const int rq = raw_joint(e.index, q);
         const int offset = q < nt ? 0 : 3;  // translations move u, rotations move theta
-        for (int i = 0; i < 3; ++i) add_scaled(rows[6 * s + offset + i], rows[rq], sign * axes[q][i]);
+        for (int i = 0; i < 3; ++i)
+          if (axes[q][i] != 0.0) add_row(slave_rows[slave_slot[6 * s + offset + i]], rq, sign * axes[q][i]);
       }
     }
   }
-  tree_rows_.resize(n_raw_);
   std::vector<Eigen::Triplet<double>> t;
+  t.reserve(n_raw_);
   for (int r = 0; r < n_raw_; ++r) {
-    for (const auto& [k, v] : rows[r]) {
-      if (v == 0.0) continue;
-      tree_rows_[r].push_back({k, v});
-      t.emplace_back(r, k, v);
+    if (raw_to_ind_[r] >= 0) {
+      t.emplace_back(r, raw_to_ind_[r], 1.0);
+      continue;
     }
+    for (const auto& [k, v] : slave_rows[slave_slot[r]])
+      if (v != 0.0) t.emplace_back(r, k, v);
   }
   Tind_.resize(n_raw_, n_ind_);
   Tind_.setFromTriplets(t.begin(), t.end());
@@ -268,7 +282,7 @@ void DofMap::eliminate(const Model& m) {
   for (const auto& x : extra_) {
     Expr row;  // row . ind - rhs . p = 0
     for (const auto& t : x.raw)
-      for (const auto& u : tree_rows_[t.ind]) row[u.ind] += t.coef * u.coef;
+      for (SparseRowMatrix::InnerIterator it(Tind_, t.ind); it; ++it) row[static_cast<int>(it.col())] += t.coef * it.value();
     extra_ind_.push_back(row);
     for (const auto& t : x.rhs) row[presc_key(t.ind)] -= t.coef;
     const double scale = max_abs(row);
@@ -332,14 +346,16 @@ void DofMap::eliminate(const Model& m) {
       tf.emplace_back(raw, ind_to_free[k], v);
     }
   };
+  tf.reserve(Tind_.nonZeros());
   for (int r = 0; r < n_raw_; ++r)
-    for (const auto& t : tree_rows_[r]) {
-      if (ind_prescribed_[t.ind] >= 0) {
-        emit(r, presc_key(ind_prescribed_[t.ind]), t.coef);
-      } else if (auto it = dependent.find(t.ind); it != dependent.end()) {
-        for (const auto& [k, v] : it->second) emit(r, k, t.coef * v);
+    for (SparseRowMatrix::InnerIterator it(Tind_, r); it; ++it) {
+      const int ind = static_cast<int>(it.col());
+      if (ind_prescribed_[ind] >= 0) {
+        emit(r, presc_key(ind_prescribed_[ind]), it.value());
+      } else if (auto d = dependent.find(ind); d != dependent.end()) {
+        for (const auto& [k, v] : d->second) emit(r, k, it.value() * v);
       } else {
-        emit(r, t.ind, t.coef);
+        emit(r, ind, it.value());
       }
     }
   Tf_.resize(n_raw_, n_free_);

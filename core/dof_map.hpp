@@ -133,7 +133,6 @@ class DofMap {
   std::vector<ConstraintEdge> loop_edges_;
   std::vector<int> raw_to_ind_;             // -1 for slave raw DOFs
   std::vector<int> ind_to_raw_;
-  std::vector<Row> tree_rows_;              // per raw DOF: combination of independent DOFs
   // Extra constraints: sum(row over raw) = sum(coef * prescribed) (loop edges, slave supports).
   struct ExtraRow {
     Row raw;                               // over raw DOFs
@@ -152,7 +151,7 @@ class DofMap {
   std::vector<char> ind_dependent_;
   std::vector<Vec3> x_;                     // node positions of the configuration
   SparseRowMatrix Tf_, Tp_;
-  SparseRowMatrix Tind_;                    // raw <- independent (tree only)
+  SparseRowMatrix Tind_;                    // raw <- independent (tree only): the tree rows
 };
 
 }  // namespace beamfea

@@ -15,7 +15,7 @@ namespace {
 class ShiftInvert {
  public:
   using Scalar = double;
-  explicit ShiftInvert(const SparseMatrix& A) : A_(A) {}
+  explicit ShiftInvert(const SparseMatrix& A) : A_(A) { llt_.cholmod().print = 0; }
   Eigen::Index rows() const { return A_.rows(); }
   Eigen::Index cols() const { return A_.cols(); }
   void set_shift(const double& sigma) {

@@ -36,7 +36,9 @@ struct SparseFactor::Impl {
   bool analysed = false, lu_analysed = false;
 };
 
-SparseFactor::SparseFactor() : impl_(std::make_unique<Impl>()) {}
+SparseFactor::SparseFactor() : impl_(std::make_unique<Impl>()) {
+  impl_->llt.cholmod().print = 0;  // failures are outcomes here, reported by the caller
+}
 SparseFactor::~SparseFactor() = default;
 
 SparseMatrix scaled(const SparseMatrix& K, const Eigen::VectorXd& s) {

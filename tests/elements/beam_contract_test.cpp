@@ -45,8 +45,8 @@ TEST(LinearBeam, LocalAxesFollowTheOrientationVectorConvention) {
   // x along the member, y = orientation x x, z = x x y (OpenSees vecxz).
   const Mat3 R = beam_local_axes(Vec3(0, 0, 0), Vec3(0, 0, 2), Vec3(1, 0, 0));
   EXPECT_TRUE(R.row(0).isApprox(Eigen::RowVector3d(0, 0, 1)));
-  EXPECT_TRUE(R.row(1).isApprox(Eigen::RowVector3d(0, 1, 0)));
-  EXPECT_TRUE(R.row(2).isApprox(Eigen::RowVector3d(-1, 0, 0)));
+  EXPECT_TRUE(R.row(1).isApprox(Eigen::RowVector3d(0, -1, 0)));  // (1,0,0) x (0,0,1)
+  EXPECT_TRUE(R.row(2).isApprox(Eigen::RowVector3d(1, 0, 0)));   // = the orientation vector
 }
 
 TEST(LinearBeam, CubicShapeReproducesTheCantileverDeflectionCurve) {
