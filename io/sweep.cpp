@@ -328,7 +328,8 @@ class CerrSilencer {
   std::streambuf* old_;
 };
 
-// Cases run one per thread: OpenBLAS's own threads would only oversubscribe the cores.
+// Cases are the unit of parallelism, one per thread: OpenBLAS's own threads would only
+// oversubscribe the cores (and spin in sched_yield between the small factorisations).
 void single_threaded_blas() {
   using SetThreads = void (*)(int);
   if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
@@ -922,7 +923,7 @@ SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepCom
     }
   }
   jobs = static_cast<int>(std::max<std::size_t>(1, std::min<std::size_t>(jobs, pending.size())));
-  if (jobs > 1 || ranks > 1) single_threaded_blas();
+  single_threaded_blas();
 
   // Workers run cases and hand whole rows to this thread, the only one that writes or sends.
   std::mutex mutex;
