@@ -65,19 +65,16 @@ void SystemAssembler::add(std::span<const int> raw, const Eigen::Ref<const Eigen
 }
 
 void SystemAssembler::build(SparseMatrix& A, int rows, int cols, const std::vector<Triplet>& trip, std::vector<int>& pos) {
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(trip.size());
-  for (const auto& x : trip) t.emplace_back(x.row, x.col, x.value);
   A.resize(rows, cols);
-  A.setFromTriplets(t.begin(), t.end());
+  A.setFromTriplets(trip.begin(), trip.end());
   A.makeCompressed();
   pos.resize(trip.size());
   const int* outer = A.outerIndexPtr();
   const int* inner = A.innerIndexPtr();
   for (std::size_t k = 0; k < trip.size(); ++k) {
-    const int* first = inner + outer[trip[k].col];
-    const int* last = inner + outer[trip[k].col + 1];
-    pos[k] = static_cast<int>(std::lower_bound(first, last, trip[k].row) - inner);
+    const int* first = inner + outer[trip[k].c];
+    const int* last = inner + outer[trip[k].c + 1];
+    pos[k] = static_cast<int>(std::lower_bound(first, last, trip[k].r) - inner);
   }
 }
 

@@ -33,9 +33,13 @@ class SystemAssembler {
   void reset(const DofMap& map);
 
  private:
+  // Read by Eigen's setFromTriplets directly (no copy).
   struct Triplet {
-    int row, col;
-    double value;
+    int r, c;
+    double v;
+    int row() const { return r; }
+    int col() const { return c; }
+    double value() const { return v; }
   };
   void put(std::vector<Triplet>& trip, std::vector<int>& pos, std::size_t& k, SparseMatrix& A, int r, int c, double v);
   static void build(SparseMatrix& A, int rows, int cols, const std::vector<Triplet>& trip, std::vector<int>& pos);

@@ -45,6 +45,12 @@ LinearStaticResult solve_linear_static(const Model& model, const LinearStaticOpt
   FactorOptions fo;
   fo.singular_rcond = options.singular_rcond;
   const FactorStatus fs = factor.factorize(K, fo);
+  if (fs == FactorStatus::TooLarge) {
+    res.status = SolveStatus::Failed;
+    res.message = fmt::format("the factorisation of {} free DOFs is too large for CHOLMOD's symbolic analysis "
+                              "(factor over 2^31 entries or out of memory)", map.free_size());
+    return res;
+  }
   if (fs != FactorStatus::Ok) {
     res.modes = zero_energy_modes(model, map, K, 12, options.zero_energy_tolerance);
     if (!res.modes.empty()) {

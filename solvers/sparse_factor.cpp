@@ -13,6 +13,7 @@ const char* to_string(FactorStatus s) {
     case FactorStatus::Ok: return "ok";
     case FactorStatus::NotPositiveDefinite: return "not positive definite";
     case FactorStatus::Singular: return "singular";
+    case FactorStatus::TooLarge: return "too large to factorise";
   }
   return "?";
 }
@@ -65,6 +66,10 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
   const SparseMatrix A = scaled(K, s_);
   if (!impl_->analysed || impl_->rows != n || impl_->nnz != A.nonZeros()) {
     impl_->llt.analyzePattern(A);
+    if (impl_->llt.info() != Eigen::Success) {
+      impl_->analysed = false;
+      return FactorStatus::TooLarge;
+    }
     impl_->analysed = true;
     impl_->lu_analysed = false;
     impl_->rows = n;
