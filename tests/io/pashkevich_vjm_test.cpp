@@ -129,12 +129,18 @@ TEST(PashkevichVjm, Table1EnergiesAndStabilityOfTheTwelveConfigurations) {
     }
     EXPECT_LT(residual, 1e-9) << "row " << i + 1 << " should be an equilibrium";
     const double margin = c.stability_margin(z, F);
-    if (rows[i].kind > 0) EXPECT_GT(margin, 1e-3) << "row " << i + 1 << " should be stable";
-    else EXPECT_LT(margin, -1e-3) << "row " << i + 1 << " should be unstable";
+    if (rows[i].kind > 0) {
+      EXPECT_GT(margin, 1e-3) << "row " << i + 1 << " should be stable";
+    } else {
+      EXPECT_LT(margin, -1e-3) << "row " << i + 1 << " should be unstable";
+    }
     // Compression along x: eq. 43 (stable, F = phi/sin phi) and eq. 44 (unstable, X theta / sin theta).
     const double P = -F[0];
-    if (rows[i].kind > 0) EXPECT_NEAR(P, p1 / std::sin(p1), 1e-9);
-    else EXPECT_NEAR(P, X * p2 / std::sin(p2), 1e-9);
+    if (rows[i].kind > 0) {
+      EXPECT_NEAR(P, p1 / std::sin(p1), 1e-9);
+    } else {
+      EXPECT_NEAR(P, X * p2 / std::sin(p2), 1e-9);
+    }
   }
   EXPECT_NEAR(p1 * p1, 0.100845, 1e-6);
   EXPECT_NEAR(p2 * p2, 0.302552, 1e-6);
@@ -204,7 +210,9 @@ TEST(PashkevichVjm, LoadedStiffnessAndStabilityAlongThePathMatchEqs22And28) {
     vjm_state(c, x0, s.delta, z, F);
     EXPECT_NEAR(s.P, -F[0], 1e-6 * (1 + std::abs(F[0]))) << "delta " << s.delta;
     EXPECT_EQ(s.stable, c.stability_margin(z, F) > 0) << "delta " << s.delta;
-    if (s.has_k) EXPECT_NEAR(s.kxx, c.loaded_stiffness(z, F)(0, 0), 1e-5 * (1 + std::abs(s.kxx))) << "delta " << s.delta;
+    if (s.has_k) {
+      EXPECT_NEAR(s.kxx, c.loaded_stiffness(z, F)(0, 0), 1e-5 * (1 + std::abs(s.kxx))) << "delta " << s.delta;
+    }
     ++compared;
   }
   EXPECT_GT(compared, 2);
