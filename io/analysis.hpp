@@ -56,5 +56,7 @@ ojson to_json(const Mat6& m);
 AnalysisType linear_static_analysis();
 AnalysisType stiffness_analysis();
 AnalysisType actuator_allocation_analysis();
+AnalysisType buckling_analysis();
+AnalysisType path_analysis();
 
 }  // namespace beamfea

@@ -11,6 +11,8 @@ const std::vector<AnalysisType>& analysis_types() {
       linear_static_analysis(),
       stiffness_analysis(),
       actuator_allocation_analysis(),
+      buckling_analysis(),
+      path_analysis(),
   };
   return types;
 }

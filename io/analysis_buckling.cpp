@@ -1,0 +1,87 @@
+// Analysis "buckling": linearised buckling load factors and modes (solvers/buckling.hpp).
+//   {"id": "b", "type": "buckling", "modes": 4}
+// Result analyses.<id>: type, status, message, free_dofs, load_factors (ascending),
+// modes[] {mode, load_factor, nodes.<id>.displacement (6, normalised: largest translation 1)},
+// vtk (the .pvd) and files DIR/<id>_mode<k>.vtu, DIR/<id>.pvd (time = mode number).
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "io/analysis.hpp"
+#include "io/json_util.hpp"
+#include "io/vtk_writer.hpp"
+#include "solvers/buckling.hpp"
+
+namespace beamfea {
+
+namespace {
+
+void check_buckling(const Model&, const nlohmann::json& spec, const std::string& p) {
+  if (spec.contains("modes")) {
+    const int m = json_in::integer(spec["modes"], json_in::child(p, "modes"), "buckling modes");
+    if (m < 1 || m > 1000) throw InputError(json_in::child(p, "modes"), "buckling: modes must be between 1 and 1000");
+  }
+}
+
+AnalysisOutcome run_buckling(const AnalysisContext& ctx) {
+  const Model& model = ctx.model;
+  BucklingOptions opt;
+  if (ctx.spec.contains("modes")) opt.modes = ctx.spec["modes"].get<int>();
+  const BucklingResult r = solve_buckling(model, opt);
+  AnalysisOutcome out;
+  out.result["type"] = "buckling";
+  out.result["status"] = to_string(r.status);
+  out.result["message"] = r.message;
+  out.result["free_dofs"] = r.free_dofs;
+  out.message = r.message;
+  if (r.status != BucklingStatus::Ok) {
+    out.failed = r.status != BucklingStatus::NoCompression;
+    out.result["load_factors"] = ojson::array();
+    return out;
+  }
+  out.result["load_factors"] = to_json(r.load_factors);
+  ojson modes = ojson::array();
+  for (std::size_t k = 0; k < r.modes.size(); ++k) {
+    ojson nodes = ojson::object();
+    for (std::size_t n = 0; n < model.nodes.size(); ++n)
+      nodes[model.nodes[n].id] = ojson{{"displacement", to_json(Vec6(r.modes[k].segment<6>(6 * n)))}};
+    modes.push_back(ojson{{"mode", k + 1}, {"load_factor", r.load_factors[static_cast<Eigen::Index>(k)]}, {"nodes", nodes}});
+  }
+  out.result["modes"] = modes;
+  if (!ctx.out_dir.empty() && ctx.write_vtk) {
+    // Modes drawn at an amplitude of 10 % of the model size; ParaView steps through them as times
+    // (Warp By Vector on "mode_shape" with a scale factor animates one mode).
+    const double scale = 0.1 * model.length_scale();
+    std::vector<std::pair<double, std::string>> entries;
+    for (std::size_t k = 0; k < r.modes.size(); ++k) {
+      VtkFrame f;
+      std::vector<double> mx, my, mz;
+      for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+        const Vec3 d = r.modes[k].segment<3>(6 * n);
+        f.displacement.push_back(scale * d);
+        f.rotation.push_back(scale * Vec3(r.modes[k].segment<3>(6 * n + 3)));
+        mx.push_back(d.x());
+        my.push_back(d.y());
+        mz.push_back(d.z());
+      }
+      f.node_scalars["mode_x"] = mx;
+      f.node_scalars["mode_y"] = my;
+      f.node_scalars["mode_z"] = mz;
+      f.field_data["mode"] = static_cast<double>(k + 1);
+      f.field_data["load_factor"] = r.load_factors[static_cast<Eigen::Index>(k)];
+      f.field_data["scale"] = scale;
+      const std::string file = fmt::format("{}_mode{}.vtu", ctx.id, k + 1);
+      write_vtu((ctx.out_dir / file).string(), model, f);
+      entries.emplace_back(static_cast<double>(k + 1), file);
+    }
+    write_pvd((ctx.out_dir / (ctx.id + ".pvd")).string(), entries);
+    out.result["vtk"] = ctx.id + ".pvd";
+    out.result["vtk_scale"] = scale;
+  }
+  return out;
+}
+
+}  // namespace
+
+AnalysisType buckling_analysis() { return {"buckling", check_buckling, run_buckling}; }
+
+}  // namespace beamfea

@@ -1,0 +1,248 @@
+// Analysis "path": nonlinear equilibrium path with stability (solvers/path_following.hpp).
+//
+// {"id": "p", "type": "path", "track": ["D"], "stiffness_node": "D", "max_steps": 500,
+//  "control": {"load_factor": 2.0, "increments": 20}                 load control, or
+//  "control": {"node": "D", "dof": "ux", "to": -1.0, "increments": 20}  displacement control, or
+//  "control": {"arc_length": 0.05, "min": 1e-5, "max": 0.5}            arc length (initial step)
+//  "stop": {"load_factor": 2.0} | {"node": "D", "dof": "uy", "beyond": -60.0} | {"steps": 300},
+//  "branch_switch": true, "imperfection": {"mode": 1, "amplitude": 0.001},
+//  "stability": true, "save_every": 1, "desired_iterations": 5, "max_cuts": 10}
+//
+// Result analyses.<id>: type, status, termination, completed, free_dofs, control,
+// steps[] {step, load_factor, control, arc_length, iterations, nodes.<tracked>.displacement,
+//          negative_eigenvalues, stable, min_eigenvalue, stiffness (when stiffness_node), reaction
+//          (imposed motion)}, critical_points[] {type, load_factor, step, control, negative_before,
+//          negative_after, load_work, branch_switched, mode.nodes.<id>.displacement},
+// files: csv, vtk. Files: DIR/<id>.csv (one row per step), DIR/<id>.pvd and DIR/<id>_step<k>.vtu.
+#include <fmt/format.h>
+
+#include <iostream>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "io/analysis.hpp"
+#include "io/atomic_file.hpp"
+#include "io/json_util.hpp"
+#include "io/model_reader.hpp"
+#include "io/vtk_writer.hpp"
+#include "solvers/path_following.hpp"
+
+namespace beamfea {
+
+namespace {
+
+using json_in::child;
+
+int dof_of(const nlohmann::json& v, const std::string& p) {
+  const std::string name = json_in::string(v, p, "dof");
+  const int d = dof_index(name);
+  if (d < 0) throw InputError(p, "unknown DOF '" + name + "' (expected ux uy uz rx ry rz)");
+  return d;
+}
+
+PathOptions parse(const Model& model, const nlohmann::json& spec, const std::string& p) {
+  PathOptions o;
+  const auto& c = json_in::object(json_in::require(spec, p, "control", "path analysis"), child(p, "control"), "path control");
+  const std::string pc = child(p, "control");
+  const int kinds = (c.contains("load_factor") ? 1 : 0) + (c.contains("to") ? 1 : 0) + (c.contains("arc_length") ? 1 : 0);
+  if (kinds != 1)
+    throw InputError(pc, "path control: give exactly one of 'load_factor', 'to' (with node and dof) or 'arc_length'");
+  if (c.contains("load_factor")) {
+    o.control = PathControl::LoadFactor;
+    o.target = json_in::number(c["load_factor"], child(pc, "load_factor"), "control load_factor");
+  } else if (c.contains("to")) {
+    o.control = PathControl::Displacement;
+    o.control_node = node_ref(model, json_in::require(c, pc, "node", "displacement control"), child(pc, "node"));
+    o.control_dof = dof_of(json_in::require(c, pc, "dof", "displacement control"), child(pc, "dof"));
+    o.target = json_in::number(c["to"], child(pc, "to"), "control to");
+  } else {
+    o.control = PathControl::ArcLength;
+    o.arc_length = json_in::positive(c["arc_length"], child(pc, "arc_length"), "arc_length");
+    if (c.contains("min")) o.min_arc_length = json_in::positive(c["min"], child(pc, "min"), "arc_length min");
+    if (c.contains("max")) o.max_arc_length = json_in::positive(c["max"], child(pc, "max"), "arc_length max");
+  }
+  if (c.contains("increments")) {
+    o.increments = json_in::integer(c["increments"], child(pc, "increments"), "increments");
+    if (o.increments < 1) throw InputError(child(pc, "increments"), "increments must be at least 1");
+  }
+  if (spec.contains("stop")) {
+    const std::string ps = child(p, "stop");
+    const auto& s = json_in::object(spec["stop"], ps, "path stop");
+    if (s.contains("load_factor")) o.stop_load_factor = json_in::number(s["load_factor"], child(ps, "load_factor"), "stop load_factor");
+    if (s.contains("beyond")) {
+      o.stop_beyond = json_in::number(s["beyond"], child(ps, "beyond"), "stop beyond");
+      o.stop_node = node_ref(model, json_in::require(s, ps, "node", "stop"), child(ps, "node"));
+      o.stop_dof = dof_of(json_in::require(s, ps, "dof", "stop"), child(ps, "dof"));
+    }
+    if (s.contains("steps")) {
+      o.stop_steps = json_in::integer(s["steps"], child(ps, "steps"), "stop steps");
+      if (*o.stop_steps < 1) throw InputError(child(ps, "steps"), "stop steps must be at least 1");
+    }
+  }
+  if (spec.contains("max_steps")) {
+    o.max_steps = json_in::integer(spec["max_steps"], child(p, "max_steps"), "max_steps");
+    if (o.max_steps < 1) throw InputError(child(p, "max_steps"), "max_steps must be at least 1");
+  }
+  if (spec.contains("track")) {
+    const auto& t = json_in::array(spec["track"], child(p, "track"), "track");
+    for (std::size_t i = 0; i < t.size(); ++i) o.track.push_back(node_ref(model, t[i], child(child(p, "track"), i)));
+  }
+  if (spec.contains("stiffness_node")) o.stiffness_node = node_ref(model, spec["stiffness_node"], child(p, "stiffness_node"));
+  if (spec.contains("branch_switch")) o.branch_switch = json_in::boolean(spec["branch_switch"], child(p, "branch_switch"), "branch_switch");
+  if (spec.contains("stability")) o.stability = json_in::boolean(spec["stability"], child(p, "stability"), "stability");
+  if (spec.contains("desired_iterations")) {
+    o.desired_iterations = json_in::integer(spec["desired_iterations"], child(p, "desired_iterations"), "desired_iterations");
+    if (o.desired_iterations < 1) throw InputError(child(p, "desired_iterations"), "must be at least 1");
+  }
+  if (spec.contains("max_cuts")) {
+    o.max_cuts = json_in::integer(spec["max_cuts"], child(p, "max_cuts"), "max_cuts");
+    if (o.max_cuts < 0) throw InputError(child(p, "max_cuts"), "must not be negative");
+  }
+  if (spec.contains("imperfection")) {
+    const std::string pi = child(p, "imperfection");
+    const auto& im = json_in::object(spec["imperfection"], pi, "imperfection");
+    o.imperfection_mode = json_in::integer(json_in::require(im, pi, "mode", "imperfection"), child(pi, "mode"), "imperfection mode");
+    if (o.imperfection_mode < 1) throw InputError(child(pi, "mode"), "imperfection mode must be at least 1");
+    o.imperfection_amplitude = json_in::number(json_in::require(im, pi, "amplitude", "imperfection"), child(pi, "amplitude"), "imperfection amplitude");
+  }
+  if (o.branch_switch && o.control != PathControl::ArcLength)
+    throw InputError(child(p, "branch_switch"), "branch switching needs arc-length control");
+  if (o.control == PathControl::Displacement && o.control_node == o.stiffness_node && o.stiffness_node >= 0)
+    std::cerr << "beamfea: warning: " << p << ": the stiffness of the controlled node is taken with its controlled DOF held\n";
+  return o;
+}
+
+void check_path(const Model& model, const nlohmann::json& spec, const std::string& p) {
+  parse(model, spec, p);
+  if (spec.contains("save_every"))
+    if (json_in::integer(spec["save_every"], child(p, "save_every"), "save_every") < 1)
+      throw InputError(child(p, "save_every"), "save_every must be at least 1");
+}
+
+ojson node_map(const Model& model, const Eigen::VectorXd& raw) {
+  ojson nodes = ojson::object();
+  for (std::size_t n = 0; n < model.nodes.size(); ++n)
+    nodes[model.nodes[n].id] = ojson{{"displacement", to_json(Vec6(raw.segment<6>(6 * n)))}};
+  return nodes;
+}
+
+const char* control_name(PathControl c) {
+  switch (c) {
+    case PathControl::LoadFactor: return "load_factor";
+    case PathControl::Displacement: return "displacement";
+    case PathControl::ArcLength: return "arc_length";
+  }
+  return "?";
+}
+
+AnalysisOutcome run_path(const AnalysisContext& ctx) {
+  const Model& model = ctx.model;
+  PathOptions o = parse(model, ctx.spec, ctx.pointer);
+  const int save_every = ctx.spec.contains("save_every") ? ctx.spec["save_every"].get<int>() : 1;
+  o.progress = [&](const std::string& s) {
+    if (ctx.progress) ctx.progress("path " + ctx.id + ": " + s);
+    else std::cerr << "beamfea: path " << ctx.id << ": " << s << "\n";
+  };
+  const PathResult r = follow_path(model, o);
+  const bool imposed = o.control == PathControl::Displacement && r.steps.size() &&
+                       std::any_of(r.steps.begin(), r.steps.end(), [](const PathStep& s) { return s.reaction != 0.0; });
+
+  AnalysisOutcome out;
+  out.result["type"] = "path";
+  out.result["status"] = r.completed ? "ok" : "failed";
+  out.result["termination"] = r.termination;
+  out.result["completed"] = r.completed;
+  out.result["control"] = control_name(o.control);
+  out.result["free_dofs"] = r.free_dofs;
+  out.failed = !r.completed;
+  out.message = fmt::format("path: {} steps, {}", r.steps.empty() ? 0 : r.steps.size() - 1, r.termination);
+  ojson steps = ojson::array();
+  for (const auto& s : r.steps) {
+    ojson j;
+    j["step"] = s.step;
+    j["load_factor"] = s.load_factor;
+    j["control"] = s.control;
+    j["arc_length"] = s.arc_length;
+    j["iterations"] = s.iterations;
+    ojson nodes = ojson::object();
+    for (std::size_t k = 0; k < o.track.size(); ++k)
+      nodes[model.nodes[o.track[k]].id] = ojson{{"displacement", to_json(s.track[k])}};
+    j["nodes"] = nodes;
+    j["negative_eigenvalues"] = s.negative_eigenvalues;
+    j["stable"] = s.stable;
+    j["min_eigenvalue"] = s.min_eigenvalue;
+    if (o.stiffness_node >= 0) j["stiffness"] = s.stiffness ? to_json(*s.stiffness) : ojson(nullptr);
+    if (imposed) j["reaction"] = s.reaction;
+    steps.push_back(j);
+  }
+  out.result["steps"] = steps;
+  ojson cps = ojson::array();
+  for (const auto& c : r.critical_points) {
+    ojson j;
+    j["type"] = c.type;
+    j["load_factor"] = c.load_factor;
+    j["step"] = c.step;
+    j["control"] = c.control;
+    j["negative_before"] = c.negative_before;
+    j["negative_after"] = c.negative_after;
+    j["load_work"] = c.load_work;
+    j["branch_switched"] = c.branch_switched;
+    j["mode"] = c.mode.size() ? ojson{{"nodes", node_map(model, c.mode)}} : ojson(nullptr);
+    cps.push_back(j);
+  }
+  out.result["critical_points"] = cps;
+  out.result["factorizations"] = r.factorizations;
+  out.result["symbolic_analyses"] = r.symbolic_analyses;
+
+  if (!ctx.out_dir.empty()) {
+    std::ostringstream csv;
+    csv << "step,load_factor,control,arc_length,iterations,negative_eigenvalues,stable,min_eigenvalue";
+    if (imposed) csv << ",reaction";
+    for (int n : o.track)
+      for (const char* d : kDofNames) csv << "," << model.nodes[n].id << "_" << d;
+    csv << "\n";
+    for (const auto& s : r.steps) {
+      csv << fmt::format("{},{:.17g},{:.17g},{:.17g},{},{},{},{:.17g}", s.step, s.load_factor, s.control, s.arc_length,
+                         s.iterations, s.negative_eigenvalues, s.stable ? 1 : 0, s.min_eigenvalue);
+      if (imposed) csv << fmt::format(",{:.17g}", s.reaction);
+      for (const auto& t : s.track)
+        for (int k = 0; k < 6; ++k) csv << fmt::format(",{:.17g}", t[k]);
+      csv << "\n";
+    }
+    write_text_atomic(ctx.out_dir / (ctx.id + ".csv"), csv.str());
+    ojson files;
+    files["csv"] = ctx.id + ".csv";
+    if (ctx.write_vtk) {
+      const NonlinearStructure ns(model);
+      std::vector<std::pair<double, std::string>> entries;
+      for (std::size_t i = 0; i < r.steps.size(); ++i) {
+        const auto& s = r.steps[i];
+        if (i % static_cast<std::size_t>(save_every) != 0 && i + 1 != r.steps.size()) continue;
+        VtkFrame f;
+        for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+          f.displacement.push_back(s.state.x[n] - model.nodes[n].x);
+          f.rotation.push_back(log_so3(s.state.R[n]));
+        }
+        f.end_forces = s.end_forces;
+        f.shape = [&](int e, double xi) { return ns.beam_shape(s.state, e, xi); };
+        f.field_data["load_factor"] = s.load_factor;
+        f.field_data["step"] = s.step;
+        f.field_data["stable"] = s.stable ? 1.0 : 0.0;
+        f.field_data["control"] = s.control;
+        const std::string file = fmt::format("{}_step{}.vtu", ctx.id, s.step);
+        write_vtu((ctx.out_dir / file).string(), model, f);
+        entries.emplace_back(static_cast<double>(s.step), file);
+      }
+      write_pvd((ctx.out_dir / (ctx.id + ".pvd")).string(), entries);
+      files["vtk"] = ctx.id + ".pvd";
+    }
+    out.result["files"] = files;
+  }
+  return out;
+}
+
+}  // namespace
+
+AnalysisType path_analysis() { return {"path", check_path, run_path}; }
+
+}  // namespace beamfea

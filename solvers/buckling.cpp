@@ -1,0 +1,178 @@
+#include "solvers/buckling.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Spectra/MatOp/SparseSymMatProd.h>
+#include <Spectra/MatOp/SymShiftInvert.h>
+#include <Spectra/SymGEigsShiftSolver.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "core/assembly.hpp"
+#include "core/errors.hpp"
+#include "elements/geometric_stiffness.hpp"
+#include "solvers/linear_static.hpp"
+#include "solvers/nonlinear_structure.hpp"
+#include "solvers/structure.hpp"
+
+namespace beamfea {
+
+void BucklingOptions::validate() const {
+  if (modes < 1) throw Error("BucklingOptions: modes must be at least 1");
+}
+
+const char* to_string(BucklingStatus s) {
+  switch (s) {
+    case BucklingStatus::Ok: return "ok";
+    case BucklingStatus::NoCompression: return "no buckling";
+    case BucklingStatus::Mechanism: return "mechanism";
+    case BucklingStatus::Failed: return "failed";
+  }
+  return "?";
+}
+
+Eigen::VectorXd normalise_mode(const Model& model, const Eigen::VectorXd& u) {
+  double best = 0.0;
+  Eigen::Index arg = -1;
+  for (int pass = 0; pass < 2 && arg < 0; ++pass)
+    for (std::size_t n = 0; n < model.nodes.size(); ++n)
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Index i = 6 * static_cast<Eigen::Index>(n) + 3 * pass + k;
+        if (std::abs(u[i]) > best * (1 + 1e-9) + 1e-300) {
+          best = std::abs(u[i]);
+          arg = i;
+        }
+      }
+  if (arg < 0) return u;
+  return u / u[arg];
+}
+
+// Z: independent coordinates <- free DOFs (the DofMap's T_f rows at the independent raw DOFs).
+static SparseMatrix independent_from_free(const NonlinearStructure& ns, const DofMap& map) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < ns.size(); ++i)
+    for (SparseRowMatrix::InnerIterator it(map.T_free(), ns.gens()[i].raw); it; ++it)
+      t.emplace_back(i, static_cast<int>(it.col()), it.value());
+  SparseMatrix Z(ns.size(), map.free_size());
+  Z.setFromTriplets(t.begin(), t.end());
+  return Z;
+}
+
+BucklingResult solve_buckling(const Model& model, const BucklingOptions& options) {
+  options.validate();
+  BucklingResult res;
+  const LinearStaticResult lin = solve_linear_static(model);
+  if (lin.status != SolveStatus::Converged) {
+    res.status = lin.status == SolveStatus::Mechanism ? BucklingStatus::Mechanism : BucklingStatus::Failed;
+    res.message = "buckling: the linear static solution failed: " + lin.message;
+    return res;
+  }
+  res.linear_u = lin.u;
+  const NonlinearStructure ns(model);  // refuses closed loops
+  const DofMap map(model);
+  const LinearStructure structure(model);
+  SystemAssembler ka(map), ga(map);
+  ka.begin();
+  structure.assemble(map, ka);
+  ka.end();
+  ga.begin();
+  for (std::size_t e = 0; e < model.elements.size(); ++e) {
+    const auto& beam = structure.beam(static_cast<int>(e));
+    if (!beam) continue;
+    const auto& s = model.sections[model.elements[e].section];
+    const Mat12 kg = beam_local_geometric_stiffness(beam->length(), s.A, s.Iy, s.Iz, lin.end_forces[e]);
+    const Mat12 Kg = beam->transformation().transpose() * kg * beam->transformation();
+    const auto dofs = structure.element_dofs(map, static_cast<int>(e));
+    ga.add(dofs, Kg);
+  }
+  ga.end();
+  const SparseMatrix& K = ka.K_ff();
+  SparseMatrix Kg = ga.K_ff();
+
+  // Rigid links and joints: constraint curvature for the forces they transmit.
+  const Eigen::VectorXd f_ext = external_force(model, map);
+  Eigen::VectorXd f = structure.internal_force(map, lin.u) - f_ext;
+  const auto cf = map.constraint_forces(f);
+  for (int p = 0; p < map.prescribed_size(); ++p) {
+    const int raw = map.raw_index(map.prescribed()[p].dof);
+    const DofRef d = map.prescribed()[p].dof;
+    if (d.owner == DofRef::Owner::Node && map.is_slave(d.index)) f[raw] -= cf.prescribed[p];
+  }
+  const NonlinearState s0 = ns.reference_state();
+  const SparseMatrix G = ns.constraint_curvature(s0, ns.twists(s0), f);
+  if (G.nonZeros() > 0) {
+    const SparseMatrix Z = independent_from_free(ns, map);
+    Kg += SparseMatrix(Z.transpose() * G * Z);
+  }
+  Kg = SparseMatrix(0.5 * (SparseMatrix(Kg.transpose()) + Kg));
+  res.free_dofs = map.free_size();
+  const int n = map.free_size();
+  const int want = std::min(options.modes, n);
+
+  // Solve K phi = lambda (-Kg) phi.
+  const SparseMatrix KG = -Kg;
+  std::vector<std::pair<double, Eigen::VectorXd>> pairs;
+  if (n <= 300) {
+    // Dense: -Kg phi = mu K phi, mu = 1 / lambda.
+    const Eigen::MatrixXd KGd(KG), Kd(K);
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(KGd, Kd);
+    if (es.info() != Eigen::Success) {
+      res.status = BucklingStatus::Failed;
+      res.message = "buckling: the dense eigen-solver failed (is K positive definite?)";
+      return res;
+    }
+    const double mu_max = es.eigenvalues().cwiseAbs().maxCoeff();
+    for (int i = n - 1; i >= 0; --i) {
+      const double mu = es.eigenvalues()[i];
+      if (mu <= 1e-12 * mu_max || mu <= 0.0) break;
+      pairs.emplace_back(1.0 / mu, es.eigenvectors().col(i));
+    }
+  } else {
+    // Shift below the first load factor: the Rayleigh quotient of the linear solution is an upper
+    // estimate; a tenth of it is a safe positive shift.
+    const Eigen::VectorXd uf = [&] {
+      Eigen::VectorXd v(n);
+      for (int i = 0; i < n; ++i) v[i] = lin.u[map.raw_index(map.free_dofs()[i])];
+      return v;
+    }();
+    const double num = uf.dot(K * uf), den = uf.dot(KG * uf);
+    double sigma = den > 0.0 ? 0.1 * num / den : 1.0;
+    using OpType = Spectra::SymShiftInvert<double, Eigen::Sparse, Eigen::Sparse>;
+    using BOpType = Spectra::SparseSymMatProd<double>;
+    const int nev = std::min(n - 1, 2 * want + 2);
+    const int ncv = std::min(n, std::max(2 * nev + 1, 24));
+    for (int attempt = 0; attempt < 4 && pairs.size() < static_cast<std::size_t>(want); ++attempt) {
+      pairs.clear();
+      OpType op(K, KG);
+      BOpType Bop(K);
+      Spectra::SymGEigsShiftSolver<OpType, BOpType, Spectra::GEigsMode::Buckling> eigs(op, Bop, nev, ncv, sigma);
+      eigs.init();
+      eigs.compute(Spectra::SortRule::LargestMagn, 2000, 1e-10);
+      if (eigs.info() == Spectra::CompInfo::Successful) {
+        const Eigen::VectorXd v = eigs.eigenvalues();
+        const Eigen::MatrixXd V = eigs.eigenvectors();
+        for (int i = 0; i < v.size(); ++i)
+          if (v[i] > 0.0) pairs.emplace_back(v[i], V.col(i));
+      }
+      sigma *= 0.1;
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  if (pairs.size() > static_cast<std::size_t>(want)) pairs.resize(want);
+  if (pairs.empty()) {
+    res.status = BucklingStatus::NoCompression;
+    res.message = "buckling: no positive load factor (the loads put nothing in compression)";
+    return res;
+  }
+  res.load_factors.resize(static_cast<Eigen::Index>(pairs.size()));
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    res.load_factors[static_cast<Eigen::Index>(i)] = pairs[i].first;
+    const Eigen::VectorXd raw = map.T_free() * pairs[i].second;
+    res.modes.push_back(normalise_mode(model, raw));
+  }
+  res.status = BucklingStatus::Ok;
+  res.message = fmt::format("buckling: {} free DOFs, lowest load factor {:.6g}", n, res.load_factors[0]);
+  return res;
+}
+
+}  // namespace beamfea

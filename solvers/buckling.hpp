@@ -1,0 +1,53 @@
+#pragma once
+// Linearised buckling about the linear static state of the model's loads:
+//     (K + lambda K_g) phi = 0,   lambda > 0 the load factors, phi the modes.
+//
+// K   the elastic stiffness (beams, joint springs) on the free DOFs (DofMap, reference state);
+// K_g the geometric (initial-stress) stiffness of the linear solution at lambda = 1:
+//     - beams: beam_local_geometric_stiffness (Yang & McGuire 1986, McGuire et al. 2000 eq. 9.18)
+//       from each beam's linear end forces; its moment terms carry lateral-torsional buckling;
+//     - rigid links and joints: the constraint-curvature matrix G of solvers/nonlinear_structure.hpp
+//       for the raw forces f_int - f_ext - reactions transmitted at the slave nodes, mapped to the
+//       free DOFs by Z (the DofMap's T_f rows at the independent DOFs). A chain of rigid links with
+//       rotational springs under an end load P has G = -P/L per hinge: lambda_cr = K_theta/(P L).
+// K_g is symmetrised (it is symmetric at equilibrium under forces; applied moments add a small
+// skew part that is dropped for the eigen-problem).
+//
+// Eigen-solver: Spectra's SymGEigsShiftSolver in buckling mode (K positive definite, K_G = -K_g
+// indefinite) with a positive shift below the first load factor estimated from the Rayleigh
+// quotient of the linear solution; small systems are solved densely. Only positive load factors
+// are reported, ascending.
+//
+// Not supported: closed loops of rigid links/joints (ModelError), prebuckling displacements
+// (linearised theory), member loads.
+#include <string>
+#include <vector>
+
+#include "core/model.hpp"
+
+namespace beamfea {
+
+struct BucklingOptions {
+  int modes = 4;
+  void validate() const;
+};
+
+enum class BucklingStatus { Ok, NoCompression, Mechanism, Failed };
+const char* to_string(BucklingStatus s);
+
+struct BucklingResult {
+  BucklingStatus status = BucklingStatus::Failed;
+  std::string message;
+  int free_dofs = 0;
+  Eigen::VectorXd load_factors;          // ascending, positive
+  std::vector<Eigen::VectorXd> modes;    // raw displacement per mode, largest translation = 1
+  Eigen::VectorXd linear_u;              // raw linear static displacement (lambda = 1)
+};
+
+BucklingResult solve_buckling(const Model& model, const BucklingOptions& options = {});
+
+// Normalises a raw mode: largest node translation 1 (or largest rotation 1 when nothing
+// translates), with that component positive.
+Eigen::VectorXd normalise_mode(const Model& model, const Eigen::VectorXd& u_raw);
+
+}  // namespace beamfea
