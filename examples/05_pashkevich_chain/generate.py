@@ -36,7 +36,10 @@ Boundary conditions (eq. 33): base node B fixed; universal joint R_u = Rz(q1) Ry
 and the first link; spherical joint between the chain tip T and the end node E; E is held on
 the x axis (uy, uz fixed; its rotations fixed too, which with the spherical joint leaves the tip
 free to rotate) and pushed toward the base: a unit load (-1, 0, 0) at E whose load factor is
-the compressive force P, under displacement control of E's ux down to -delta_max.
+the compressive force P, followed by arc length (the engine switches branches only under arc-length
+control) until E's ux reaches -delta_max. With y and z held at E, the (delta, P) curve is the
+displacement-controlled curve of the paper; only the stability of a falling branch (dP/ddelta < 0)
+differs: stable under displacement control, unstable under this load.
 
 Run: /usr/bin/python3 examples/05_pashkevich_chain/generate.py [--out DIR]
 """
@@ -91,7 +94,7 @@ def r(v):
     return [round(c, 15) for c in v]
 
 
-def build(model, posture, kind, n, delta_max=1.0, steps=200, control="displacement"):
+def build(model, posture, kind, n, delta_max=1.0, ds=2e-4, ds_max=0.01):
     """kind: 'lumped' (n virtual springs per link) or 'beam' (n elements per link)."""
     mat, sec = material_section(model)
     alphas = link_directions(posture)
@@ -142,12 +145,13 @@ def build(model, posture, kind, n, delta_max=1.0, steps=200, control="displaceme
         # models B, C: actuators rigid, the next link starts where this one ends.
     nodes.append({"id": "E", "xyz": r([x[0], x[1], 0.0])})
     joints.append({"id": "S", "type": "spherical", "nodes": [start, "E"]})
-    if control == "displacement":
-        ctrl = {"node": "E", "dof": "ux", "to": -delta_max}
-    else:
-        ctrl = {"arc_length": delta_max / steps}
-    path = {"id": "path", "type": "path", "track": ["E"], "max_steps": 4 * steps, "steps": steps,
-            "control": ctrl, "stop": {"node": "E", "dof": "ux", "beyond": -delta_max},
+    # Arc length (Crisfield) with automatic branch switching: the engine switches onto the stable
+    # branch at a bifurcation only under arc-length control. The end is loaded by the unit load
+    # (-1, 0, 0), so the load factor is the compressive force P and the (delta, P) curve is the
+    # displacement-controlled curve of the paper; the path stops when E has moved delta_max.
+    path = {"id": "path", "type": "path", "track": ["E"], "max_steps": 2000,
+            "control": {"arc_length": ds, "min": 1e-7, "max": ds_max},
+            "stop": {"node": "E", "dof": "ux", "beyond": -delta_max},
             "branch_switch": True}
     doc = {
         "title": f"Pashkevich et al. (2010) chain U_p R_a R_a S_p, model {model}, posture {posture}, "
@@ -229,12 +233,9 @@ def main():
     pairs = []
     for model in "ABC":
         for posture in POSTURES:
-            # Model A S: rigid links cannot shorten, the load rises at delta = 0: arc length, not
-            # displacement control, can follow it.
-            control = "arc_length" if (model == "A" and posture == "S") else "displacement"
             lumped = f"{model}_{posture}_lumped.json"
             beam = f"{model}_{posture}_beam.json"
-            write(build(model, posture, "lumped", 1, control=control), os.path.join(args.out, lumped))
+            write(build(model, posture, "lumped", 1), os.path.join(args.out, lumped))
             write(build(model, posture, "beam", args.beam_elements), os.path.join(args.out, beam))
             pairs.append({
                 "name": f"model {model}, {posture} posture",
@@ -248,7 +249,7 @@ def main():
             if args.convergence and model in "BC":
                 for n in (1, 2, 4, 8, 16):
                     write(build(model, posture, "beam", n), os.path.join(args.convergence, f"{model}_{posture}_beam_N{n}.json"))
-                    write(build(model, posture, "lumped", n, control=control),
+                    write(build(model, posture, "lumped", n),
                           os.path.join(args.convergence, f"{model}_{posture}_lumped_n{n}.json"))
     spec = {
         "title": "Pashkevich, Klimchik & Chablat (2010), chain U_p R_a R_a S_p: lumped (VJM) vs beam",

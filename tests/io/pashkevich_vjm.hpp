@@ -125,6 +125,15 @@ struct Chain {
     }
     return false;
   }
+  // Newton on K z - J^T F = 0 for a given end force F (the passive rows are J_q^T F = 0).
+  bool equilibrium_under_force(const VectorXd& F, VectorXd& z) const {
+    for (int it = 0; it < 50; ++it) {
+      const VectorXd r = K * z - jacobian(z).transpose() * F;
+      if (r.norm() < 1e-12) return true;
+      z += (K - hessian(z, F)).fullPivLu().solve(-r);
+    }
+    return false;
+  }
   // Smallest eigenvalue of V0^T (K - H^F) V0 (eq. 22/23); > 0: stable.
   double stability_margin(const VectorXd& z, const VectorXd& F) const {
     const MatrixXd J = jacobian(z);
