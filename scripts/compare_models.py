@@ -35,9 +35,10 @@ Spec format (every key but "pairs" optional):
 (The short form {"lumped": {...}, "beam": {...}} of a pair is accepted too.)
 
 Quantities (tangents k = dP/d(deflection) of the displacement-controlled curve, on the stable branch):
-  critical_force  force at the first critical point (engine's critical_points[]; for a model with
-                  a "buckling" analysis and no critical point on the path: the first buckling
-                  load factor)
+  critical_force  force at the first critical point (engine's critical_points[]);
+                  "path failed" when the path stopped on non-convergence before finding one
+  buckling_load   the first load factor of the model's "buckling" analysis, when it has one
+                  (linearised about the unloaded state: the critical force of a straight chain)
   unloaded        stiffness at zero load
   near_before     tangent just before the first critical point
   near_after      tangent just after it, on the stable branch followed
@@ -115,6 +116,8 @@ class Curve:
         self.critical = []   # (deflection, force, type)
         self.termination = ""
         self.buckling = []   # load factors of a "buckling" analysis
+        self.completed = False
+        self.switched = []   # per critical point: the path switched onto another branch there
 
 
 def extract_curve(res, spec):
@@ -152,7 +155,9 @@ def extract_curve(res, spec):
         elif step is not None and 0 <= step < len(c.d):
             dcp = c.d[step]
         c.critical.append((dcp, fs * cp["load_factor"], cp.get("type", "")))
+        c.switched.append(bool(cp.get("branch_switched", False)))
     c.termination = a.get("termination", "")
+    c.completed = bool(a.get("completed", a.get("status") == "ok"))
     return c
 
 
@@ -196,21 +201,31 @@ def quantities(c, k0, spec):
     q = {"unloaded": k0}
     if c is None:
         return q
+    if c.buckling:
+        q["buckling_load"] = c.buckling[0]
     large = spec.get("large_deflection", 1.0)
     off = spec.get("near_offset", 1e-3)
     if c.critical:
         dcr, pcr, _ = c.critical[0]
-        q["critical_force"] = pcr
+        # A critical point found before the path failed is still the engine's result; say so.
+        q["critical_force"] = pcr if c.completed else f"{pcr:.4g} (path failed later)"
         if dcr is not None and c.d:
             q["near_before"] = tangent_at(c, dcr - off, side=-1)
-            q["near_after"] = tangent_at(c, dcr + off, side=+1)
-    elif c.buckling and not c.d:
-        q["critical_force"] = c.buckling[0]
-    elif c.d:
+            # after a bifurcation: only on the branch the engine switched to (the fundamental
+            # branch beyond it is unstable and not the curve of the paper)
+            if c.critical[0][2] != "bifurcation" or c.switched[0]:
+                q["near_after"] = tangent_at(c, dcr + off, side=+1)
+            else:
+                q["near_after"] = "no branch switch"
+    elif c.d and c.completed:
         q["critical_force"] = None  # no critical point on the path
+    elif c.d:
+        q["critical_force"] = "path failed"
     if c.d and max(c.d) >= large - 1e-9:
         q["P_at_L"] = interp(large, c.d, c.P)
         q["large"] = tangent_at(c, large, side=0)
+    elif c.d and not c.completed:
+        q["P_at_L"] = q["large"] = "path failed"
     return q
 
 
@@ -298,7 +313,7 @@ def main():
     node = spec.get("stiffness_node", spec["deflection"]["node"])
     dof = DOFS.index(spec["deflection"].get("dof", "ux"))
     log = lambda s: print(s, file=sys.stderr, flush=True)
-    rows, missing_all, summary = [], set(), {}
+    rows, missing_all, summary, terminations = [], set(), {}, []
     for pair in map(normalise_pair, spec["pairs"]):
         if args.only and pair["id"] not in args.only:
             continue
@@ -321,6 +336,8 @@ def main():
                 pvds = [f for f in os.listdir(mdir) if f.endswith(".pvd")]
                 log(f"    {len(c.d)} steps, critical points {[(round(x[1], 5), x[2]) for x in c.critical]}, "
                     f"termination: {c.termination}; ParaView: {pvds}")
+            if c is not None and c.d:
+                terminations.append((pair["id"], m["key"], len(c.d), "ok" if c.completed else "FAILED", c.termination))
             qs[m["key"]] = quantities(c, k0, spec)
             qs[m["key"]]["_missing"] = missing
             curves.append((m.get("label", m["key"]), c))
@@ -354,6 +371,11 @@ def main():
         f.write("| " + " | ".join(cols) + " |\n|" + "---|" * len(cols) + "\n")
         for r in rows:
             f.write("| " + " | ".join(fmt(r.get(k)) if k not in ("pair", "quantity") else r[k] for k in cols) + " |\n")
+        if terminations:
+            f.write("\nPath analyses (converged steps, outcome, beamfea's termination message):\n\n"
+                    "| pair | model | steps | outcome | termination |\n|---|---|---|---|---|\n")
+            for t in terminations:
+                f.write("| " + " | ".join(str(x) for x in t) + " |\n")
     with open(os.path.join(args.out, "summary.json"), "w") as f:
         json.dump(summary, f, indent=1, default=str)
     log(f"wrote {args.out}/summary.md, summary.csv, summary.json")

@@ -181,16 +181,16 @@ def write(doc, path):
 # Verified reference values (docs/notes/pashkevich-reference.md, sections 6-8; the printed values of
 # Tables 2-4 beside them). Critical force in K_theta/L; stiffness coefficients k = dP/ddelta.
 REFERENCE = {
-    ("A", "S"): {"critical_force": 1.0, "unloaded": math.inf, "near_after": 1 / 6, "large": 0.2636, "P_at_L": 1.2092},
+    ("A", "S"): {"critical_force": 1.0, "buckling_load": 1.0, "unloaded": math.inf, "near_after": 1 / 6, "large": 0.2636, "P_at_L": 1.2092},
     ("A", "Pi"): {"critical_force": None, "unloaded": 2.0, "large": 0.4246, "P_at_L": 0.7226},
     ("A", "Z"): {"critical_force": 1.0330, "unloaded": 10 + 4 * math.sqrt(3), "near_before": 5.429,
                  "near_after": 0.2029, "large": 0.3919, "P_at_L": 1.2821},
-    ("B", "S"): {"critical_force": math.sqrt(21) - 3, "unloaded": 1600.0, "near_after": 0.2384, "large": 0.2820,
+    ("B", "S"): {"critical_force": math.sqrt(21) - 3, "buckling_load": math.sqrt(21) - 3, "unloaded": 1600.0, "near_after": 0.2384, "large": 0.2820,
                  "P_at_L": 1.8485},
     ("B", "Pi"): {"critical_force": None, "unloaded": 2.3970, "large": 0.6375, "P_at_L": 1.0434},
     ("B", "Z"): {"critical_force": 1.545, "unloaded": 33.195, "large": 0.0744, "P_at_L": 1.9191,
                  "_note": "knee (imperfect bifurcation), not a true critical point"},
-    ("C", "S"): {"critical_force": 0.16 * (math.sqrt(21) - 3), "unloaded": 1600.0, "near_after": 0.03816,
+    ("C", "S"): {"critical_force": 0.16 * (math.sqrt(21) - 3), "buckling_load": 0.16 * (math.sqrt(21) - 3), "unloaded": 1600.0, "near_after": 0.03816,
                  "large": 0.04518, "P_at_L": 0.2957},
     ("C", "Pi"): {"critical_force": 0.2720, "unloaded": 2.3970, "near_before": 1.576, "near_after": 0.0326,
                   "large": -0.047, "P_at_L": 0.2679},
@@ -257,7 +257,7 @@ def main():
         "force": {"from": "load_factor", "scale": 1.0, "label": "P [K_theta/L]"},
         "deflection": {"node": "E", "dof": "ux", "scale": -1.0, "label": "delta [L]"},
         "stiffness_node": "E",
-        "quantities": ["critical_force", "unloaded", "near_before", "near_after", "large", "P_at_L"],
+        "quantities": ["critical_force", "buckling_load", "unloaded", "near_before", "near_after", "large", "P_at_L"],
         "large_deflection": 1.0,
         "near_offset": 1e-3,
         "pairs": pairs,

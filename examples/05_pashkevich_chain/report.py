@@ -42,6 +42,8 @@ def critical_force(exe, file, out_dir, log):
         return None, "missing: " + ", ".join(missing)
     if p.get("critical_points"):
         return p["critical_points"][0]["load_factor"], p["critical_points"][0].get("type", "critical")
+    if not p.get("completed", False):
+        return None, "path failed"
     return None, "no critical point"
 
 
