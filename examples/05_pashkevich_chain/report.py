@@ -84,6 +84,78 @@ def convergence(exe, out, log):
                 f"0.16 pi^2/9 = {0.16 * math.pi ** 2 / 9:.6f} (C, out of plane).\n")
 
 
+def figures(out, log):
+    """Two figures from the convergence runs: S-posture critical force against the number of
+    elements / springs per link, and the first buckling mode of the straight chain, lumped vs beam."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    conv = os.path.join(out, "conv")
+
+    def lf(name):
+        f = os.path.join(conv, name, "results.json")
+        if not os.path.exists(f):
+            return None
+        a = cm.load(f)["analyses"].get("buckling")
+        return a if a and a.get("load_factors") else None
+
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for model, scale, col in (("B", 1.0, "C0"), ("C", 0.16, "C3")):
+        PE = scale * math.pi ** 2 / 9
+        for kind, letter, mk in (("beam", "N", "o-"), ("lumped", "n", "s--")):
+            pts = [(n, lf(f"{model}_S_{kind}_{letter}{n}")) for n in NS]
+            pts = [(n, abs(a["load_factors"][0] - PE) / PE) for n, a in pts if a]
+            if pts:
+                ax.loglog(*zip(*pts), mk, color=col, label=f"model {model}, {kind} ({letter} per link)")
+    ax.set_xlabel("elements (beam) or virtual springs (lumped) per link")
+    ax.set_ylabel("|F_cr - Euler| / Euler, S posture")
+    ax.set_title("Straight chain: convergence to the Euler load of a 3L column", fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    os.makedirs(os.path.join(out, "figures"), exist_ok=True)
+    fig.savefig(os.path.join(out, "figures", "convergence_S.png"), dpi=80)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(6, 3.6))
+    xs = [i / 100 * 3 for i in range(101)]
+    ax.plot(xs, [math.sin(math.pi * x / 3) for x in xs], "k:", label="Euler half-sine")
+    for name, label, st in (("B_S_lumped_n1", "lumped, 1 spring/link", "s-"), ("B_S_lumped_n2", "lumped, 2 springs/link", "^-"),
+                            ("B_S_beam_N8", "beam, 8 elements/link", "o-")):
+        a = lf(name)
+        if not a:
+            continue
+        nodes = cm.load(os.path.join(out, "conv_models", name.replace("B_S_", "B_S_") + ".json"))["nodes"]
+        mode = a["modes"][0]["nodes"]
+        pts = sorted((n["xyz"][0], mode[n["id"]]["displacement"][1]) for n in nodes if n["id"] in mode)
+        # meshed beam nodes are not in the model file: take all mode nodes with their x
+        if "beam" in name:
+            ids = list(mode.keys())
+            xyz = {n["id"]: n["xyz"][0] for n in nodes}
+            pts = []
+            for i in ids:
+                if i in xyz:
+                    pts.append((xyz[i], mode[i]["displacement"][1]))
+                elif "#" in i:
+                    link, k = i.split("#")
+                    li = int(link.replace("link", ""))
+                    pts.append((li - 1 + int(k) / 8.0, mode[i]["displacement"][1]))
+            pts.sort()
+        m = max(abs(p[1]) for p in pts) or 1.0
+        sgn = 1.0 if sum(p[1] for p in pts) >= 0 else -1.0
+        ax.plot([p[0] for p in pts], [sgn * p[1] / m for p in pts], st, ms=3,
+                label=f"{label}: F_cr = {a['load_factors'][0]:.4f}")
+    ax.set_xlabel("x [L]")
+    ax.set_ylabel("first buckling mode, y (normalised)")
+    ax.set_title("Model B, S posture: lumped chain kinks at its springs, beams bend", fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="lower center")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "figures", "buckling_mode_S.png"), dpi=80)
+    plt.close(fig)
+    log(f"figures in {out}/figures")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--beamfea", default=os.path.join(ROOT, "build", "cli", "beamfea"))
@@ -103,6 +175,7 @@ def main():
     if not args.skip_convergence:
         log("convergence study")
         convergence(exe, args.out, log)
+        figures(args.out, log)
     log(f"report in {args.out}")
 
 

@@ -208,3 +208,72 @@ TEST(PashkevichChain, ModelCBucklesOutOfPlaneInAllPostures) {
   EXPECT_NEAR(first_critical(z), 0.2679, 2e-3);
   EXPECT_NEAR(force_at(z, 0.40), 0.2882, 2e-3);
 }
+
+// ---------------------------------------------------------------- convergence (straight chain)
+
+namespace {
+
+// The S chain of model B with n virtual springs per link (each the cantilever of a segment L/n,
+// at the segment's end), as examples/05_pashkevich_chain/generate.py writes it.
+json straight_lumped_chain(int n) {
+  json doc = beamfea::read_json_file(example("B_S_lumped.json"));
+  json nodes = json::array({json{{"id", "B"}, {"xyz", {0, 0, 0}}}, json{{"id", "P0"}, {"xyz", {0, 0, 0}}}});
+  json elements = json::array(), joints = json::array({doc["joints"][0]});
+  std::string start = "P0";
+  for (int k = 1; k <= 3 * n; ++k) {
+    const double x = static_cast<double>(k) / n;
+    const std::string a = "L" + std::to_string(k), b = a + "s";
+    nodes.push_back(json{{"id", a}, {"xyz", {x, 0, 0}}});
+    nodes.push_back(json{{"id", b}, {"xyz", {x, 0, 0}}});
+    elements.push_back(json{{"id", "r" + std::to_string(k)}, {"type", "rigid"}, {"nodes", {start, a}}});
+    joints.push_back(json{{"id", "s" + std::to_string(k)},
+                          {"type", "virtual_spring"},
+                          {"nodes", {a, b}},
+                          {"stiffness_from_beam", {{"material", "mat"}, {"section", "link"}, {"length", 1.0 / n}}}});
+    start = b;
+  }
+  nodes.push_back(json{{"id", "E"}, {"xyz", {3, 0, 0}}});
+  joints.push_back(json{{"id", "S"}, {"type", "spherical"}, {"nodes", {start, "E"}}});
+  doc["nodes"] = nodes;
+  doc["elements"] = elements;
+  doc["joints"] = joints;
+  doc["analyses"] = json::array({json{{"id", "buckling"}, {"type", "buckling"}, {"modes", 1}}});
+  return doc;
+}
+
+double first_load_factor(const json& doc) {
+  const beamfea::Model m = beamfea::load_and_check(doc);
+  beamfea::RunOptions opt;
+  opt.write_vtk = false;
+  return beamfea::run_document(m, doc, opt).results["analyses"]["buckling"]["load_factors"][0].get<double>();
+}
+
+}  // namespace
+
+TEST(PashkevichChain, BeamMeshAndLumpedSpringCountConvergeToTheEulerLoad) {
+  if (!have("buckling")) GTEST_SKIP() << "analysis 'buckling' (issue 4) is not in this build";
+  const double PE = kPi * kPi / 9.0;  // pinned-pinned column of length 3L, E I = K_theta L
+  // Beam model: N elements per link; cubic elements converge as O(N^-4) on the Euler load.
+  double previous = 1.0;
+  for (int N : {1, 2, 4, 8}) {
+    json doc = beamfea::read_json_file(example("B_S_beam.json"));
+    for (auto& e : doc["elements"]) e["divisions"] = N;
+    json b;
+    for (const auto& a : doc["analyses"])
+      if (a["type"] == "buckling") b = a;
+    doc["analyses"] = json::array({b});
+    const double err = std::abs(first_load_factor(doc) - PE) / PE;
+    EXPECT_LT(err, previous / 8) << "N = " << N;  // at least O(N^-3) between refinements
+    previous = err;
+  }
+  EXPECT_LT(previous, 1e-6);
+  // Lumped model, n springs per link: from above, O(1/n^2), to the same Euler load (reference note,
+  // section 8.2: 1.58258, 1.20280, 1.12205, 1.10291 for n = 1, 2, 4, 8).
+  const double expected[4] = {1.58258, 1.20280, 1.12205, 1.10291};
+  int i = 0;
+  for (int n : {1, 2, 4, 8}) {
+    const double P = first_load_factor(straight_lumped_chain(n));
+    EXPECT_NEAR(P, expected[i++], 2e-5) << "n = " << n;
+    EXPECT_GT(P, PE);
+  }
+}
