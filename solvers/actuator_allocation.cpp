@@ -8,6 +8,7 @@
 
 #include "core/assembly.hpp"
 #include "core/errors.hpp"
+#include "solvers/condensed_stiffness.hpp"
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
 
@@ -66,52 +67,23 @@ std::vector<std::vector<int>> combinations(int n, int k) {
 DirectionalStiffness condense_to_directions(const Model& model, const DofMap& map, const SparseMatrix& K, int node,
                                             const std::vector<int>& dirs) {
   DirectionalStiffness out;
-  const int n = map.free_size();
-  const int nd = static_cast<int>(dirs.size());
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(K.nonZeros() + 12 * nd);
-  for (int j = 0; j < K.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(K, j); it; ++it) t.emplace_back(static_cast<int>(it.row()), j, it.value());
-  for (int k = 0; k < nd; ++k) {
-    const int raw = map.raw_node(node, dirs[k]);
-    bool any = false;
-    for (SparseRowMatrix::InnerIterator it(map.T_free(), raw); it; ++it) {
-      if (it.value() == 0.0) continue;
-      t.emplace_back(n + k, static_cast<int>(it.col()), it.value());
-      t.emplace_back(static_cast<int>(it.col()), n + k, it.value());
-      any = true;
-    }
-    if (!any) {
-      out.message = "node '" + model.nodes[node].id + "' dof " + kDofNames[dirs[k]] +
+  std::vector<int> raw;
+  for (int d : dirs) raw.push_back(map.raw_node(node, d));
+  const RawCondensation c = condense_to_raw_dofs(map, K, raw);
+  switch (c.outcome) {
+    case RawCondensation::Outcome::HeldDof:
+      out.message = "node '" + model.nodes[node].id + "' dof " + kDofNames[dirs[c.held]] +
                     " is held rigidly (supported, prescribed or fixed by rigid constraints): its stiffness is unbounded";
       return out;
-    }
+    case RawCondensation::Outcome::Mechanism:
+      out.message = "holding node '" + model.nodes[node].id +
+                    "' in the requested directions leaves a mechanism, or a direction is not independent of the "
+                    "constraints";
+      return out;
+    case RawCondensation::Outcome::Ok:
+      break;
   }
-  SparseMatrix A(n + nd, n + nd);
-  A.setFromTriplets(t.begin(), t.end());
-  A.makeCompressed();
-  Eigen::UmfPackLU<SparseMatrix> lu(A);
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n + nd, nd);
-  rhs.bottomRows(nd).setIdentity();
-  Eigen::MatrixXd X;
-  bool ok = lu.info() == Eigen::Success;
-  if (ok) {
-    X = lu.solve(rhs);
-    ok = lu.info() == Eigen::Success && X.allFinite();
-    if (ok) {
-      // As in condense_to_node: a nearly singular saddle point shows as a residual far above rounding.
-      const double res = (A * X - rhs).norm();
-      ok = res <= 1e-8 * (Eigen::MatrixXd(A.cwiseAbs() * X.cwiseAbs()).norm() + 1.0);
-    }
-  }
-  if (!ok) {
-    out.message = "holding node '" + model.nodes[node].id +
-                  "' in the requested directions leaves a mechanism, or a direction is not independent of the "
-                  "constraints";
-    return out;
-  }
-  const Eigen::MatrixXd M = X.bottomRows(nd);
-  out.K = -0.5 * (M + M.transpose());
+  out.K = c.K;
   out.ok = true;
   return out;
 }

@@ -38,33 +38,34 @@ void analyse_rank(const Mat6& K, double L, double tolerance, CondensedStiffness&
   }
 }
 
-CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const SparseMatrix& K, int node,
-                                    const CondensedStiffnessOptions& options) {
-  options.validate();
-  CondensedStiffness out;
+RawCondensation condense_to_raw_dofs(const DofMap& map, const SparseMatrix& K, const std::vector<int>& raw) {
+  RawCondensation out;
   const int n = map.free_size();
+  const int nd = static_cast<int>(raw.size());
   std::vector<Eigen::Triplet<double>> t;
-  t.reserve(K.nonZeros() + 72);
+  t.reserve(K.nonZeros() + 12 * nd);
   for (int j = 0; j < K.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(K, j); it; ++it) t.emplace_back(static_cast<int>(it.row()), j, it.value());
-  for (int k = 0; k < 6; ++k) {
-    const int raw = map.raw_node(node, k);
+  for (int k = 0; k < nd; ++k) {
     bool any = false;
-    for (SparseRowMatrix::InnerIterator it(map.T_free(), raw); it; ++it) {
+    for (SparseRowMatrix::InnerIterator it(map.T_free(), raw[k]); it; ++it) {
+      if (it.value() == 0.0) continue;
       t.emplace_back(n + k, static_cast<int>(it.col()), it.value());
       t.emplace_back(static_cast<int>(it.col()), n + k, it.value());
       any = true;
     }
-    if (!any)
-      throw ModelError("node '" + model.nodes[node].id + "' dof " + kDofNames[k],
-                       "is supported or prescribed: the stiffness there is unbounded");
+    if (!any) {
+      out.outcome = RawCondensation::Outcome::HeldDof;
+      out.held = k;
+      return out;
+    }
   }
-  SparseMatrix A(n + 6, n + 6);
+  SparseMatrix A(n + nd, n + nd);
   A.setFromTriplets(t.begin(), t.end());
   A.makeCompressed();
   Eigen::UmfPackLU<SparseMatrix> lu(A);
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n + 6, 6);
-  rhs.bottomRows(6).setIdentity();
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n + nd, nd);
+  rhs.bottomRows(nd).setIdentity();
   Eigen::MatrixXd X;
   bool ok = lu.info() == Eigen::Success;
   if (ok) {
@@ -76,14 +77,30 @@ CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const
       ok = res <= 1e-8 * (Eigen::MatrixXd(A.cwiseAbs() * X.cwiseAbs()).norm() + 1.0);
     }
   }
-  if (!ok) {
+  if (!ok) return out;
+  const Eigen::MatrixXd M = X.bottomRows(nd);
+  out.K = -0.5 * (M + M.transpose());
+  out.outcome = RawCondensation::Outcome::Ok;
+  return out;
+}
+
+CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const SparseMatrix& K, int node,
+                                    const CondensedStiffnessOptions& options) {
+  options.validate();
+  CondensedStiffness out;
+  std::vector<int> raw(6);
+  for (int k = 0; k < 6; ++k) raw[k] = map.raw_node(node, k);
+  const RawCondensation c = condense_to_raw_dofs(map, K, raw);
+  if (c.outcome == RawCondensation::Outcome::HeldDof)
+    throw ModelError("node '" + model.nodes[node].id + "' dof " + kDofNames[c.held],
+                     "is supported or prescribed: the stiffness there is unbounded");
+  if (c.outcome == RawCondensation::Outcome::Mechanism) {
     out.modes = zero_energy_modes(model, map, K, 12);
     out.message = "holding node '" + model.nodes[node].id + "' still leaves a mechanism; " +
                   describe_mechanism(out.modes);
     return out;
   }
-  const Mat6 M = X.bottomRows(6);
-  out.K = -0.5 * (M + M.transpose());
+  out.K = c.K;
   analyse_rank(out.K, model.length_scale(), options.rank_tolerance, out);
   out.ok = true;
   out.message = fmt::format("stiffness of node '{}': rank {}", model.nodes[node].id, out.rank);

@@ -33,6 +33,15 @@ struct CondensedStiffness {
   std::vector<ZeroEnergyMode> modes;  // when holding the node leaves a mechanism
 };
 
+// The saddle-point condensation itself, onto any list of raw DOFs (rows of T_free).
+struct RawCondensation {
+  enum class Outcome { Ok, HeldDof, Mechanism };
+  Outcome outcome = Outcome::Mechanism;
+  Eigen::MatrixXd K;   // raw.size() square, symmetric
+  int held = -1;       // Outcome::HeldDof: index into `raw` of a DOF with no free motion at all
+};
+RawCondensation condense_to_raw_dofs(const DofMap& map, const SparseMatrix& K, const std::vector<int>& raw);
+
 // Condensed stiffness of `node` for the reduced matrix K (free x free) of `map`.
 CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const SparseMatrix& K, int node,
                                     const CondensedStiffnessOptions& options = {});
