@@ -84,11 +84,15 @@ NonlinearStructure::NonlinearStructure(const Model& model) : model_(&model), map
     for (int k = 0; k < 3; ++k) add_gen({GenKind::NodeSpin, n, k, group, map_.raw_node(n, 3 + k)});
     ++group;
   }
+  std::vector<char> backward(model.joints.size(), 0);
+  for (const auto& e : map_.tree_edges())
+    if (e.kind == ConstraintEdge::Kind::Joint && !e.forward) backward[e.index] = 1;
   for (int j = 0; j < static_cast<int>(model.joints.size()); ++j) {
     const auto& jt = model.joints[j];
     const bool sph = jt.type == JointType::Spherical;
     for (int k = 0; k < jt.coordinates(); ++k) {
-      add_gen({sph ? GenKind::JointSpherical : GenKind::JointScalar, j, k, group, map_.raw_joint(j, k)});
+      add_gen({sph ? GenKind::JointSpherical : GenKind::JointScalar, j, k, group, map_.raw_joint(j, k),
+               sph && backward[j] != 0});
       if (!sph) ++group;
     }
     if (sph) ++group;
@@ -181,9 +185,11 @@ NonlinearState NonlinearStructure::retract(const NonlinearState& base, const Eig
     if (d[i] == 0.0) continue;
     switch (g.kind) {
       case GenKind::NodeTranslation: s.x[g.owner][g.comp] += d[i]; break;
-      case GenKind::NodeSpin: spin[g.owner] += d[i] * Vec3::Unit(g.comp); break;
+      case GenKind::NodeSpin: spin.try_emplace(g.owner, Vec3::Zero()).first->second += d[i] * Vec3::Unit(g.comp); break;
       case GenKind::JointScalar: s.q[g.owner][g.comp] += d[i]; break;
-      case GenKind::JointSpherical: sph[g.owner] += d[i] * model_->joints[g.owner].axes[g.comp]; break;
+      case GenKind::JointSpherical:
+        sph.try_emplace(g.owner, Vec3::Zero()).first->second += d[i] * model_->joints[g.owner].axes[g.comp];
+        break;
     }
   }
   for (auto& [n, w] : spin) s.R[n] = orthonormalize(exp_so3(w) * s.R[n]);
@@ -277,7 +283,8 @@ SparseMatrix NonlinearStructure::constraint_curvature(const NonlinearState& s, c
       for (std::size_t b = 0; b < c.size(); ++b) {
         const Twist& xj = tw[c[b]];
         double val = f.dot(xi.w.cross(xj.v + xj.w.cross(x)));
-        if (b < a && gens_[c[a]].group != gens_[c[b]].group) {
+        const bool same = gens_[c[a]].group == gens_[c[b]].group;
+        if ((b < a && !same) || (same && a != b && gens_[c[a]].mutual)) {
           const Vec3 bv = xj.w.cross(xi.v) - xi.w.cross(xj.v);
           const Vec3 bw = xj.w.cross(xi.w);
           val += f.dot(bv + bw.cross(x)) + m.dot(bw);

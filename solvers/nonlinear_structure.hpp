@@ -31,7 +31,9 @@
 // with the Lie bracket of twists [xi_a, xi_b] = (w_a x v_b - w_b x v_a, w_a x w_b). G is the
 // constraint-curvature (geometric) stiffness of rigid links and joints: a chain of rigid links
 // carrying axial force buckles through it. Coordinates updated "simultaneously" (a node's three
-// spins, a spherical joint's three spins, a node's three translations) do not bracket each other.
+// spins, a spherical joint's three spins, a node's three translations) do not bracket each other,
+// except the three spins of a spherical joint met from nodes[1] in the forest, whose axes are fixed in
+// the body they move: those bracket each other both ways.
 //
 // Not supported (ModelError): closed loops of rigid links/joints (the loop-closing edge is named);
 // springs on spherical joints.
@@ -71,6 +73,9 @@ class NonlinearStructure {
     int comp = 0;    // component or coordinate
     int group = 0;   // coordinates of one group are updated simultaneously (no mutual bracket)
     int raw = -1;    // raw DOF index (DofMap numbering)
+    // The group's axes are fixed in the body they move (a spherical joint met from nodes[1]): its
+    // coordinates bracket each other both ways.
+    bool mutual = false;
   };
 
   const Model& model() const { return *model_; }

@@ -109,7 +109,8 @@ class Problem {
       const double k = std::abs(ev.tangent.coeff(i, i)) / (ns.is_rotation(i) ? L * L : 1.0);
       kmax = std::max(kmax, k);
     }
-    F_ref = std::max(fmax, 1e-6 * kmax * L);
+    // Forces below 1e-5 of the stiffest element's force for a displacement of L are round-off.
+    F_ref = std::max(fmax, 1e-5 * kmax * L);
     if (!(F_ref > 0.0)) F_ref = 1.0;
   }
 
@@ -556,7 +557,9 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
     double tw = 0.0;
     if (t.size())
       for (int k = 0; k < P.nf; ++k) tw += P.weight(P.free[k]) * t[k] * t[k];
-    P.psi2 = tw > 0.0 ? tw / 100.0 : 1.0;
+    // A unit load-factor increment weighs like a displacement of one model length, or like the
+    // initial tangent displacement where that is larger (stiff primary paths, e.g. a column).
+    P.psi2 = std::max(tw, P.L * P.L);
   }
 
   // Builds the spec and predictor of a step of size hh from c (direction sign for arc length).
@@ -684,6 +687,22 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
       }
     }
     const Eigen::VectorXd dir = direction_of(cur, next, du);
+    if (o.control == PathControl::ArcLength && prev_dir.size()) {
+      // The spherical constraint has a second root behind the start: a step that went back along
+      // the path is rejected and cut.
+      double dot = P.psi2 * dir[P.nf] * prev_dir[P.nf];
+      for (int k = 0; k < P.nf; ++k) dot += P.weight(P.free[k]) * dir[k] * prev_dir[k];
+      if (dot < 0.0) {
+        ++cuts;
+        h *= 0.5;
+        say(fmt::format("step {}: the step went back along the path; cutting it to {:.4g}", step + 1, h));
+        if (cuts > o.max_cuts || std::abs(h) < hmin) {
+          res.termination = fmt::format("no forward solution after {} step cuts at load factor {:.6g}", cuts, cur.lambda);
+          break;
+        }
+        continue;
+      }
+    }
     ++step;
     if (o.control == PathControl::ArcLength) path_s += std::abs(h);
     const int neg_before = neg;
@@ -757,10 +776,17 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
         d[P.nf] = 0.0;
         StepSpec s3;
         Eigen::VectorXd u3;
-        make_step(c_lo, std::abs(h), s3, u3, &d);
         Converged cb;
         std::string r3;
-        if (P.solve(kin, c_lo, s3, u3, cb, r3)) {
+        bool ok = false;
+        for (double f : {1.0, 0.5, 0.25, 0.125}) {
+          make_step(c_lo, f * std::abs(h), s3, u3, &d);
+          if ((ok = P.solve(kin, c_lo, s3, u3, cb, r3))) {
+            h = h < 0 ? -f * std::abs(h) : f * std::abs(h);
+            break;
+          }
+        }
+        if (ok) {
           switched = true;
           cp.branch_switched = true;
           // Replace the primary-path step by the located point and the first secondary step.

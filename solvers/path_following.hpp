@@ -15,8 +15,8 @@
 //                  displacement control), otherwise the reaction of the controlled DOF (imposed
 //                  motion: the lumped-model use case, e.g. the end of a chain pushed to a point);
 //   arc length     Crisfield's spherical constraint |Delta|_W^2 + psi^2 Delta lambda^2 = ds^2 (W: 1 on
-//                  translations, L^2 on rotations), psi^2 = |t|_W^2 / 100 with t the initial tangent
-//                  displacement per unit load factor; the predictor's sign follows the previous step
+//                  translations, L^2 on rotations, L the model size), psi^2 = max(|t|_W^2, L^2) with t the
+//                  initial tangent displacement per unit load factor; the predictor's sign follows the previous step
 //                  direction (t . Delta_prev > 0); ds adapts to the Newton iteration count.
 // Non-convergence: the step is cut (halved) up to max_cuts times; then the path stops with the
 // reason in `termination`; every converged step is kept.

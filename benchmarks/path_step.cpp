@@ -1,0 +1,154 @@
+// bench_path_step: cost of one arc-length step of the path analysis against the number of DOFs.
+//
+// The frame: n x n bays (6 m x 6 m) and S storeys of 3.5 m, a column on every grid point of every
+// storey, beams along x and y at every floor (co-rotational beams), bases fixed, every floor node
+// loaded by (1, 0.5, -10) kN (the load pattern). Stages, as the path solver runs them
+// (solvers/path_following.cpp) at the reference state:
+//   assembly   NonlinearStructure::evaluate with tangent (co-rotational response of every beam,
+//              T^T K T, constraint curvature) and restriction to the free coordinates
+//   factor     UMFPACK numeric LU of the tangent, symbolic analysis done once and reused
+//   inertia    SimplicialLDLT (AMD, symbolic analysis reused) of the symmetrised tangent: the count of
+//              negative eigenvalues
+//   step       one whole arc-length step of follow_path (predictor, KINSOL Newton iterations,
+//              stability), the average over `steps` steps of a run
+// Usage: bench_path_step [--sizes 2,4,8,12] [--stories S] [--steps K]
+// Output: a Markdown table on stdout.
+#include <fmt/format.h>
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/UmfPackSupport>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "solvers/nonlinear_structure.hpp"
+#include "solvers/path_following.hpp"
+
+using namespace beamfea;
+
+namespace {
+
+Model frame(int n, int storeys) {
+  Model m;
+  m.materials.push_back({"steel", 210e9, 81e9});
+  m.sections.push_back({"col", 7.81e-3, 5.7e-5, 2.0e-5, 5.9e-7, 0, 0});
+  auto id = [&](int i, int j, int k) { return (k * (n + 1) + j) * (n + 1) + i; };
+  for (int k = 0; k <= storeys; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) m.nodes.push_back({fmt::format("n{}_{}_{}", i, j, k), Vec3(6.0 * i, 6.0 * j, 3.5 * k), -1});
+  auto add = [&](int a, int b, const Vec3& o) {
+    Element e;
+    e.id = fmt::format("e{}", m.elements.size());
+    e.type = MemberType::Beam;
+    e.nodes = {a, b};
+    e.material = 0;
+    e.section = 0;
+    e.orientation = o;
+    m.elements.push_back(e);
+  };
+  for (int k = 0; k < storeys; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) add(id(i, j, k), id(i, j, k + 1), Vec3(1, 0, 0));
+  for (int k = 1; k <= storeys; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        if (i < n) add(id(i, j, k), id(i + 1, j, k), Vec3(0, 0, 1));
+        if (j < n) add(id(i, j, k), id(i, j + 1, k), Vec3(0, 0, 1));
+        m.loads.push_back({id(i, j, k), Vec3(1e3, 0.5e3, -10e3), Vec3::Zero()});
+      }
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      Support s;
+      s.node = id(i, j, 0);
+      s.fixed.fill(true);
+      m.supports.push_back(s);
+    }
+  return m;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> sizes{2, 4, 8, 12};
+  int storeys = 3, steps = 3;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
+      sizes.clear();
+      std::stringstream ss(argv[++i]);
+      std::string t;
+      while (std::getline(ss, t, ',')) sizes.push_back(std::stoi(t));
+    } else if (!std::strcmp(argv[i], "--stories") && i + 1 < argc) {
+      storeys = std::atoi(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) {
+      steps = std::atoi(argv[++i]);
+    }
+  }
+  fmt::print("| bays | storeys | free DOFs | assembly [ms] | LU factor [ms] | LDL' inertia [ms] | arc-length step [ms] | Newton it./step |\n");
+  fmt::print("|---|---|---|---|---|---|---|---|\n");
+  for (int n : sizes) {
+    const Model m = frame(n, storeys);
+    const NonlinearStructure ns(m);
+    const NonlinearState s0 = ns.reference_state();
+    const Eigen::VectorXd f = Eigen::VectorXd::Zero(ns.reference_map().raw_size());
+    std::vector<int> free;
+    std::vector<int> g2f(ns.size(), -1);
+    for (int i = 0; i < ns.size(); ++i)
+      if (ns.reference_map().prescribed_index(ns.gens()[i].raw) < 0) {
+        g2f[i] = static_cast<int>(free.size());
+        free.push_back(i);
+      }
+    const int reps = 3;
+    double t_asm = 0, t_lu = 0, t_ldl = 0;
+    SparseMatrix K;
+    Eigen::UmfPackLU<SparseMatrix> lu;
+    Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
+    int negative = 0;
+    for (int r = 0; r < reps; ++r) {
+      auto t0 = std::chrono::steady_clock::now();
+      const auto ev = ns.evaluate(s0, f, true);
+      std::vector<Eigen::Triplet<double>> t;
+      for (int j = 0; j < ev.tangent.outerSize(); ++j)
+        if (g2f[j] >= 0)
+          for (SparseMatrix::InnerIterator it(ev.tangent, j); it; ++it)
+            if (g2f[it.row()] >= 0) t.emplace_back(g2f[it.row()], g2f[j], it.value());
+      K.resize(static_cast<int>(free.size()), static_cast<int>(free.size()));
+      K.setFromTriplets(t.begin(), t.end());
+      t_asm += seconds_since(t0);
+      if (r == 0) {
+        lu.analyzePattern(K);
+        ldlt.analyzePattern(K);
+      }
+      t0 = std::chrono::steady_clock::now();
+      lu.factorize(K);
+      t_lu += seconds_since(t0);
+      t0 = std::chrono::steady_clock::now();
+      const SparseMatrix S = SparseMatrix(0.5 * (K + SparseMatrix(K.transpose())));
+      ldlt.factorize(S);
+      negative = static_cast<int>((ldlt.vectorD().array() < 0).count());
+      t_ldl += seconds_since(t0);
+    }
+    PathOptions o;
+    o.control = PathControl::ArcLength;
+    o.arc_length = 0.05;
+    o.max_steps = steps;
+    const auto t0 = std::chrono::steady_clock::now();
+    const PathResult r = follow_path(m, o);
+    const double t_run = seconds_since(t0);
+    long its = 0;
+    for (const auto& s : r.steps) its += s.iterations;
+    const int done = std::max<int>(1, static_cast<int>(r.steps.size()) - 1);
+    fmt::print("| {}x{} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} |\n", n, n, storeys, free.size(),
+               1e3 * t_asm / reps, 1e3 * t_lu / reps, 1e3 * t_ldl / reps, 1e3 * t_run / done,
+               static_cast<double>(its) / done);
+    std::fflush(stdout);
+    if (negative != 0) fmt::print(stderr, "warning: {} negative eigenvalues at the reference state\n", negative);
+  }
+  return 0;
+}

@@ -1,0 +1,206 @@
+// Path following (solvers/path_following.hpp) against closed forms and published benchmarks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "solvers/path_following.hpp"
+#include "nl_models.hpp"
+
+#include <cstdlib>
+#include <iostream>
+
+using namespace beamfea;
+using namespace beamfea::test;
+
+namespace {
+constexpr double pi = 3.14159265358979323846;
+
+// Cantilever column along x, fixed at A, compressive end load P_cr at B (lambda = P / P_cr).
+// Out-of-plane bending 10x stiffer so that the column buckles in the x-y plane.
+json elastica_column(int n, double L, double EI) {
+  json d = straight_member(L, n, 1.0, 1.0, 1e4 * EI / (L * L) * 100, 10 * EI, EI, 10 * EI);
+  d["materials"][0]["E"] = 1.0;
+  d["materials"][0]["G"] = 1.0;
+  d["supports"].push_back(fix("A", {"ux", "uy", "uz", "rx", "ry", "rz"}));
+  d["loads"].push_back(load("B", -pi * pi * EI / (4 * L * L), 0, 0));
+  return d;
+}
+
+// Elastica of the cantilever (Timoshenko & Gere 1961, sec. 2.7): with k = sin(alpha/2), alpha the
+// tip rotation, P / P_cr = (2 K(k) / pi)^2, tip deflection y/L = 2k/K(k), end shortening
+// delta/L = 2 - 2 E(k)/K(k).
+double elastica_load(double alpha) {
+  const double k = std::sin(alpha / 2), K = std::comp_ellint_1(k);
+  return std::pow(2 * K / pi, 2);
+}
+double elastica_shortening(double alpha) {
+  const double k = std::sin(alpha / 2);
+  return 2.0 - 2.0 * std::comp_ellint_2(k) / std::comp_ellint_1(k);
+}
+
+void check_elastica(const PathResult& r, double L, double tol, int& compared) {
+  compared = 0;
+  for (const auto& s : r.steps) {
+    const double alpha = std::abs(s.track[0][5]);
+    if (alpha < 0.4 || alpha > 2.5) continue;
+    ++compared;
+    EXPECT_NEAR(s.load_factor / elastica_load(alpha), 1.0, tol) << "alpha " << alpha;
+    EXPECT_NEAR(-s.track[0][0] / L, elastica_shortening(alpha), tol * 2) << "alpha " << alpha;
+  }
+}
+}  // namespace
+
+// The elastica reached by automatic branch switching at the Euler bifurcation of a perfect column.
+TEST(PathFollowing, ElasticaByBranchSwitchingMatchesEllipticIntegrals) {
+  const double L = 1.0, EI = 1.0;
+  const Model m = read_model(elastica_column(16, L, EI));
+  PathOptions o;
+  o.control = PathControl::ArcLength;
+  o.arc_length = 0.1;
+  o.max_arc_length = 0.15;
+  o.branch_switch = true;
+  o.track = {m.find_node("B")};
+  o.max_steps = 60;
+  o.stop_load_factor = 2.0;
+  if (std::getenv("BEAMFEA_TEST_VERBOSE")) o.progress = [](const std::string& s) { std::cerr << s << "\n"; };
+  const PathResult r = follow_path(m, o);
+  ASSERT_GE(r.critical_points.size(), 1u) << r.termination;
+  EXPECT_EQ(r.critical_points[0].type, "bifurcation");
+  EXPECT_NEAR(r.critical_points[0].load_factor, 1.0, 2e-3);
+  EXPECT_TRUE(r.critical_points[0].branch_switched);
+  int compared = 0;
+  check_elastica(r, L, 3e-3, compared);
+  EXPECT_GE(compared, 5) << r.termination;
+  // The post-buckling branch of the elastica is stable.
+  for (const auto& s : r.steps)
+    if (std::abs(s.track[0][5]) > 0.4) EXPECT_TRUE(s.stable) << "step " << s.step;
+}
+
+// The same curve through an imperfection: buckling mode 1 at 1e-3 L; at rotations above 0.4 rad
+// the imperfect column is within 1 % of the perfect elastica.
+TEST(PathFollowing, ElasticaByImperfectionApproachesEllipticIntegrals) {
+  const double L = 1.0, EI = 1.0;
+  const Model m = read_model(elastica_column(16, L, EI));
+  PathOptions o;
+  o.control = PathControl::ArcLength;
+  o.arc_length = 0.1;
+  o.max_arc_length = 0.15;
+  o.imperfection_mode = 1;
+  o.imperfection_amplitude = 1e-3 * L;
+  o.track = {m.find_node("B")};
+  o.max_steps = 60;
+  o.stop_load_factor = 2.0;
+  if (std::getenv("BEAMFEA_TEST_VERBOSE")) o.progress = [](const std::string& s) { std::cerr << s << "\n"; };
+  const PathResult r = follow_path(m, o);
+  int compared = 0;
+  check_elastica(r, L, 1e-2, compared);
+  EXPECT_GE(compared, 5) << r.termination;
+}
+
+// A cantilever rolled into a full circle by the end moment M = 2 pi EI / L (the classic test of
+// finite rotations, e.g. Simo & Vu-Quoc 1986; Battini & Pacoste 2002): the tip returns to the root
+// with its rotation a full turn (R = I). Co-rotational elements of zero axial strain close the
+// polygon of chords exactly.
+TEST(PathFollowing, CantileverRollsIntoAFullCircle) {
+  const double L = 10.0, EI = 100.0;
+  json d = straight_member(L, 20, 1.0, 1.0, 1e4, EI, EI, EI);
+  d["materials"][0]["E"] = 1.0;
+  d["materials"][0]["G"] = 1.0;
+  d["supports"].push_back(fix("A", {"ux", "uy", "uz", "rx", "ry", "rz"}));
+  d["loads"].push_back(load("B", 0, 0, 0, 0, 0, 2 * pi * EI / L));
+  const Model m = read_model(d);
+  PathOptions o;
+  o.control = PathControl::LoadFactor;
+  o.target = 1.0;
+  o.increments = 10;
+  o.track = {m.find_node("B")};
+  if (std::getenv("BEAMFEA_TEST_VERBOSE")) o.progress = [](const std::string& s) { std::cerr << s << "\n"; };
+  const PathResult r = follow_path(m, o);
+  ASSERT_TRUE(r.completed) << r.termination;
+  ASSERT_NEAR(r.steps.back().load_factor, 1.0, 1e-12);
+  const NonlinearState& s = r.steps.back().state;
+  EXPECT_LT(s.x[m.find_node("B")].norm(), 1e-6 * L);
+  EXPECT_LT((s.R[m.find_node("B")] - Mat3::Identity()).norm(), 1e-6);
+  // Half way the tip is at the top of the circle: (0, L/pi).
+  for (const auto& st : r.steps)
+    if (std::abs(st.load_factor - 0.5) < 1e-9) EXPECT_LT((st.state.x[m.find_node("B")] - Vec3(0, L / pi, 0)).norm(), 1e-3 * L);
+}
+
+// Lee's frame (Lee, Manuel & Rossow 1968; the data of Schweizerhof & Wriggers 1986: E = 720,
+// A = 6, I = 2, L = 120, load at 24 from the corner, pinned ends, 10 + 10 elements). Published
+// first limit load: P = 18.5 (Schweizerhof & Wriggers 1986, fig. 7; 18.55 in Battini & Pacoste
+// 2002 sec. 7.2 with 10+10 elements). The path passes both limit points and the snap-back
+// (the vertical displacement of the load point turns back).
+TEST(PathFollowing, LeesFrameThroughBothLimitPointsAndSnapBack) {
+  json d;
+  d["nodes"] = json::array({{{"id", "A"}, {"xyz", {0, 0, 0}}}, {{"id", "C"}, {"xyz", {0, 120, 0}}},
+                            {{"id", "P"}, {"xyz", {24, 120, 0}}}, {{"id", "B"}, {"xyz", {120, 120, 0}}}});
+  d["materials"] = json::array({{{"id", "m"}, {"E", 720.0}, {"G", 276.9}}});
+  d["sections"] = json::array({{{"id", "s"}, {"A", 6.0}, {"Iy", 200.0}, {"Iz", 2.0}, {"J", 200.0}}});
+  d["elements"] = json::array({{{"id", "col"}, {"type", "beam"}, {"nodes", {"A", "C"}}, {"material", "m"}, {"section", "s"},
+                                {"orientation", {0, 0, 1}}, {"divisions", 10}},
+                               {{"id", "b1"}, {"type", "beam"}, {"nodes", {"C", "P"}}, {"material", "m"}, {"section", "s"},
+                                {"orientation", {0, 0, 1}}, {"divisions", 2}},
+                               {{"id", "b2"}, {"type", "beam"}, {"nodes", {"P", "B"}}, {"material", "m"}, {"section", "s"},
+                                {"orientation", {0, 0, 1}}, {"divisions", 8}}});
+  d["supports"] = json::array({fix("A", {"ux", "uy", "uz", "rx", "ry"}), fix("B", {"ux", "uy", "uz", "rx", "ry"})});
+  d["loads"] = json::array({load("P", 0, -1.0, 0)});
+  const Model m = read_model(d);
+  PathOptions o;
+  o.control = PathControl::ArcLength;
+  o.arc_length = 10.0;
+  o.max_arc_length = 40.0;
+  o.track = {m.find_node("P")};
+  o.max_steps = 300;
+  o.stop_beyond = -105.0;
+  o.stop_node = m.find_node("P");
+  o.stop_dof = 1;
+  if (std::getenv("BEAMFEA_TEST_VERBOSE")) o.progress = [](const std::string& s) { std::cerr << s << "\n"; };
+  const PathResult r = follow_path(m, o);
+  ASSERT_TRUE(r.completed) << r.termination;
+  std::vector<const CriticalPoint*> limits;
+  for (const auto& c : r.critical_points)
+    if (c.type == "limit_point") limits.push_back(&c);
+  ASSERT_GE(limits.size(), 2u) << r.critical_points.size() << " critical points; " << r.termination;
+  EXPECT_NEAR(limits[0]->load_factor, 18.55, 0.25);
+  EXPECT_LT(limits[1]->load_factor, limits[0]->load_factor);
+  double lmax = -1e300;
+  for (const auto& s : r.steps) lmax = std::max(lmax, s.load_factor);
+  EXPECT_NEAR(lmax, 18.55, 0.3);
+  // Snap-back: the vertical displacement of the load point is not monotone along the path.
+  bool turned = false;
+  for (std::size_t i = 2; i < r.steps.size(); ++i) {
+    const double a = r.steps[i - 1].track[0][1] - r.steps[i - 2].track[0][1];
+    const double b = r.steps[i].track[0][1] - r.steps[i - 1].track[0][1];
+    if (a < 0 && b > 0) turned = true;
+  }
+  EXPECT_TRUE(turned);
+  // Unstable between the limit points.
+  bool unstable = false;
+  for (const auto& s : r.steps) unstable = unstable || !s.stable;
+  EXPECT_TRUE(unstable);
+}
+
+// Displacement control of the end of a rigid chain on springs (the lumped-model use): no loads, the
+// tip pushed along the chain; the reaction (the force applied at the controlled DOF) balances the spring. For one
+// link of length L on a spring k pushed sideways to y, q = asin(y / L) and R_y = k q / (L cos q).
+TEST(PathFollowing, ImposedMotionOfAChainEndGivesTheSpringReaction) {
+  const double L = 0.5, k = 20.0;
+  const json d = rigid_chain(1, L, k);
+  const Model m = read_model(d);
+  PathOptions o;
+  o.control = PathControl::Displacement;
+  o.control_node = m.find_node("N1");
+  o.control_dof = 1;
+  o.target = 0.3;
+  o.increments = 6;
+  o.track = {m.find_node("N1")};
+  o.stiffness_node = m.find_node("N1");
+  if (std::getenv("BEAMFEA_TEST_VERBOSE")) o.progress = [](const std::string& s) { std::cerr << s << "\n"; };
+  const PathResult r = follow_path(m, o);
+  ASSERT_TRUE(r.completed) << r.termination;
+  const auto& s = r.steps.back();
+  const double q = std::asin(0.3 / L);
+  EXPECT_NEAR(s.track[0][1], 0.3, 1e-10);
+  EXPECT_NEAR(s.reaction, k * q / (L * std::cos(q)), 1e-8 * k);
+}
