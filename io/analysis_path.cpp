@@ -107,8 +107,6 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
   }
   if (o.branch_switch && o.control != PathControl::ArcLength)
     throw InputError(child(p, "branch_switch"), "branch switching needs arc-length control");
-  if (o.control == PathControl::Displacement && o.control_node == o.stiffness_node && o.stiffness_node >= 0)
-    std::cerr << "beamfea: warning: " << p << ": the stiffness of the controlled node is taken with its controlled DOF held\n";
   return o;
 }
 

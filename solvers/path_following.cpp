@@ -1,5 +1,6 @@
 #include "solvers/path_following.hpp"
 
+#include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
 #include <Eigen/UmfPackSupport>
 #include <fmt/format.h>
@@ -352,7 +353,7 @@ class Problem {
     s.lambda = c.lambda;
     const Eval e = state_of(c, s, start_unknowns(c, s));
     Eigen::VectorXd f_app = e.f_app;
-    if (displacement_control && !has_loads) f_app[ns.reference_map().raw_node(ctrl.node, ctrl.comp)] += c.extra_mu;
+    if (ctrl.node >= 0 && !has_loads) f_app[ns.reference_map().raw_node(ctrl.node, ctrl.comp)] += c.extra_mu;
     const auto ev = ns.evaluate(c.state, f_app, true);
     std::vector<Eigen::Triplet<double>> t;
     for (int j = 0; j < ev.tangent.outerSize(); ++j) {
@@ -419,31 +420,51 @@ class Problem {
   std::optional<Mat6> node_stiffness(const Converged& c, const Stab& st, int node) const {
     const auto tw = ns.twists(c.state);
     const int n = static_cast<int>(st.K.rows());
+    if (n == 0) return std::nullopt;
     std::vector<Eigen::Triplet<double>> t;
     for (int j = 0; j < st.K.outerSize(); ++j)
       for (SparseMatrix::InnerIterator it(st.K, j); it; ++it) t.emplace_back(static_cast<int>(it.row()), j, it.value());
+    bool moves = false;
     for (int k = 0; k < 6; ++k) {
       Eigen::VectorXd r = Eigen::VectorXd::Zero(nf);
       for (const auto& [g, v] : ns.raw_row(c.state, tw, node, k))
         if (gen_to_free[g] >= 0) r[gen_to_free[g]] += v;
       const Eigen::VectorXd rz = st.Z.transpose() * r;
-      if (rz.cwiseAbs().maxCoeff() == 0.0) return std::nullopt;  // the node is held
+      if (rz.size() > 0 && rz.cwiseAbs().maxCoeff() > 0.0) moves = true;
       for (int i = 0; i < n; ++i)
         if (rz[i] != 0.0) {
           t.emplace_back(n + k, i, rz[i]);
           t.emplace_back(i, n + k, rz[i]);
         }
     }
+    if (!moves) return std::nullopt;  // the node is held
     SparseMatrix A(n + 6, n + 6);
     A.setFromTriplets(t.begin(), t.end());
     Eigen::UmfPackLU<SparseMatrix> lu;
     lu.compute(A);
-    if (lu.info() != Eigen::Success) return std::nullopt;
-    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(n + 6, 6);
-    B.bottomRows(6).setIdentity();
-    const Eigen::MatrixXd X = lu.solve(B);
-    if (!X.allFinite()) return std::nullopt;
-    return Mat6(-X.bottomRows(6));
+    if (lu.info() == Eigen::Success) {
+      Eigen::MatrixXd B = Eigen::MatrixXd::Zero(n + 6, 6);
+      B.bottomRows(6).setIdentity();
+      const Eigen::MatrixXd X = lu.solve(B);
+      if (X.allFinite()) return Mat6(-X.bottomRows(6));
+    }
+    // Fewer than six independent motions reach the node (a chain with fewer joints): the
+    // stiffness is the pseudo-inverse of the compliance T_n K^-1 T_n^T, of rank below six.
+    Eigen::UmfPackLU<SparseMatrix> lk;
+    lk.compute(st.K);
+    if (lk.info() != Eigen::Success) return std::nullopt;
+    Eigen::MatrixXd Tn(n, 6);
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < 6; ++k) Tn(j, k) = A.coeff(n + k, j);
+    const Eigen::MatrixXd Y = lk.solve(Tn);
+    if (!Y.allFinite()) return std::nullopt;
+    const Mat6 C = Tn.transpose() * Y;
+    Eigen::JacobiSVD<Mat6> svd(C, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const double smax = svd.singularValues()[0];
+    Vec6 inv = Vec6::Zero();
+    for (int k = 0; k < 6; ++k)
+      if (svd.singularValues()[k] > 1e-10 * smax) inv[k] = 1.0 / svd.singularValues()[k];
+    return Mat6(svd.matrixV() * inv.asDiagonal() * svd.matrixU().transpose());
   }
 
   NonlinearStructure ns;
@@ -520,7 +541,9 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
       ps.negative_eigenvalues = st.info.negative;
       ps.stable = st.info.negative == 0;
       ps.min_eigenvalue = st.info.min_eigenvalue;
-      if (o.stiffness_node >= 0) ps.stiffness = P.node_stiffness(c, st, o.stiffness_node);
+      // The loaded stiffness of the node with the controlled DOF released (it is the probe).
+      if (o.stiffness_node >= 0)
+        ps.stiffness = P.node_stiffness(c, disp ? P.stability(c, false, false) : st, o.stiffness_node);
     }
     negative_out = ps.negative_eigenvalues;
     ps.state = c.state;

@@ -126,16 +126,16 @@ TEST(PathFollowing, CantileverRollsIntoAFullCircle) {
     if (std::abs(st.load_factor - 0.5) < 1e-9) EXPECT_LT((st.state.x[m.find_node("B")] - Vec3(0, L / pi, 0)).norm(), 1e-3 * L);
 }
 
-// Lee's frame (Lee, Manuel & Rossow 1968; the data of Schweizerhof & Wriggers 1986: E = 720,
-// A = 6, I = 2, L = 120, load at 24 from the corner, pinned ends, 10 + 10 elements). Published
-// first limit load: P = 18.5 (Schweizerhof & Wriggers 1986, fig. 7; 18.55 in Battini & Pacoste
-// 2002 sec. 7.2 with 10+10 elements). The path passes both limit points and the snap-back
-// (the vertical displacement of the load point turns back).
+// Lee's frame (Lee, Manuel & Rossow 1968), with the data of Schweizerhof & Wriggers (1986):
+// E = 7.2e6, A = 6, I = 2, L = 120, load 24 from the corner, pinned ends, 10 + 10 elements; their
+// first limit load is P = 1.85e4 (the non-dimensional P L^2 / EI = 18.5 of Lee et al.; with
+// E = 720 the same frame has P = 1.85). The path passes the first limit point, the snap-back (the
+// vertical displacement of the load point turns back) and the second limit point (negative load).
 TEST(PathFollowing, LeesFrameThroughBothLimitPointsAndSnapBack) {
   json d;
   d["nodes"] = json::array({{{"id", "A"}, {"xyz", {0, 0, 0}}}, {{"id", "C"}, {"xyz", {0, 120, 0}}},
                             {{"id", "P"}, {"xyz", {24, 120, 0}}}, {{"id", "B"}, {"xyz", {120, 120, 0}}}});
-  d["materials"] = json::array({{{"id", "m"}, {"E", 720.0}, {"G", 276.9}}});
+  d["materials"] = json::array({{{"id", "m"}, {"E", 7.2e6}, {"G", 2.769e6}}});
   d["sections"] = json::array({{{"id", "s"}, {"A", 6.0}, {"Iy", 200.0}, {"Iz", 2.0}, {"J", 200.0}}});
   d["elements"] = json::array({{{"id", "col"}, {"type", "beam"}, {"nodes", {"A", "C"}}, {"material", "m"}, {"section", "s"},
                                 {"orientation", {0, 0, 1}}, {"divisions", 10}},
@@ -144,7 +144,7 @@ TEST(PathFollowing, LeesFrameThroughBothLimitPointsAndSnapBack) {
                                {{"id", "b2"}, {"type", "beam"}, {"nodes", {"P", "B"}}, {"material", "m"}, {"section", "s"},
                                 {"orientation", {0, 0, 1}}, {"divisions", 8}}});
   d["supports"] = json::array({fix("A", {"ux", "uy", "uz", "rx", "ry"}), fix("B", {"ux", "uy", "uz", "rx", "ry"})});
-  d["loads"] = json::array({load("P", 0, -1.0, 0)});
+  d["loads"] = json::array({load("P", 0, -1e4, 0)});  // lambda in units of 1e4
   const Model m = read_model(d);
   PathOptions o;
   o.control = PathControl::ArcLength;
@@ -152,9 +152,7 @@ TEST(PathFollowing, LeesFrameThroughBothLimitPointsAndSnapBack) {
   o.max_arc_length = 40.0;
   o.track = {m.find_node("P")};
   o.max_steps = 300;
-  o.stop_beyond = -105.0;
-  o.stop_node = m.find_node("P");
-  o.stop_dof = 1;
+  o.stop_steps = 70;
   if (std::getenv("BEAMFEA_TEST_VERBOSE")) o.progress = [](const std::string& s) { std::cerr << s << "\n"; };
   const PathResult r = follow_path(m, o);
   ASSERT_TRUE(r.completed) << r.termination;
@@ -162,11 +160,11 @@ TEST(PathFollowing, LeesFrameThroughBothLimitPointsAndSnapBack) {
   for (const auto& c : r.critical_points)
     if (c.type == "limit_point") limits.push_back(&c);
   ASSERT_GE(limits.size(), 2u) << r.critical_points.size() << " critical points; " << r.termination;
-  EXPECT_NEAR(limits[0]->load_factor, 18.55, 0.25);
-  EXPECT_LT(limits[1]->load_factor, limits[0]->load_factor);
+  EXPECT_NEAR(limits[0]->load_factor, 1.85, 0.02 * 1.85);
+  EXPECT_LT(limits[1]->load_factor, 0.0);  // the second limit point lies under a negative load
   double lmax = -1e300;
   for (const auto& s : r.steps) lmax = std::max(lmax, s.load_factor);
-  EXPECT_NEAR(lmax, 18.55, 0.3);
+  EXPECT_NEAR(lmax, limits[0]->load_factor, 2e-3 * lmax);  // located by bisection, above every step
   // Snap-back: the vertical displacement of the load point is not monotone along the path.
   bool turned = false;
   for (std::size_t i = 2; i < r.steps.size(); ++i) {
@@ -203,4 +201,14 @@ TEST(PathFollowing, ImposedMotionOfAChainEndGivesTheSpringReaction) {
   const double q = std::asin(0.3 / L);
   EXPECT_NEAR(s.track[0][1], 0.3, 1e-10);
   EXPECT_NEAR(s.reaction, k * q / (L * std::cos(q)), 1e-8 * k);
+  // Loaded Cartesian stiffness of the tip (one joint: rank one). The tip moves by t dq,
+  // t = (-L sin q, L cos q, 0, 0, 0, 1); the loaded joint stiffness is k_q = k + F L sin q (spring
+  // plus the curvature of the link under the tip force F held fixed); K_c = k_q t t^T / |t|^4, the
+  // pseudo-inverse of the compliance t t^T / k_q.
+  ASSERT_TRUE(s.stiffness.has_value());
+  const double F = k * q / (L * std::cos(q));
+  const double kq = k + F * L * std::sin(q);
+  const Vec6 t = (Vec6() << -L * std::sin(q), L * std::cos(q), 0, 0, 0, 1.0).finished();
+  const Mat6 expected = kq * t * t.transpose() / std::pow(t.squaredNorm(), 2);
+  EXPECT_LT((*s.stiffness - expected).cwiseAbs().maxCoeff(), 1e-8 * expected.cwiseAbs().maxCoeff());
 }
