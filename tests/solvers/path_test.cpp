@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "solvers/buckling.hpp"
 #include "solvers/path_following.hpp"
 #include "nl_models.hpp"
 
@@ -211,4 +212,52 @@ TEST(PathFollowing, ImposedMotionOfAChainEndGivesTheSpringReaction) {
   const Vec6 t = (Vec6() << -L * std::sin(q), L * std::cos(q), 0, 0, 0, 1.0).finished();
   const Mat6 expected = kq * t * t.transpose() / std::pow(t.squaredNorm(), 2);
   EXPECT_LT((*s.stiffness - expected).cwiseAbs().maxCoeff(), 1e-8 * expected.cwiseAbs().maxCoeff());
+}
+
+// A deep pinned circular arch (half-angle 60 deg, R = 100, 20 elements) under a crown load: on the
+// symmetric primary path the asymmetric bifurcation comes first, then the symmetric limit point
+// (Timoshenko & Gere 1961, sec. 7.5: for deep two-hinged arches the antisymmetric buckling load is
+// below the symmetric snap-through load). Without branch switching the path stays symmetric and
+// passes both: the first is a bifurcation (its mode, antisymmetric, does no work on the crown
+// load), the second a limit point (symmetric mode); the bifurcation lies within 2 % of the
+// linearised buckling factor.
+TEST(PathFollowing, ArchBifurcationThenLimitPointAreClassified) {
+  const double R = 100.0, a = 60.0 * pi / 180.0;
+  const int n = 20;
+  json d;
+  d["nodes"] = json::array();
+  d["elements"] = json::array();
+  for (int i = 0; i <= n; ++i) {
+    const double t = -a + 2 * a * i / n;
+    d["nodes"].push_back({{"id", "n" + std::to_string(i)}, {"xyz", {R * std::sin(t), R * std::cos(t) - R * std::cos(a), 0}}});
+  }
+  for (int i = 0; i < n; ++i)
+    d["elements"].push_back({{"id", "e" + std::to_string(i)}, {"type", "beam"},
+                             {"nodes", {"n" + std::to_string(i), "n" + std::to_string(i + 1)}}, {"material", "m"},
+                             {"section", "s"}, {"orientation", {0, 0, 1}}});
+  d["materials"] = json::array({{{"id", "m"}, {"E", 1e4}, {"G", 4e3}}});
+  d["sections"] = json::array({{{"id", "s"}, {"A", 10.0}, {"Iy", 1000.0}, {"Iz", 1.0}, {"J", 1000.0}}});
+  d["supports"] = json::array({fix("n0", {"ux", "uy", "uz", "rx", "ry"}), fix("n20", {"ux", "uy", "uz", "rx", "ry"})});
+  d["loads"] = json::array({load("n10", 0, -1.0, 0)});
+  const Model m = read_model(d);
+  const BucklingResult b = solve_buckling(m);
+  ASSERT_EQ(b.status, BucklingStatus::Ok);
+  PathOptions o;
+  o.control = PathControl::ArcLength;
+  o.arc_length = 100.0;
+  o.max_arc_length = 200.0;
+  o.track = {m.find_node("n10")};
+  o.max_steps = 25;
+  if (std::getenv("BEAMFEA_TEST_VERBOSE")) o.progress = [](const std::string& s) { std::cerr << s << "\n"; };
+  const PathResult r = follow_path(m, o);
+  ASSERT_GE(r.critical_points.size(), 2u) << r.termination;
+  const auto& bif = r.critical_points[0];
+  const auto& lim = r.critical_points[1];
+  EXPECT_EQ(bif.type, "bifurcation");
+  EXPECT_EQ(lim.type, "limit_point");
+  EXPECT_LT(bif.load_factor, lim.load_factor);
+  EXPECT_NEAR(bif.load_factor / b.load_factors[0], 1.0, 0.02);
+  const int crown = 6 * m.find_node("n10");
+  EXPECT_GT(std::abs(bif.mode[crown + 0]), 10 * std::abs(bif.mode[crown + 1]));  // sways: antisymmetric
+  EXPECT_GT(std::abs(lim.mode[crown + 1]), 10 * std::abs(lim.mode[crown + 0]));  // drops: symmetric
 }
