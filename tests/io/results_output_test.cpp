@@ -50,3 +50,35 @@ TEST(ResultsOutput, ContainsTheContractKeysAndAVtuFile) {
   for (const auto& e : std::filesystem::directory_iterator(dir / "out"))
     EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
 }
+
+// The .vtu is read back by VTK's own XML reader (the one ParaView uses), through Debian's
+// python3-vtk9: points, cells, arrays and the maximum displacement must match results.json.
+TEST(ResultsOutput, VtuOpensInVtksOwnReader) {
+  json d = test::cantilever(2.0, 2.1e11, 8.1e10, 1e-3, 2e-6, 3e-6, 1e-6, 2);
+  d["loads"] = {{{"node", "B"}, {"force", {0, -1000, 0}}}};
+  d["analyses"] = {{{"id", "lin"}, {"type", "linear_static"}}};
+  const auto dir = test::temp_dir("vtkread");
+  test::write_file(dir / "model.json", d.dump());
+  auto r = test::run_cli("run " + (dir / "model.json").string() + " --out " + (dir / "out").string() + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  test::write_file(dir / "read.py",
+                   "import sys, vtk\n"
+                   "r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName(sys.argv[1]); r.Update()\n"
+                   "g = r.GetOutput(); d = g.GetPointData().GetArray('displacement')\n"
+                   "print(g.GetNumberOfCells(), min(d.GetComponent(i, 1) for i in range(g.GetNumberOfPoints())),\n"
+                   "      g.GetCellData().GetArray('section_forces').GetNumberOfComponents())\n");
+  const std::string cmd = "/usr/bin/python3 " + (dir / "read.py").string() + " " + (dir / "out" / "lin.vtu").string() + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  char buf[512] = {0};
+  std::string out;
+  while (std::fgets(buf, sizeof buf, p)) out += buf;
+  ASSERT_EQ(pclose(p), 0) << out;
+  std::istringstream in(out);
+  int cells = 0, components = 0;
+  double min_uy = 0.0;
+  in >> cells >> min_uy >> components;
+  EXPECT_EQ(cells, 2 * 8);  // two elements, 8 line cells each
+  EXPECT_NEAR(min_uy, -1000.0 * 8.0 / (3 * 2.1e11 * 3e-6), 1e-12);  // tip: P L^3 / 3EI
+  EXPECT_EQ(components, 6);
+}
