@@ -9,8 +9,11 @@
 //   factor     UMFPACK numeric LU of the tangent, symbolic analysis done once and reused
 //   inertia    SimplicialLDLT (AMD, symbolic analysis reused) of the symmetrised tangent: the count of
 //              negative eigenvalues
+//   min eig    lowest eigenvalue of the Jacobi-scaled symmetrised tangent (solvers/eigen_lowest.hpp:
+//              dense below 200 DOFs, Spectra shift-invert with CHOLMOD above)
 //   step       one whole arc-length step of follow_path (predictor, KINSOL Newton iterations,
-//              stability), the average over `steps` steps of a run
+//              stability), the average over `steps` steps of a run; "no stab." the same without the
+//              stability analysis (inertia, lowest eigenvalue) at each step
 // Usage: bench_path_step [--sizes 2,4,8,12] [--stories S] [--steps K]
 // Output: a Markdown table on stdout.
 #include <fmt/format.h>
@@ -24,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "solvers/eigen_lowest.hpp"
 #include "solvers/nonlinear_structure.hpp"
 #include "solvers/path_following.hpp"
 
@@ -90,8 +94,8 @@ int main(int argc, char** argv) {
       steps = std::atoi(argv[++i]);
     }
   }
-  fmt::print("| bays | storeys | free DOFs | assembly [ms] | LU factor [ms] | LDL' inertia [ms] | arc-length step [ms] | Newton it./step |\n");
-  fmt::print("|---|---|---|---|---|---|---|---|\n");
+  fmt::print("| bays | storeys | free DOFs | assembly [ms] | LU factor [ms] | LDL' inertia [ms] | min eig [ms] | step [ms] | step, no stab. [ms] | Newton it./step |\n");
+  fmt::print("|---|---|---|---|---|---|---|---|---|---|\n");
   for (int n : sizes) {
     const Model m = frame(n, storeys);
     const NonlinearStructure ns(m);
@@ -134,19 +138,34 @@ int main(int argc, char** argv) {
       negative = static_cast<int>((ldlt.vectorD().array() < 0).count());
       t_ldl += seconds_since(t0);
     }
+    double t_eig = 0.0;
+    {
+      const SparseMatrix S = SparseMatrix(0.5 * (K + SparseMatrix(K.transpose())));
+      Eigen::VectorXd sc = S.diagonal().cwiseAbs().cwiseSqrt().cwiseInverse();
+      const SparseMatrix A = SparseMatrix(sc.asDiagonal() * S * sc.asDiagonal());
+      const auto t0 = std::chrono::steady_clock::now();
+      const EigenPairs ep = lowest_eigenpairs(A, 1, -1e-2);
+      t_eig = seconds_since(t0);
+      (void)ep;
+    }
     PathOptions o;
     o.control = PathControl::ArcLength;
     o.arc_length = 0.05;
     o.max_steps = steps;
-    const auto t0 = std::chrono::steady_clock::now();
+    auto t0 = std::chrono::steady_clock::now();
     const PathResult r = follow_path(m, o);
     const double t_run = seconds_since(t0);
+    o.stability = false;
+    t0 = std::chrono::steady_clock::now();
+    const PathResult r2 = follow_path(m, o);
+    const double t_run2 = seconds_since(t0);
     long its = 0;
     for (const auto& s : r.steps) its += s.iterations;
     const int done = std::max<int>(1, static_cast<int>(r.steps.size()) - 1);
-    fmt::print("| {}x{} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} |\n", n, n, storeys, free.size(),
-               1e3 * t_asm / reps, 1e3 * t_lu / reps, 1e3 * t_ldl / reps, 1e3 * t_run / done,
-               static_cast<double>(its) / done);
+    const int done2 = std::max<int>(1, static_cast<int>(r2.steps.size()) - 1);
+    fmt::print("| {}x{} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} |\n", n, n, storeys,
+               free.size(), 1e3 * t_asm / reps, 1e3 * t_lu / reps, 1e3 * t_ldl / reps, 1e3 * t_eig, 1e3 * t_run / done,
+               1e3 * t_run2 / done2, static_cast<double>(its) / done);
     std::fflush(stdout);
     if (negative != 0) fmt::print(stderr, "warning: {} negative eigenvalues at the reference state\n", negative);
   }

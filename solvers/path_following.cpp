@@ -50,6 +50,42 @@ struct ConstraintDef {
 
 enum class StepKind { Load, Control, Arc };
 
+// A factorisation whose symbolic analysis is kept while the sparsity pattern does not change.
+template <class Solver>
+class PatternFactor {
+ public:
+  // Returns false when the numeric factorisation fails.
+  bool factorize(const SparseMatrix& A0) {
+    A_ = A0;
+    A_.makeCompressed();
+    const bool same = analysed_ && A_.rows() + 1 == static_cast<Eigen::Index>(outer_.size()) &&
+                      std::equal(outer_.begin(), outer_.end(), A_.outerIndexPtr()) &&
+                      static_cast<Eigen::Index>(inner_.size()) == A_.nonZeros() &&
+                      std::equal(inner_.begin(), inner_.end(), A_.innerIndexPtr());
+    if (!same) {
+      solver_.analyzePattern(A_);
+      outer_.assign(A_.outerIndexPtr(), A_.outerIndexPtr() + A_.outerSize() + 1);
+      inner_.assign(A_.innerIndexPtr(), A_.innerIndexPtr() + A_.nonZeros());
+      analysed_ = true;
+    }
+    solver_.factorize(A_);
+    if (solver_.info() != Eigen::Success) {
+      analysed_ = false;
+      return false;
+    }
+    return true;
+  }
+  const Solver& solver() const { return solver_; }
+
+ private:
+  SparseMatrix A_;
+  Solver solver_;
+  std::vector<int> outer_, inner_;
+  bool analysed_ = false;
+};
+using LdltFactor = PatternFactor<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>>;
+using LuFactor = PatternFactor<Eigen::UmfPackLU<SparseMatrix>>;
+
 // What one step solves for. Unknowns u = [Delta over free gens, mu over slave constraints, extra],
 // extra = lambda (Control with loads, Arc) or the controlled DOF's reaction (Control without loads).
 struct StepSpec {
@@ -283,10 +319,8 @@ class Problem {
     } else {
       rhs[nf + nc] = 1.0;
     }
-    Eigen::UmfPackLU<SparseMatrix> lu;
-    lu.compute(J);
-    if (lu.info() != Eigen::Success) return {};
-    Eigen::VectorXd t = lu.solve(rhs);
+    if (!predictor_lu.factorize(J)) return {};
+    Eigen::VectorXd t = predictor_lu.solver().solve(rhs);
     if (!t.allFinite()) return {};
     return t;
   }
@@ -373,9 +407,8 @@ class Problem {
     const int n = static_cast<int>(S.rows());
     if (n == 0) return out;
     // Inertia by LDL^T (Sylvester): the number of negative pivots.
-    Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt(S);
-    if (ldlt.info() == Eigen::Success) {
-      out.info.negative = static_cast<int>((ldlt.vectorD().array() < 0.0).count());
+    if (inertia_ldlt.factorize(S)) {
+      out.info.negative = static_cast<int>((inertia_ldlt.solver().vectorD().array() < 0.0).count());
     } else {
       out.info.negative = -1;
     }
@@ -469,6 +502,8 @@ class Problem {
 
   NonlinearStructure ns;
   const PathOptions& opt;
+  mutable LuFactor predictor_lu;      // tangent predictor: symbolic analysis kept along the path
+  mutable LdltFactor inertia_ldlt;    // inertia count: symbolic analysis kept along the path
   double L = 1.0, F_ref = 1.0, psi2 = 0.0;
   std::vector<int> free, gen_to_free;
   std::vector<ConstraintDef> cons;

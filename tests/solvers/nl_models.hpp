@@ -23,6 +23,13 @@ inline json straight_member(double L, int n, double E, double G, double A, doubl
   return d;
 }
 
+// "N3" from ("N", 3), without operator+ on a literal (a GCC 12 -Wrestrict false positive).
+inline std::string name(const char* prefix, int i) {
+  std::string s = std::to_string(i);
+  s.insert(0, prefix);
+  return s;
+}
+
 inline json fix(const std::string& node, std::initializer_list<const char*> dofs) {
   json a = json::array();
   for (const char* d : dofs) a.push_back(d);
@@ -41,15 +48,15 @@ inline json rigid_chain(int n, double L, double k) {
   d["elements"] = json::array();
   d["joints"] = json::array();
   for (int i = 0; i <= n; ++i) {
-    d["nodes"].push_back({{"id", "N" + std::to_string(i)}, {"xyz", {i * L, 0, 0}}});
-    if (i < n) d["nodes"].push_back({{"id", "J" + std::to_string(i)}, {"xyz", {i * L, 0, 0}}});
+    d["nodes"].push_back({{"id", name("N", i)}, {"xyz", {i * L, 0, 0}}});
+    if (i < n) d["nodes"].push_back({{"id", name("J", i)}, {"xyz", {i * L, 0, 0}}});
   }
   for (int i = 0; i < n; ++i) {
-    d["joints"].push_back({{"id", "q" + std::to_string(i)}, {"type", "revolute"},
-                           {"nodes", {"N" + std::to_string(i), "J" + std::to_string(i)}},
+    d["joints"].push_back({{"id", name("q", i)}, {"type", "revolute"},
+                           {"nodes", {name("N", i), name("J", i)}},
                            {"axes", {{0, 0, 1}}}, {"stiffness", {k}}});
-    d["elements"].push_back({{"id", "L" + std::to_string(i)}, {"type", "rigid"},
-                             {"nodes", {"J" + std::to_string(i), "N" + std::to_string(i + 1)}}});
+    d["elements"].push_back({{"id", name("L", i)}, {"type", "rigid"},
+                             {"nodes", {name("J", i), name("N", i + 1)}}});
   }
   d["supports"] = json::array({fix("N0", {"ux", "uy", "uz", "rx", "ry", "rz"})});
   d["loads"] = json::array();

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "solvers/buckling.hpp"
+#include "solvers/condensed_stiffness.hpp"
 #include "solvers/path_following.hpp"
 #include "nl_models.hpp"
 
@@ -229,11 +230,11 @@ TEST(PathFollowing, ArchBifurcationThenLimitPointAreClassified) {
   d["elements"] = json::array();
   for (int i = 0; i <= n; ++i) {
     const double t = -a + 2 * a * i / n;
-    d["nodes"].push_back({{"id", "n" + std::to_string(i)}, {"xyz", {R * std::sin(t), R * std::cos(t) - R * std::cos(a), 0}}});
+    d["nodes"].push_back({{"id", name("n", i)}, {"xyz", {R * std::sin(t), R * std::cos(t) - R * std::cos(a), 0}}});
   }
   for (int i = 0; i < n; ++i)
-    d["elements"].push_back({{"id", "e" + std::to_string(i)}, {"type", "beam"},
-                             {"nodes", {"n" + std::to_string(i), "n" + std::to_string(i + 1)}}, {"material", "m"},
+    d["elements"].push_back({{"id", name("e", i)}, {"type", "beam"},
+                             {"nodes", {name("n", i), name("n", i + 1)}}, {"material", "m"},
                              {"section", "s"}, {"orientation", {0, 0, 1}}});
   d["materials"] = json::array({{{"id", "m"}, {"E", 1e4}, {"G", 4e3}}});
   d["sections"] = json::array({{{"id", "s"}, {"A", 10.0}, {"Iy", 1000.0}, {"Iz", 1.0}, {"J", 1000.0}}});
@@ -260,4 +261,48 @@ TEST(PathFollowing, ArchBifurcationThenLimitPointAreClassified) {
   const int crown = 6 * m.find_node("n10");
   EXPECT_GT(std::abs(bif.mode[crown + 0]), 10 * std::abs(bif.mode[crown + 1]));  // sways: antisymmetric
   EXPECT_GT(std::abs(lim.mode[crown + 1]), 10 * std::abs(lim.mode[crown + 0]));  // drops: symmetric
+}
+
+// A lumped model (Pashkevich et al.'s VJM): two rigid links joined by 6-D virtual springs with full
+// stiffness matrices, the end pushed by imposed motion. At the unloaded start the loaded Cartesian
+// stiffness equals the linear condensed stiffness of analysis "stiffness" (eq. 28 reduces to the
+// unloaded K_C when F = 0), and along the path the reaction is the loaded stiffness's work: a
+// small imposed step du gives reaction ~ K_c du.
+TEST(PathFollowing, VirtualSpringChainStiffnessAtStartEqualsLinearStiffness) {
+  json d;
+  d["nodes"] = json::array({{{"id", "B"}, {"xyz", {0, 0, 0}}}, {{"id", "B1"}, {"xyz", {0, 0, 0}}},
+                            {{"id", "M"}, {"xyz", {0.4, 0.1, 0.0}}}, {{"id", "M1"}, {"xyz", {0.4, 0.1, 0.0}}},
+                            {{"id", "E"}, {"xyz", {0.8, 0.0, 0.2}}}});
+  json K = json::array();
+  for (int i = 0; i < 6; ++i) {
+    json row = json::array();
+    for (int j = 0; j < 6; ++j) row.push_back(i == j ? (i < 3 ? 1e5 : 50.0) : (std::abs(i - j) == 3 ? 300.0 : 0.0));
+    K.push_back(row);
+  }
+  d["joints"] = json::array({{{"id", "v1"}, {"type", "virtual_spring"}, {"nodes", {"B", "B1"}}, {"stiffness", K}},
+                             {{"id", "v2"}, {"type", "virtual_spring"}, {"nodes", {"M", "M1"}}, {"stiffness", K}}});
+  d["elements"] = json::array({{{"id", "l1"}, {"type", "rigid"}, {"nodes", {"B1", "M"}}},
+                               {{"id", "l2"}, {"type", "rigid"}, {"nodes", {"M1", "E"}}}});
+  d["supports"] = json::array({fix("B", {"ux", "uy", "uz", "rx", "ry", "rz"})});
+  d["loads"] = json::array();
+  const Model m = read_model(d);
+  const CondensedStiffness lin = linear_node_stiffness(m, m.find_node("E"));
+  ASSERT_TRUE(lin.ok) << lin.message;
+  PathOptions o;
+  o.control = PathControl::Displacement;
+  o.control_node = m.find_node("E");
+  o.control_dof = 2;
+  o.target = 1e-6;
+  o.increments = 1;
+  o.track = {m.find_node("E")};
+  o.stiffness_node = m.find_node("E");
+  const PathResult r = follow_path(m, o);
+  ASSERT_TRUE(r.completed) << r.termination;
+  ASSERT_TRUE(r.steps[0].stiffness.has_value());
+  const Mat6& Kc = *r.steps[0].stiffness;
+  EXPECT_LT((Kc - lin.K).cwiseAbs().maxCoeff(), 1e-8 * lin.K.cwiseAbs().maxCoeff());
+  // The reaction of a tiny imposed uz: the uz-uz entry of the stiffness with the node's other DOFs
+  // free, i.e. 1 / (K_c^-1)_zz.
+  const double kzz = 1.0 / Kc.inverse()(2, 2);
+  EXPECT_NEAR(r.steps.back().reaction / 1e-6, kzz, 1e-4 * kzz);
 }
