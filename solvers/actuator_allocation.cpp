@@ -321,7 +321,7 @@ StructuralStiffness structural_stiffness(const Model& model, const AllocationOpt
       out.message = "with " + actuator_names(model, o, actuated) + " frozen, " + describe_mechanism(out.modes);
       return out;
     }
-    if (fs == FactorStatus::Singular) {
+    if (fs == FactorStatus::Singular || !factor.usable()) {
       out.message = "the frozen structure's stiffness matrix could not be factorised";
       return out;
     }

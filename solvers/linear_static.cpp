@@ -58,7 +58,7 @@ LinearStaticResult solve_linear_static(const Model& model, const LinearStaticOpt
       res.message = describe_mechanism(res.modes);
       return res;
     }
-    if (fs == FactorStatus::Singular) {
+    if (fs == FactorStatus::Singular || !factor.usable()) {
       res.status = SolveStatus::Failed;
       res.message = "the stiffness matrix could not be factorised";
       return res;

@@ -63,6 +63,11 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
       unrestrained_.push_back(static_cast<int>(i));
     }
   }
+  cholesky_ok_ = lu_ok_ = false;
+  rcond_ = 0.0;
+  // A DOF with no stiffness at all (zero diagonal): singular, whatever a factorisation would say;
+  // the caller diagnoses it (and CHOLMOD is never handed an empty column).
+  if (!unrestrained_.empty()) return FactorStatus::NotPositiveDefinite;
   const SparseMatrix A = scaled(K, s_);
   if (!impl_->analysed || impl_->rows != n || impl_->nnz != A.nonZeros()) {
     impl_->llt.analyzePattern(A);
@@ -75,8 +80,6 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
     impl_->rows = n;
     impl_->nnz = A.nonZeros();
   }
-  cholesky_ok_ = lu_ok_ = false;
-  rcond_ = 0.0;
   if (n == 0) {
     cholesky_ok_ = true;
     rcond_ = 1.0;
@@ -101,6 +104,7 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
 
 Eigen::VectorXd SparseFactor::solve(const Eigen::VectorXd& b) const {
   if (s_.size() == 0) return Eigen::VectorXd(0);
+  if (!cholesky_ok_ && !lu_ok_) throw Error("SparseFactor::solve: no valid factorisation");
   const Eigen::VectorXd sb = s_.cwiseProduct(b);
   const Eigen::VectorXd y = cholesky_ok_ ? Eigen::VectorXd(impl_->llt.solve(sb)) : Eigen::VectorXd(impl_->lu.solve(sb));
   return s_.cwiseProduct(y);
@@ -108,6 +112,7 @@ Eigen::VectorXd SparseFactor::solve(const Eigen::VectorXd& b) const {
 
 Eigen::MatrixXd SparseFactor::solve(const Eigen::MatrixXd& B) const {
   if (s_.size() == 0) return Eigen::MatrixXd(0, B.cols());
+  if (!cholesky_ok_ && !lu_ok_) throw Error("SparseFactor::solve: no valid factorisation");
   const Eigen::MatrixXd SB = s_.asDiagonal() * B;
   const Eigen::MatrixXd Y = cholesky_ok_ ? Eigen::MatrixXd(impl_->llt.solve(SB)) : Eigen::MatrixXd(impl_->lu.solve(SB));
   return s_.asDiagonal() * Y;

@@ -40,6 +40,7 @@ class SparseFactor {
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
 
   bool cholesky() const { return cholesky_ok_; }
+  bool usable() const { return cholesky_ok_ || lu_ok_; }  // solve() may be called
   double rcond() const { return rcond_; }             // of the scaled matrix (Cholesky only)
   const Eigen::VectorXd& scaling() const { return s_; }  // S
   // DOFs with a zero or negative diagonal (no stiffness at all), if any.

@@ -290,3 +290,14 @@ TEST(Mechanism, MemberBetweenTwoSphericalJointsSpins) {
   EXPECT_NE(r.message.find("node 'C' dof rx"), std::string::npos) << r.message;
   EXPECT_NE(r.message.find("joint 's1'"), std::string::npos) << r.message;
 }
+
+// A node with nothing attached and a load on it: every DOF is a zero-energy mode; diagnosed,
+// never handed to the factorisation.
+TEST(Mechanism, LoneNodeWithoutElementsIsDiagnosedNotCrashedOn) {
+  json d = {{"nodes", json::array({{{"id", 1}, {"xyz", {0, 0, 0}}}})},
+            {"loads", json::array({{{"node", 1}, {"force", {1, 0, 0}}}})}};
+  const auto r = solve_linear_static(test::model_from(d));
+  EXPECT_EQ(r.status, SolveStatus::Mechanism);
+  EXPECT_EQ(r.modes.size(), 6u) << r.message;
+  EXPECT_NE(r.message.find("node '1' dof ux"), std::string::npos) << r.message;
+}
