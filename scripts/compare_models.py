@@ -40,8 +40,9 @@ Quantities (tangents k = dP/d(deflection) of the displacement-controlled curve, 
   buckling_load   the first load factor of the model's "buckling" analysis, when it has one
                   (linearised about the unloaded state: the critical force of a straight chain)
   unloaded        stiffness at zero load
-  near_before     tangent just before the first critical point
-  near_after      tangent just after it, on the stable branch followed
+  near_before     tangent just before the first critical point (last two stable steps before it)
+  near_after      tangent just after it, on the stable branch followed (first two stable steps
+                  beyond it by more than near_offset; at a bifurcation only if the engine switched)
   large           tangent at the large deflection
   P_at_L          force at the large deflection
 
@@ -68,10 +69,16 @@ def load(path):
         return json.load(f)
 
 
+REUSE = False  # --reuse: keep results.json of an earlier run of the very same model
+
+
 def run_beamfea(exe, doc, out_dir, log):
     """Runs beamfea on doc; drops analyses of a type this beamfea does not know. Returns
     (results or None, [missing types], error message)."""
     os.makedirs(out_dir, exist_ok=True)
+    model_file, res_file = os.path.join(out_dir, "model.json"), os.path.join(out_dir, "results.json")
+    if REUSE and os.path.exists(model_file) and os.path.exists(res_file) and load(model_file) == doc:
+        return load(res_file), [], ""
     missing = []
     doc = copy.deepcopy(doc)
     for _ in range(5):
@@ -118,6 +125,7 @@ class Curve:
         self.buckling = []   # load factors of a "buckling" analysis
         self.completed = False
         self.switched = []   # per critical point: the path switched onto another branch there
+        self.critical_step = []
 
 
 def extract_curve(res, spec):
@@ -146,16 +154,17 @@ def extract_curve(res, spec):
         # assumed measured along the same direction (both scales of the same sign), so dP/dd = dF/du.
         c.k.append(k[dof][dof] if k else None)
     for cp in a.get("critical_points", []):
+        # the step at whose end the engine detected it; the critical point lies between that step
+        # and the one before, at the critical load factor
         step = cp.get("step")
         dcp = None
-        if "nodes" in cp and node in cp["nodes"]:
-            dcp = ds * cp["nodes"][node]["displacement"][dof]
-        elif "control" in cp and spec["deflection"].get("from_control", True) and isinstance(cp["control"], (int, float)):
-            dcp = ds * cp["control"]
-        elif step is not None and 0 <= step < len(c.d):
-            dcp = c.d[step]
+        if step is not None and 1 <= step < len(c.d):
+            l0, l1 = c.lf[step - 1], c.lf[step]
+            t = 0.0 if l1 == l0 else min(1.0, max(0.0, (cp["load_factor"] - l0) / (l1 - l0)))
+            dcp = c.d[step - 1] + t * (c.d[step] - c.d[step - 1])
         c.critical.append((dcp, fs * cp["load_factor"], cp.get("type", "")))
         c.switched.append(bool(cp.get("branch_switched", False)))
+        c.critical_step.append(step)
     c.termination = a.get("termination", "")
     c.completed = bool(a.get("completed", a.get("status") == "ok"))
     return c
@@ -197,6 +206,20 @@ def tangent_at(c, x, side=0, stable_only=True):
     return (c.P[j] - c.P[i]) / (c.d[j] - c.d[i])
 
 
+def slope(c, idx, last):
+    """dP/dd between two consecutive converged steps of the list idx (the last two, or the first two);
+    the engine's loaded stiffness of the step where it gives one."""
+    if len(idx) < 2:
+        return None
+    i, j = (idx[-2], idx[-1]) if last else (idx[0], idx[1])
+    k = c.k[j] if last else c.k[i]
+    if k is not None:
+        return k
+    if j != i + 1 or c.d[j] == c.d[i]:
+        return None
+    return (c.P[j] - c.P[i]) / (c.d[j] - c.d[i])
+
+
 def quantities(c, k0, spec):
     q = {"unloaded": k0}
     if c is None:
@@ -209,12 +232,15 @@ def quantities(c, k0, spec):
         dcr, pcr, _ = c.critical[0]
         # A critical point found before the path failed is still the engine's result; say so.
         q["critical_force"] = pcr if c.completed else f"{pcr:.4g} (path failed later)"
-        if dcr is not None and c.d:
-            q["near_before"] = tangent_at(c, dcr - off, side=-1)
+        step = c.critical_step[0]
+        if step is not None and c.d:
+            q["near_before"] = slope(c, [i for i in range(step) if c.stable[i]], last=True)
             # after a bifurcation: only on the branch the engine switched to (the fundamental
             # branch beyond it is unstable and not the curve of the paper)
             if c.critical[0][2] != "bifurcation" or c.switched[0]:
-                q["near_after"] = tangent_at(c, dcr + off, side=+1)
+                d0 = c.d[step - 1] if step >= 1 else 0.0
+                after = [i for i in range(step, len(c.d)) if c.stable[i] and c.d[i] > d0 + off]
+                q["near_after"] = slope(c, after, last=False)
             else:
                 q["near_after"] = "no branch switch"
     elif c.d and c.completed:
@@ -223,7 +249,7 @@ def quantities(c, k0, spec):
         q["critical_force"] = "path failed"
     if c.d and max(c.d) >= large - 1e-9:
         q["P_at_L"] = interp(large, c.d, c.P)
-        q["large"] = tangent_at(c, large, side=0)
+        q["large"] = tangent_at(c, large, side=0, stable_only=False)
     elif c.d and not c.completed:
         q["P_at_L"] = q["large"] = "path failed"
     return q
@@ -304,7 +330,10 @@ def main():
     ap.add_argument("--out", default="comparison")
     ap.add_argument("--only", nargs="*", default=None, help="pair ids to run")
     ap.add_argument("--no-plots", action="store_true")
+    ap.add_argument("--reuse", action="store_true", help="reuse OUT's results of unchanged models (no beamfea run)")
     args = ap.parse_args()
+    global REUSE
+    REUSE = args.reuse
     spec = load(args.spec)
     base = os.path.dirname(os.path.abspath(args.spec))
     exe = os.path.abspath(args.beamfea)

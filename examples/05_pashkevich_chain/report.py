@@ -27,6 +27,7 @@ sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import compare_models as cm  # noqa: E402
 
 NS = (1, 2, 4, 8, 16)
+DELTA_CONV = 0.3
 
 
 def critical_force(exe, file, out_dir, log):
@@ -44,13 +45,16 @@ def critical_force(exe, file, out_dir, log):
         return p["critical_points"][0]["load_factor"], p["critical_points"][0].get("type", "critical")
     if not p.get("completed", False):
         return None, "path failed"
-    return None, "no critical point"
+    # no critical point: the force at the end of the path (delta = DELTA_CONV) instead
+    P = cm.interp(DELTA_CONV, [-s["nodes"]["E"]["displacement"][0] for s in p["steps"]],
+                  [s["load_factor"] for s in p["steps"]])
+    return P, f"P at delta = {DELTA_CONV} L (no critical point)"
 
 
-def convergence(exe, out, log):
+def convergence(exe, out, log, postures=("S", "Pi", "Z")):
     rows = []
     for model in "BC":
-        for posture in ("S", "Pi", "Z"):
+        for posture in postures:
             for kind, letter in (("beam", "N"), ("lumped", "n")):
                 vals = []
                 for n in NS:
@@ -58,6 +62,8 @@ def convergence(exe, out, log):
                     doc = cm.load(f)
                     if posture == "S":  # the straight chain: buckling analysis only (the path is in the report)
                         doc["analyses"] = [a for a in doc["analyses"] if a["type"] == "buckling"]
+                    else:  # the critical points lie below delta = 0.15 L: stop at 0.3 L, record P there too
+                        doc["analyses"][0]["stop"]["beyond"] = -DELTA_CONV
                     tmp = os.path.join(out, "conv", f"{model}_{posture}_{kind}_{letter}{n}")
                     os.makedirs(tmp, exist_ok=True)
                     with open(os.path.join(tmp, "in.json"), "w") as fh:
@@ -76,10 +82,13 @@ def convergence(exe, out, log):
         f.write("| model | posture | model kind | " + " | ".join(str(n) for n in NS) + " | rel. change 8->16 |\n")
         f.write("|---|---|---|" + "---|" * (len(NS) + 1) + "\n")
         for model, posture, kind, vals in rows:
-            cells = [cm.fmt(v) if v is not None else how for v, how in vals]
+            cells = [(cm.fmt(v) + ("*" if how.startswith("P at") else "")) if v is not None else how for v, how in vals]
             a, b = vals[-2][0], vals[-1][0]
             rel = f"{abs(b - a) / abs(b):.1e}" if a is not None and b is not None and b != 0 else "—"
             f.write(f"| {model} | {posture} | {kind} | " + " | ".join(cells) + f" | {rel} |\n")
+        f.write(f"\n\\* no critical point (model B, Pi; model B, Z lumped: an imperfect bifurcation): the force P at "
+                f"delta = {DELTA_CONV} L instead.\nS posture: the buckling analysis of the straight chain; Pi, Z: the "
+                "first critical point of the path (bisection to 1e-3 of the step).\n")
         f.write(f"\nEuler load of the pinned-pinned column of length 3L: pi^2/9 = {math.pi ** 2 / 9:.6f} (B, in plane), "
                 f"0.16 pi^2/9 = {0.16 * math.pi ** 2 / 9:.6f} (C, out of plane).\n")
 
@@ -162,7 +171,11 @@ def main():
     ap.add_argument("--out", default=os.path.join(HERE, "out"))
     ap.add_argument("--skip-convergence", action="store_true")
     ap.add_argument("--only", nargs="*", default=None)
+    ap.add_argument("--convergence-postures", nargs="*", default=["S", "Pi", "Z"],
+                    help="postures of the convergence study (S uses the buckling analysis, Pi and Z the path)")
+    ap.add_argument("--reuse", action="store_true", help="reuse the results of unchanged models in OUT")
     args = ap.parse_args()
+    cm.REUSE = args.reuse
     exe = os.path.abspath(args.beamfea)
     log = lambda s: print(s, file=sys.stderr, flush=True)
     subprocess.run([sys.executable, os.path.join(HERE, "generate.py"), "--convergence",
@@ -171,10 +184,12 @@ def main():
            "--beamfea", exe, "--out", args.out]
     if args.only:
         cmd += ["--only"] + args.only
+    if args.reuse:
+        cmd += ["--reuse"]
     subprocess.run(cmd, check=True)
     if not args.skip_convergence:
         log("convergence study")
-        convergence(exe, args.out, log)
+        convergence(exe, args.out, log, args.convergence_postures)
         figures(args.out, log)
     log(f"report in {args.out}")
 
