@@ -1,7 +1,9 @@
 #include "solvers/buckling.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Spectra/MatOp/SparseCholesky.h>
 #include <Spectra/MatOp/SparseSymMatProd.h>
+#include <Spectra/SymGEigsSolver.h>
 #include <Spectra/MatOp/SymShiftInvert.h>
 #include <Spectra/SymGEigsShiftSolver.h>
 #include <fmt/format.h>
@@ -128,15 +130,25 @@ BucklingResult solve_buckling(const Model& model, const BucklingOptions& options
       pairs.emplace_back(1.0 / mu, es.eigenvectors().col(i));
     }
   } else {
-    // Shift below the first load factor: the Rayleigh quotient of the linear solution is an upper
-    // estimate; a tenth of it is a safe positive shift.
-    const Eigen::VectorXd uf = [&] {
-      Eigen::VectorXd v(n);
-      for (int i = 0; i < n; ++i) v[i] = lin.u[map.raw_index(map.free_dofs()[i])];
-      return v;
-    }();
-    const double num = uf.dot(K * uf), den = uf.dot(KG * uf);
-    double sigma = den > 0.0 ? 0.1 * num / den : 1.0;
+    // Pass 1, an estimate of the first load factor without a shift: the largest eigenvalue
+    // mu = 1/lambda of (-Kg) phi = mu K phi (Spectra, Cholesky mode on K).
+    double sigma = 0.0;
+    {
+      Spectra::SparseSymMatProd<double> Aop(KG);
+      Spectra::SparseCholesky<double> Bop(K);
+      Spectra::SymGEigsSolver<Spectra::SparseSymMatProd<double>, Spectra::SparseCholesky<double>, Spectra::GEigsMode::Cholesky>
+          est(Aop, Bop, 1, std::min(n, 20));
+      est.init();
+      est.compute(Spectra::SortRule::LargestAlge, 2000, 1e-6);
+      if (est.info() == Spectra::CompInfo::Successful && est.eigenvalues()[0] > 0.0) sigma = 0.5 / est.eigenvalues()[0];
+    }
+    if (!(sigma > 0.0)) {
+      res.status = BucklingStatus::NoCompression;
+      res.message = "buckling: no positive load factor (the loads put nothing in compression)";
+      return res;
+    }
+    // Pass 2, shift-invert in buckling mode about half the first load factor: the factors nearest
+    // sigma, negative ones (tension buckling) dropped.
     using OpType = Spectra::SymShiftInvert<double, Eigen::Sparse, Eigen::Sparse>;
     using BOpType = Spectra::SparseSymMatProd<double>;
     const int nev = std::min(n - 1, 2 * want + 2);
@@ -154,7 +166,7 @@ BucklingResult solve_buckling(const Model& model, const BucklingOptions& options
         for (int i = 0; i < v.size(); ++i)
           if (v[i] > 0.0) pairs.emplace_back(v[i], V.col(i));
       }
-      sigma *= 0.1;
+      sigma *= 0.5;
     }
   }
   std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });

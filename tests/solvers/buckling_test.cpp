@@ -112,3 +112,24 @@ TEST(Buckling, TensionGivesNoPositiveLoadFactor) {
   const BucklingResult r = solve_buckling(read_model(d));
   EXPECT_EQ(r.status, BucklingStatus::NoCompression);
 }
+
+// Above 300 free DOFs the sparse path runs (Spectra: estimate pass, then shift-invert in buckling
+// mode): 80 elements (480 DOFs); the cantilever's first two factors (both planes) are pi^2 EI/(4L^2)
+// and the next two 9 times that (T&G eq. 2.3, n = 3).
+TEST(Buckling, SparseShiftInvertPathGivesEulerLoadsOfAFineMesh) {
+  const double L = 3.0, P = 1000.0;
+  const double exact = pi * pi * E * I / (4 * L * L) / P;
+  json d = straight_member(L, 80, E, G, A, I, I, J);
+  d["supports"].push_back(fix("A", {"ux", "uy", "uz", "rx", "ry", "rz"}));
+  d["loads"].push_back(load("B", -P, 0, 0));
+  BucklingOptions o;
+  o.modes = 4;
+  const BucklingResult r = solve_buckling(read_model(d), o);
+  ASSERT_EQ(r.status, BucklingStatus::Ok) << r.message;
+  ASSERT_GT(r.free_dofs, 300);
+  ASSERT_EQ(r.load_factors.size(), 4);
+  EXPECT_NEAR(r.load_factors[0] / exact, 1.0, 1e-6);
+  EXPECT_NEAR(r.load_factors[1] / exact, 1.0, 1e-6);
+  EXPECT_NEAR(r.load_factors[2] / (9 * exact), 1.0, 1e-5);
+  EXPECT_NEAR(r.load_factors[3] / (9 * exact), 1.0, 1e-5);
+}

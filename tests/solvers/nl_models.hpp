@@ -1,5 +1,6 @@
 #pragma once
 // Small models for the buckling and path-following tests, written as input JSON.
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -25,9 +26,9 @@ inline json straight_member(double L, int n, double E, double G, double A, doubl
 
 // "N3" from ("N", 3), without operator+ on a literal (a GCC 12 -Wrestrict false positive).
 inline std::string name(const char* prefix, int i) {
-  std::string s = std::to_string(i);
-  s.insert(0, prefix);
-  return s;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s%d", prefix, i);
+  return std::string(buf);
 }
 
 inline json fix(const std::string& node, std::initializer_list<const char*> dofs) {
