@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
       Eigen::VectorXd sc = S.diagonal().cwiseAbs().cwiseSqrt().cwiseInverse();
       const SparseMatrix A = SparseMatrix(sc.asDiagonal() * S * sc.asDiagonal());
       const auto t0 = std::chrono::steady_clock::now();
-      const EigenPairs ep = lowest_eigenpairs(A, 1, -1e-2);
+      const EigenPairs ep = lowest_eigenpairs(A, 1, -1e-6);
       t_eig = seconds_since(t0);
       (void)ep;
     }

@@ -419,7 +419,7 @@ class Problem {
       sc[i] = d > 0.0 ? 1.0 / std::sqrt(d) : 1.0;
     }
     const SparseMatrix A = SparseMatrix(sc.asDiagonal() * S * sc.asDiagonal());
-    double shift = -1e-2;
+    double shift = -1e-6;  // just below a positive definite spectrum: fast shift-invert convergence
     if (out.info.negative != 0) {
       double g = 0.0;
       for (int j = 0; j < A.outerSize(); ++j) {
@@ -430,7 +430,7 @@ class Problem {
         }
         g = std::min(g, diag - off);
       }
-      shift = g - 1e-2;
+      shift = g - 1e-6;
     }
     const int want = want_mode ? std::max(1, out.info.negative) + 1 : 1;
     try {
