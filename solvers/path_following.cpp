@@ -685,8 +685,37 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
     return d;
   };
 
-  bool switched = false;
   int step = 0;
+  // The stop conditions after a converged step; sets the termination.
+  auto stopped = [&](const Converged& nx) {
+    if (o.stop_load_factor) {
+      const double v = *o.stop_load_factor;
+      if ((v >= 0 && nx.lambda >= v) || (v < 0 && nx.lambda <= v)) {
+        res.termination = fmt::format("stop: load factor {:.6g} reached", v);
+        res.completed = true;
+        return true;
+      }
+    }
+    if (o.stop_beyond) {
+      const double v = o.stop_dof < 3 ? nx.state.x[o.stop_node][o.stop_dof] - original.nodes[o.stop_node].x[o.stop_dof]
+                                      : log_so3(nx.state.R[o.stop_node])[o.stop_dof - 3];
+      const double b = *o.stop_beyond;
+      if ((b >= 0 && v >= b) || (b < 0 && v <= b)) {
+        res.termination = fmt::format("stop: node '{}' {} beyond {:.6g}", original.nodes[o.stop_node].id,
+                                      kDofNames[o.stop_dof], b);
+        res.completed = true;
+        return true;
+      }
+    }
+    if (o.stop_steps && step >= *o.stop_steps) {
+      res.termination = fmt::format("stop: {} steps", *o.stop_steps);
+      res.completed = true;
+      return true;
+    }
+    return false;
+  };
+
+  bool switched = false;
   int cuts = 0;
   const double lf_tol = 1e-12 * std::max(1.0, std::abs(o.target));
   while (true) {
@@ -864,6 +893,7 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
           cur = cb;
           res.critical_points.push_back(cp);
           say(fmt::format("branch switched onto the secondary path at load factor {:.6g}", cb.lambda));
+          if (stopped(cb)) break;
           continue;
         }
         say("branch switching failed: " + r3);
@@ -880,31 +910,7 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
     h = h < 0 ? -hn : hn;
     if (cuts > 0) cuts = 0;
 
-    // Stops.
-    if (o.stop_load_factor) {
-      const double s = *o.stop_load_factor;
-      if ((s >= 0 && next.lambda >= s) || (s < 0 && next.lambda <= s)) {
-        res.termination = fmt::format("stop: load factor {:.6g} reached", s);
-        res.completed = true;
-        break;
-      }
-    }
-    if (o.stop_beyond) {
-      const double v = o.stop_dof < 3 ? next.state.x[o.stop_node][o.stop_dof] - original.nodes[o.stop_node].x[o.stop_dof]
-                                      : log_so3(next.state.R[o.stop_node])[o.stop_dof - 3];
-      const double b = *o.stop_beyond;
-      if ((b >= 0 && v >= b) || (b < 0 && v <= b)) {
-        res.termination = fmt::format("stop: node '{}' {} beyond {:.6g}", original.nodes[o.stop_node].id,
-                                      kDofNames[o.stop_dof], b);
-        res.completed = true;
-        break;
-      }
-    }
-    if (o.stop_steps && step >= *o.stop_steps) {
-      res.termination = fmt::format("stop: {} steps", *o.stop_steps);
-      res.completed = true;
-      break;
-    }
+    if (stopped(next)) break;
   }
   res.factorizations = kin.factorizations();
   res.symbolic_analyses = kin.symbolic_analyses();
