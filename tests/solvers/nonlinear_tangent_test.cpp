@@ -6,6 +6,7 @@
 
 #include "core/errors.hpp"
 #include "solvers/nonlinear_structure.hpp"
+#include "solvers/path_following.hpp"
 #include "nl_models.hpp"
 
 using namespace beamfea;
@@ -153,4 +154,63 @@ TEST(NonlinearStructure, ClosedLoopIsRefusedNamingTheEdge) {
   } catch (const ModelError& e) {
     EXPECT_NE(std::string(e.what()).find("loop"), std::string::npos) << e.what();
   }
+}
+
+// The exact Jacobian of the kinematics equals the linearised constraint map of DofMap built about
+// the current Configuration (current offsets, current spatial joint axes) for rigid links and
+// rotational joints: both are raw u = T_f u_free at that state.
+TEST(NonlinearStructure, JacobianEqualsDofMapAboutTheCurrentConfiguration) {
+  json d = jointed_frame();
+  // Rotational joints only (DofMap's joint rows have no lever for a virtual spring's translations).
+  d["joints"][2] = {{"id", "j3"}, {"type", "universal"}, {"nodes", {"D", "D1"}}, {"axes", {{0, 0, 1}, {0, 1, 0}}}};
+  const Model m = read_model(d);
+  const NonlinearStructure ns(m);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  Eigen::VectorXd dl(ns.size());
+  for (int i = 0; i < ns.size(); ++i) dl[i] = (ns.is_rotation(i) ? 1.0 : 0.05) * U(rng);
+  for (int i = 0; i < ns.size(); ++i)
+    if (ns.gens()[i].kind != NonlinearStructure::GenKind::JointScalar &&
+        ns.gens()[i].kind != NonlinearStructure::GenKind::JointSpherical && ns.gens()[i].owner == m.find_node("B"))
+      dl[i] = 0.0;
+  const NonlinearState s = ns.retract(ns.reference_state(), dl);
+  const DofMap map(m, configuration_of(m, s));
+  const auto tw = ns.twists(s);
+  double worst = 0.0;
+  for (int n = 0; n < static_cast<int>(m.nodes.size()); ++n)
+    for (int k = 0; k < 6; ++k) {
+      Eigen::VectorXd mine = Eigen::VectorXd::Zero(map.raw_size());
+      for (const auto& [g, v] : ns.raw_row(s, tw, n, k)) mine[ns.gens()[g].raw] += v;
+      Eigen::VectorXd theirs = Eigen::VectorXd::Zero(map.raw_size());
+      for (SparseRowMatrix::InnerIterator it(map.T_free(), map.raw_node(n, k)); it; ++it)
+        theirs[map.raw_index(map.free_dofs()[it.col()])] += it.value();
+      // Supported DOFs of B are not free in the DofMap: compare on the free ones only.
+      for (int f = 0; f < map.free_size(); ++f) {
+        const int raw = map.raw_index(map.free_dofs()[f]);
+        worst = std::max(worst, std::abs(mine[raw] - theirs[raw]));
+      }
+    }
+  EXPECT_LT(worst, 1e-12);
+}
+
+// Failure is an outcome: the end of a rigid link of length L on a hinge spring pushed sideways to
+// 1.2 L, beyond its reach. The steps are cut as the link approaches 90 deg, then the path stops with
+// the reason, and every converged step (all within reach) is kept.
+TEST(NonlinearStructure, PathBeyondReachStopsCleanlyKeepingConvergedSteps) {
+  const double L = 0.5;
+  const Model m = read_model(rigid_chain(1, L, 20.0));
+  PathOptions o;
+  o.control = PathControl::Displacement;
+  o.control_node = m.find_node("N1");
+  o.control_dof = 1;
+  o.target = 1.2 * L;
+  o.increments = 6;
+  o.max_cuts = 8;
+  o.track = {m.find_node("N1")};
+  const PathResult r = follow_path(m, o);
+  EXPECT_FALSE(r.completed);
+  EXPECT_NE(r.termination.find("no convergence"), std::string::npos) << r.termination;
+  ASSERT_GE(r.steps.size(), 3u);
+  for (const auto& st : r.steps) EXPECT_LT(st.track[0][1], L);
+  EXPECT_GT(r.steps.back().track[0][1], 0.8 * L);
 }
