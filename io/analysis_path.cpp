@@ -137,10 +137,8 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
   const Model& model = ctx.model;
   PathOptions o = parse(model, ctx.spec, ctx.pointer);
   const int save_every = ctx.spec.contains("save_every") ? ctx.spec["save_every"].get<int>() : 1;
-  o.progress = [&](const std::string& s) {
-    if (ctx.progress) ctx.progress("path " + ctx.id + ": " + s);
-    else std::cerr << "beamfea: path " << ctx.id << ": " << s << "\n";
-  };
+  // One line per step on stderr through the run's progress sink (silent with --quiet).
+  if (ctx.progress) o.progress = [&](const std::string& s) { ctx.progress("path " + ctx.id + ": " + s); };
   const PathResult r = follow_path(model, o);
   const bool imposed = o.control == PathControl::Displacement && r.steps.size() &&
                        std::any_of(r.steps.begin(), r.steps.end(), [](const PathStep& s) { return s.reaction != 0.0; });
