@@ -191,6 +191,20 @@ void DofMap::build_tree_rows(const Model& m, const Configuration& c) {
         for (int i = 0; i < 3; ++i)
           if (axes[q][i] != 0.0) add_row(slave_rows[slave_slot[6 * s + offset + i]], rq, sign * axes[q][i]);
       }
+      // A joint with translations (a virtual spring) separates its nodes in a deformed
+      // configuration: the offset d = x_s - x_p turns with the first body, so
+      // u_s += -[d] theta_1, theta_1 = theta_p (forward) or theta_s (reverse). Zero in the reference.
+      const Vec3 d = c.x[s] - c.x[p];
+      if (d.squaredNorm() > 0.0) {
+        const Mat3 D = -skew(d);
+        const int body1 = e.forward ? p : s;
+        for (int i = 0; i < 3; ++i) {
+          Expr lever;
+          for (int k = 0; k < 3; ++k)
+            if (D(i, k) != 0.0) add_row(lever, 6 * body1 + 3 + k, D(i, k));
+          add_scaled(slave_rows[slave_slot[6 * s + i]], lever, 1.0);
+        }
+      }
     }
   }
   std::vector<Eigen::Triplet<double>> t;
