@@ -80,7 +80,9 @@ TEST(PathFollowing, ElasticaByBranchSwitchingMatchesEllipticIntegrals) {
   EXPECT_GE(compared, 5) << r.termination;
   // The post-buckling branch of the elastica is stable.
   for (const auto& s : r.steps)
-    if (std::abs(s.track[0][5]) > 0.4) EXPECT_TRUE(s.stable) << "step " << s.step;
+    if (std::abs(s.track[0][5]) > 0.4) {
+      EXPECT_TRUE(s.stable) << "step " << s.step;
+    }
 }
 
 // The same curve through an imperfection: buckling mode 1 at 1e-3 L; at rotations above 0.4 rad
@@ -130,7 +132,9 @@ TEST(PathFollowing, CantileverRollsIntoAFullCircle) {
   EXPECT_LT((s.R[m.find_node("B")] - Mat3::Identity()).norm(), 1e-6);
   // Half way the tip is at the top of the circle: (0, L/pi).
   for (const auto& st : r.steps)
-    if (std::abs(st.load_factor - 0.5) < 1e-9) EXPECT_LT((st.state.x[m.find_node("B")] - Vec3(0, L / pi, 0)).norm(), 1e-3 * L);
+    if (std::abs(st.load_factor - 0.5) < 1e-9) {
+      EXPECT_LT((st.state.x[m.find_node("B")] - Vec3(0, L / pi, 0)).norm(), 1e-3 * L);
+    }
 }
 
 // Lee's frame (Lee, Manuel & Rossow 1968), with the data of Schweizerhof & Wriggers (1986):
