@@ -92,7 +92,7 @@ double first_critical(const Path& p) { return p.critical.empty() ? std::nan("") 
 // ---------------------------------------------------------------- model A (Table 2, eqs. 43-44)
 
 TEST(PashkevichChain, ModelAStraightChainBucklesAtKthetaOverLAndFollowsEq43) {
-  if (!have("path")) GTEST_SKIP() << "analysis 'path' (issue 4) is not in this build";
+  ASSERT_TRUE(have("path")) << "analysis 'path' is not registered";
   const Path p = run_path("A_S_lumped.json", 1.0);
   ASSERT_FALSE(p.steps.empty());
   // F_cr = K_theta / L (reference note, section 6: closed form).
@@ -116,7 +116,7 @@ TEST(PashkevichChain, ModelAStraightChainBucklesAtKthetaOverLAndFollowsEq43) {
 }
 
 TEST(PashkevichChain, ModelAZPostureBifurcatesAt1p0330) {
-  if (!have("path")) GTEST_SKIP() << "analysis 'path' (issue 4) is not in this build";
+  ASSERT_TRUE(have("path")) << "analysis 'path' is not registered";
   const Path p = run_path("A_Z_lumped.json", 0.4);
   // delta_cr = 0.11093 L, F_cr = 1.0330 K_theta/L; P(0.2) = 1.0520, P(0.4) = 1.0976 on the
   // non-symmetric stable branch (reference note, section 6).
@@ -127,7 +127,7 @@ TEST(PashkevichChain, ModelAZPostureBifurcatesAt1p0330) {
 }
 
 TEST(PashkevichChain, ModelAPiPostureIsStableWithTable2Stiffness) {
-  if (!have("path")) GTEST_SKIP() << "analysis 'path' (issue 4) is not in this build";
+  ASSERT_TRUE(have("path")) << "analysis 'path' is not registered";
   const Path p = run_path("A_Pi_lumped.json", 1.0);
   EXPECT_TRUE(p.critical.empty());
   for (const auto& s : p.steps) EXPECT_TRUE(s.stable) << "delta " << s.delta;
@@ -162,7 +162,7 @@ TEST(PashkevichChain, ClosedFormsEq43AndEq44AreEquilibriaOfStatedStability) {
 // ---------------------------------------------------------------- models B and C (Tables 3, 4)
 
 TEST(PashkevichChain, ModelBStraightLumpedChainBucklesAtSqrt21Minus3) {
-  if (!have("buckling")) GTEST_SKIP() << "analysis 'buckling' (issue 4) is not in this build";
+  ASSERT_TRUE(have("buckling")) << "analysis 'buckling' is not registered";
   // One 6-D spring per link, T_3D = Tx Ty Rz: det = 0 at P = sqrt(21) - 3 (reference note, 8.1).
   // (The paper's Table 3 prints K_theta/L, carried over from model A.)
   EXPECT_NEAR(buckling_load("B_S_lumped.json"), std::sqrt(21.0) - 3.0, 2e-3);
@@ -171,7 +171,7 @@ TEST(PashkevichChain, ModelBStraightLumpedChainBucklesAtSqrt21Minus3) {
 }
 
 TEST(PashkevichChain, StraightBeamChainBucklesAsAnEulerColumnOfLength3L) {
-  if (!have("buckling")) GTEST_SKIP() << "analysis 'buckling' (issue 4) is not in this build";
+  ASSERT_TRUE(have("buckling")) << "analysis 'buckling' is not registered";
   // Pinned-pinned column of length 3L: P_E = pi^2 E I / (3L)^2 = (pi^2/9) K_theta/L in plane
   // (model B) and k_I times that out of plane (model C). N = 8 elements per link (24 in all):
   // cubic Euler-Bernoulli elements are within ~1e-6 there.
@@ -180,7 +180,7 @@ TEST(PashkevichChain, StraightBeamChainBucklesAsAnEulerColumnOfLength3L) {
 }
 
 TEST(PashkevichChain, ModelBPathsMatchTheReferenceCurves) {
-  if (!have("path")) GTEST_SKIP() << "analysis 'path' (issue 4) is not in this build";
+  ASSERT_TRUE(have("path")) << "analysis 'path' is not registered";
   {  // S: bifurcation at sqrt(21) - 3, then P(0.4) = 1.6832 (reference note, section 7).
     const Path p = run_path("B_S_lumped.json", 0.4);
     EXPECT_NEAR(first_critical(p), std::sqrt(21.0) - 3.0, 2e-3);
@@ -201,7 +201,7 @@ TEST(PashkevichChain, ModelBPathsMatchTheReferenceCurves) {
 }
 
 TEST(PashkevichChain, ModelCBucklesOutOfPlaneInAllPostures) {
-  if (!have("path")) GTEST_SKIP() << "analysis 'path' (issue 4) is not in this build";
+  ASSERT_TRUE(have("path")) << "analysis 'path' is not registered";
   // Reference note, section 7 (nu = 0.3, Roark J): S 0.25321, Pi 0.2720, Z 0.2679.
   EXPECT_NEAR(first_critical(run_path("C_S_lumped.json", 0.2)), 0.25321, 1e-3);
   const Path pi = run_path("C_Pi_lumped.json", 0.4);
@@ -254,7 +254,7 @@ double first_load_factor(const json& doc) {
 }  // namespace
 
 TEST(PashkevichChain, BeamMeshAndLumpedSpringCountConvergeToTheEulerLoad) {
-  if (!have("buckling")) GTEST_SKIP() << "analysis 'buckling' (issue 4) is not in this build";
+  ASSERT_TRUE(have("buckling")) << "analysis 'buckling' is not registered";
   const double PE = kPi * kPi / 9.0;  // pinned-pinned column of length 3L, E I = K_theta L
   // Beam model: N elements per link; cubic elements converge as O(N^-4) on the Euler load.
   double previous = 1.0;

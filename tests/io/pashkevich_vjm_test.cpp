@@ -196,7 +196,7 @@ bool have_path_analysis() { return beamfea::find_analysis_type("path") != nullpt
 }  // namespace
 
 TEST(PashkevichVjm, ImposedEndMotionGivesTheForceAndStabilityOfEqs6To7And22) {
-  if (!have_path_analysis()) GTEST_SKIP() << "analysis 'path' (issue 4) is not in this build";
+  ASSERT_TRUE(have_path_analysis()) << "analysis 'path' is not registered";
   // Model B, Pi posture: stable throughout (reference note, section 7: P(0.4) = 0.5893).
   const vjm::Chain c = vjm::chain_bc(kPosturePi.qa1, kPosturePi.qa2, kPosturePi.q10, spring_b());
   const double x0 = 1.0 + std::sqrt(3.0);
@@ -221,7 +221,7 @@ TEST(PashkevichVjm, ImposedEndMotionGivesTheForceAndStabilityOfEqs6To7And22) {
 // (y and z are held), so the engine's value is the slope of its own imposed-motion curve: the
 // three-point (second-order) derivative on its adaptive steps.
 TEST(PashkevichVjm, LoadedStiffnessAlongThePathMatchesEq28) {
-  if (!have_path_analysis()) GTEST_SKIP() << "analysis 'path' (issue 4) is not in this build";
+  ASSERT_TRUE(have_path_analysis()) << "analysis 'path' is not registered";
   const vjm::Chain c = vjm::chain_bc(kPosturePi.qa1, kPosturePi.qa2, kPosturePi.q10, spring_b());
   const double x0 = 1.0 + std::sqrt(3.0);
   const auto steps = engine_path("B_Pi_lumped.json", 0.4, 400);  // first step 0.001 L; the engine grows it
@@ -250,7 +250,7 @@ TEST(PashkevichVjm, LoadedStiffnessAlongThePathMatchesEq28) {
 }
 
 TEST(PashkevichVjm, LossOfStabilityOnTheFundamentalBranchMatchesEq22) {
-  if (!have_path_analysis()) GTEST_SKIP() << "analysis 'path' (issue 4) is not in this build";
+  ASSERT_TRUE(have_path_analysis()) << "analysis 'path' is not registered";
   // Model C, Pi posture, no branch switching: the planar branch loses stability out of plane at
   // delta_cr = 0.14074 L, P = 0.2720 (reference note, section 7).
   const vjm::Chain c = vjm::chain_bc(kPosturePi.qa1, kPosturePi.qa2, kPosturePi.q10, spring_c());
