@@ -62,8 +62,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
     if (c.contains("max")) o.max_arc_length = json_in::positive(c["max"], child(pc, "max"), "arc_length max");
   }
   if (c.contains("increments")) {
-    o.increments = json_in::integer(c["increments"], child(pc, "increments"), "increments");
-    if (o.increments < 1) throw InputError(child(pc, "increments"), "increments must be at least 1");
+    o.increments = json_in::integer_at_least(c["increments"], child(pc, "increments"), "increments", 1);
   }
   if (spec.contains("stop")) {
     const std::string ps = child(p, "stop");
@@ -75,13 +74,11 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
       o.stop_dof = dof_of(json_in::require(s, ps, "dof", "stop"), child(ps, "dof"));
     }
     if (s.contains("steps")) {
-      o.stop_steps = json_in::integer(s["steps"], child(ps, "steps"), "stop steps");
-      if (*o.stop_steps < 1) throw InputError(child(ps, "steps"), "stop steps must be at least 1");
+      o.stop_steps = json_in::integer_at_least(s["steps"], child(ps, "steps"), "stop steps", 1);
     }
   }
   if (spec.contains("max_steps")) {
-    o.max_steps = json_in::integer(spec["max_steps"], child(p, "max_steps"), "max_steps");
-    if (o.max_steps < 1) throw InputError(child(p, "max_steps"), "max_steps must be at least 1");
+    o.max_steps = json_in::integer_at_least(spec["max_steps"], child(p, "max_steps"), "max_steps", 1);
   }
   if (spec.contains("track")) {
     const auto& t = json_in::array(spec["track"], child(p, "track"), "track");
@@ -91,18 +88,16 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
   if (spec.contains("branch_switch")) o.branch_switch = json_in::boolean(spec["branch_switch"], child(p, "branch_switch"), "branch_switch");
   if (spec.contains("stability")) o.stability = json_in::boolean(spec["stability"], child(p, "stability"), "stability");
   if (spec.contains("desired_iterations")) {
-    o.desired_iterations = json_in::integer(spec["desired_iterations"], child(p, "desired_iterations"), "desired_iterations");
-    if (o.desired_iterations < 1) throw InputError(child(p, "desired_iterations"), "must be at least 1");
+    o.desired_iterations = json_in::integer_at_least(spec["desired_iterations"], child(p, "desired_iterations"), "desired_iterations", 1);
   }
   if (spec.contains("max_cuts")) {
-    o.max_cuts = json_in::integer(spec["max_cuts"], child(p, "max_cuts"), "max_cuts");
-    if (o.max_cuts < 0) throw InputError(child(p, "max_cuts"), "must not be negative");
+    o.max_cuts = json_in::integer_at_least(spec["max_cuts"], child(p, "max_cuts"), "max_cuts", 0);
   }
   if (spec.contains("imperfection")) {
     const std::string pi = child(p, "imperfection");
     const auto& im = json_in::object(spec["imperfection"], pi, "imperfection");
-    o.imperfection_mode = json_in::integer(json_in::require(im, pi, "mode", "imperfection"), child(pi, "mode"), "imperfection mode");
-    if (o.imperfection_mode < 1) throw InputError(child(pi, "mode"), "imperfection mode must be at least 1");
+    o.imperfection_mode =
+        json_in::integer_at_least(json_in::require(im, pi, "mode", "imperfection"), child(pi, "mode"), "imperfection mode", 1);
     o.imperfection_amplitude = json_in::number(json_in::require(im, pi, "amplitude", "imperfection"), child(pi, "amplitude"), "imperfection amplitude");
   }
   if (o.branch_switch && o.control != PathControl::ArcLength)
@@ -112,9 +107,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
 
 void check_path(const Model& model, const nlohmann::json& spec, const std::string& p) {
   parse(model, spec, p);
-  if (spec.contains("save_every"))
-    if (json_in::integer(spec["save_every"], child(p, "save_every"), "save_every") < 1)
-      throw InputError(child(p, "save_every"), "save_every must be at least 1");
+  if (spec.contains("save_every")) json_in::integer_at_least(spec["save_every"], child(p, "save_every"), "save_every", 1);
 }
 
 ojson node_map(const Model& model, const Eigen::VectorXd& raw) {

@@ -41,6 +41,12 @@ int integer(const json& v, const std::string& pointer, const std::string& what) 
   return v.get<int>();
 }
 
+int integer_at_least(const json& v, const std::string& pointer, const std::string& what, int min) {
+  const int x = integer(v, pointer, what);
+  if (x < min) throw InputError(pointer, what + " must be at least " + std::to_string(min) + " (got " + std::to_string(x) + ")");
+  return x;
+}
+
 bool boolean(const json& v, const std::string& pointer, const std::string& what) {
   if (!v.is_boolean()) throw InputError(pointer, what + ": expected true or false");
   return v.get<bool>();

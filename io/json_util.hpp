@@ -19,6 +19,8 @@ const json& require(const json& obj, const std::string& pointer, const std::stri
 double number(const json& v, const std::string& pointer, const std::string& what);
 double positive(const json& v, const std::string& pointer, const std::string& what);
 int integer(const json& v, const std::string& pointer, const std::string& what);
+// An integer no smaller than `min`.
+int integer_at_least(const json& v, const std::string& pointer, const std::string& what, int min);
 bool boolean(const json& v, const std::string& pointer, const std::string& what);
 std::string string(const json& v, const std::string& pointer, const std::string& what);
 // An id: a string or an integer, returned as a string.
