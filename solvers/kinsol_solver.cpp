@@ -1,4 +1,5 @@
 #include "solvers/kinsol_solver.hpp"
+#include "solvers/sparse_factor.hpp"
 
 #include <Eigen/UmfPackSupport>
 #include <fmt/format.h>
@@ -59,8 +60,7 @@ struct KinsolSolver::Impl {
   // Persisting between solves: the factorisation with its symbolic analysis.
   Eigen::UmfPackLU<SparseMatrix> lu;
   SparseMatrix J;
-  std::vector<int> outer, inner;  // pattern of the last analysed matrix
-  bool analysed = false;
+  PatternMemory pattern;  // of the last analysed matrix
   long n_symbolic = 0, n_numeric = 0;
 
   // Per solve.
@@ -71,21 +71,14 @@ struct KinsolSolver::Impl {
 
   int factorize() {
     J.makeCompressed();
-    const bool same = analysed && J.rows() == static_cast<Eigen::Index>(outer.size()) - 1 &&
-                      std::equal(outer.begin(), outer.end(), J.outerIndexPtr()) &&
-                      static_cast<Eigen::Index>(inner.size()) == J.nonZeros() &&
-                      std::equal(inner.begin(), inner.end(), J.innerIndexPtr());
-    if (!same) {
+    if (!pattern.same_or_remember(J)) {
       lu.analyzePattern(J);
-      outer.assign(J.outerIndexPtr(), J.outerIndexPtr() + J.outerSize() + 1);
-      inner.assign(J.innerIndexPtr(), J.innerIndexPtr() + J.nonZeros());
-      analysed = true;
       ++n_symbolic;
     }
     lu.factorize(J);
     ++n_numeric;
     if (lu.info() != Eigen::Success) {
-      analysed = false;  // retry a fresh analysis next time
+      pattern.forget();  // retry a fresh analysis next time
       return 1;          // recoverable: KINSOL may try again
     }
     return 0;

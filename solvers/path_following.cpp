@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "solvers/buckling.hpp"
 #include "solvers/eigen_lowest.hpp"
+#include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
 
 namespace beamfea {
@@ -58,19 +59,10 @@ class PatternFactor {
   bool factorize(const SparseMatrix& A0) {
     A_ = A0;
     A_.makeCompressed();
-    const bool same = analysed_ && A_.rows() + 1 == static_cast<Eigen::Index>(outer_.size()) &&
-                      std::equal(outer_.begin(), outer_.end(), A_.outerIndexPtr()) &&
-                      static_cast<Eigen::Index>(inner_.size()) == A_.nonZeros() &&
-                      std::equal(inner_.begin(), inner_.end(), A_.innerIndexPtr());
-    if (!same) {
-      solver_.analyzePattern(A_);
-      outer_.assign(A_.outerIndexPtr(), A_.outerIndexPtr() + A_.outerSize() + 1);
-      inner_.assign(A_.innerIndexPtr(), A_.innerIndexPtr() + A_.nonZeros());
-      analysed_ = true;
-    }
+    if (!pattern_.same_or_remember(A_)) solver_.analyzePattern(A_);
     solver_.factorize(A_);
     if (solver_.info() != Eigen::Success) {
-      analysed_ = false;
+      pattern_.forget();
       return false;
     }
     return true;
@@ -80,8 +72,7 @@ class PatternFactor {
  private:
   SparseMatrix A_;
   Solver solver_;
-  std::vector<int> outer_, inner_;
-  bool analysed_ = false;
+  PatternMemory pattern_;
 };
 using LdltFactor = PatternFactor<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>>;
 using LuFactor = PatternFactor<Eigen::UmfPackLU<SparseMatrix>>;

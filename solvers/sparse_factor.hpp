@@ -6,7 +6,9 @@
 // UMFPACK's LU otherwise. A zero-energy mode (mechanism) shows as a failed Cholesky or as a
 // reciprocal condition estimate below `singular_rcond`.
 #include <Eigen/Core>
+#include <algorithm>
 #include <memory>
+#include <vector>
 #include <string>
 
 #include "core/dof_map.hpp"
@@ -54,6 +56,31 @@ class SparseFactor {
   bool lu_ok_ = false;
   double rcond_ = 0.0;
   std::vector<int> unrestrained_;
+};
+
+// The sparsity pattern of the last compressed matrix given a symbolic analysis, so that a
+// factorisation reuses it while the pattern stays the same (assembly reuses its pattern too).
+class PatternMemory {
+ public:
+  // True when A (compressed) has the remembered pattern; otherwise remembers A's and returns false.
+  bool same_or_remember(const SparseMatrix& A) {
+    const bool same = known_ && A.rows() + 1 == static_cast<Eigen::Index>(outer_.size()) &&
+                      static_cast<Eigen::Index>(inner_.size()) == A.nonZeros() &&
+                      std::equal(outer_.begin(), outer_.end(), A.outerIndexPtr()) &&
+                      std::equal(inner_.begin(), inner_.end(), A.innerIndexPtr());
+    if (!same) {
+      outer_.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+      inner_.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+      known_ = true;
+    }
+    return same;
+  }
+  // Forces the next call to report a new pattern (after a failed factorisation).
+  void forget() { known_ = false; }
+
+ private:
+  std::vector<int> outer_, inner_;
+  bool known_ = false;
 };
 
 // S K S for S = scaling.
