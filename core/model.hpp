@@ -33,6 +33,7 @@ struct Material {
   std::string id;
   double E = 0.0;
   double G = 0.0;
+  double density = 0.0;   // mass per unit volume (0: massless); self-weight and mass matrices
 };
 
 struct Section {
@@ -122,6 +123,14 @@ struct NodalLoad {
   Vec3 moment = Vec3::Zero();
 };
 
+// A point mass at a node (payload, motor): mass, and optionally its 3x3 rotational inertia
+// about the node in global axes (symmetric positive semi-definite; zero when not given).
+struct PointMass {
+  int node = -1;
+  double mass = 0.0;
+  Mat3 inertia = Mat3::Zero();
+};
+
 // A generalised force (actuator torque or force) on a joint coordinate.
 struct JointLoad {
   int joint = -1;
@@ -140,6 +149,7 @@ struct Model {
   std::vector<Prescribed> prescribed;
   std::vector<NodalLoad> loads;
   std::vector<JointLoad> joint_loads;
+  std::vector<PointMass> masses;
 
   int find_node(const std::string& id) const;    // -1 if absent
   int find_member(const std::string& id) const;  // -1 if absent
