@@ -139,12 +139,12 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
   AnalysisOutcome out;
   out.result["type"] = "path";
   out.result["status"] = r.completed ? "ok" : "failed";
-  out.result["termination"] = r.termination;
+  out.result["termination"] = r.brief_report();
   out.result["completed"] = r.completed;
   out.result["control"] = control_name(o.control);
   out.result["free_dofs"] = r.free_dofs;
   out.failed = !r.completed;
-  out.message = fmt::format("path: {} steps, {}", r.steps.empty() ? 0 : r.steps.size() - 1, r.termination);
+  out.message = fmt::format("path: {} steps, {}", r.steps.empty() ? 0 : r.steps.size() - 1, r.brief_report());
   ojson steps = ojson::array();
   for (const auto& s : r.steps) {
     ojson j;
@@ -168,7 +168,7 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
   ojson cps = ojson::array();
   for (const auto& c : r.critical_points) {
     ojson j;
-    j["type"] = c.type;
+    j["type"] = to_string(c.type);
     j["load_factor"] = c.load_factor;
     j["step"] = c.step;
     j["control"] = c.control;

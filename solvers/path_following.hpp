@@ -34,100 +34,25 @@
 // point when the critical mode phi does work on the load pattern (|phi . p| > 1e-3 |phi| |p|), a
 // bifurcation otherwise. Branch switching (arc-length control): from the last stable state before a
 // bifurcation, the next predictor is the critical mode scaled to the arc length.
-#include <functional>
-#include <optional>
-#include <string>
-#include <vector>
-
+//
+// The parts, one job each (solvers/path/):
+//   path_types        options, per-step records, critical points, result (PathTermination)
+//   equilibrium       the bordered equilibrium system of a step, its Newton solve and tangent
+//   step_control      what a step prescribes, its size, cuts and adaptation
+//   predictor         the initial guess of a step along the tangent (or a given direction)
+//   stability         inertia, lowest eigenvalue, loaded Cartesian stiffness of a node
+//   critical_points   detection, location by bisection, classification, branch switching
+// follow_path (solvers/path_following.cpp) is the loop that composes them.
 #include "core/model.hpp"
-#include "solvers/kinsol_solver.hpp"
-#include "solvers/nonlinear_structure.hpp"
+#include "solvers/path/path_types.hpp"
+#include "solvers/path/stability.hpp"
 
 namespace beamfea {
 
-enum class PathControl { LoadFactor, Displacement, ArcLength };
-
-struct PathOptions {
-  PathControl control = PathControl::LoadFactor;
-  double target = 1.0;            // load control: final load factor; displacement: final value
-  int control_node = -1;          // displacement control
-  int control_dof = 0;            // 0..5
-  int increments = 20;            // load/displacement control: initial number of equal increments
-  double arc_length = 0.05;       // arc length: initial ds
-  double min_arc_length = 0.0;    // 0: arc_length * 1e-4
-  double max_arc_length = 0.0;    // 0: arc_length * 10
-  int desired_iterations = 5;
-  int max_cuts = 10;
-  int max_steps = 500;
-  // Stops.
-  std::optional<double> stop_load_factor;
-  int stop_node = -1, stop_dof = 0;
-  std::optional<double> stop_beyond;
-  std::optional<int> stop_steps;
-  // Stability and critical points.
-  bool stability = true;
-  bool locate_critical = true;
-  double critical_tolerance = 1e-3;  // of the step
-  bool branch_switch = false;
-  int stiffness_node = -1;
-  // Imperfection: seed the geometry with linear buckling mode `imperfection_mode` (1-based) with the
-  // largest nodal translation equal to `imperfection_amplitude`.
-  int imperfection_mode = 0;
-  double imperfection_amplitude = 0.0;
-  std::vector<int> track;           // nodes whose displacements are recorded
-  KinsolOptions newton;
-  std::function<void(const std::string&)> progress;  // may be empty
-  void validate(const Model& model) const;
-};
-
-struct PathStep {
-  int step = 0;
-  double load_factor = 0.0;
-  double control = 0.0;             // lambda (load control), the controlled DOF's value, or the path length
-  double arc_length = 0.0;          // step size used
-  long iterations = 0;
-  std::vector<Vec6> track;          // per tracked node: (x - X, log R)
-  double reaction = 0.0;            // imposed-motion control: reaction of the controlled DOF
-  int negative_eigenvalues = -1;
-  bool stable = false;
-  double min_eigenvalue = 0.0;
-  std::optional<Mat6> stiffness;
-  NonlinearState state;
-  std::vector<Vec12> end_forces;
-};
-
-struct CriticalPoint {
-  std::string type;                 // "limit_point" or "bifurcation"
-  double load_factor = 0.0;
-  int step = 0;                     // the step at whose end it was detected
-  double control = 0.0;
-  int negative_before = 0, negative_after = 0;
-  double load_work = 0.0;           // |phi . p| / (|phi| |p|)
-  Eigen::VectorXd mode;             // raw displacement (largest translation 1)
-  bool branch_switched = false;
-};
-
-struct PathResult {
-  std::vector<PathStep> steps;      // all converged steps; steps[0] is the initial state
-  std::vector<CriticalPoint> critical_points;
-  std::string termination;
-  bool completed = false;           // reached the target or a stop condition (not a failure)
-  int free_dofs = 0;
-  long factorizations = 0, symbolic_analyses = 0;
-};
-
-// The model (possibly with an imperfection applied) and the path. The returned Model copy is needed
-// to interpret node displacements when an imperfection moved nodes.
+// The path of the model (possibly with an imperfection applied, see PathOptions).
 PathResult follow_path(const Model& model, const PathOptions& options);
 
 // The model with buckling mode `mode` (1-based) added to its node positions at `amplitude`.
 Model imperfect_model(const Model& model, int mode, double amplitude);
-
-// Stability of a state: inertia and lowest eigenvalue of the constrained symmetrised tangent.
-struct StabilityInfo {
-  int negative = 0;
-  double min_eigenvalue = 0.0;
-  Eigen::VectorXd mode;             // over the free independent coordinates (Z applied), when asked
-};
 
 }  // namespace beamfea

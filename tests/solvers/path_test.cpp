@@ -71,13 +71,13 @@ TEST(PathFollowing, ElasticaByBranchSwitchingMatchesEllipticIntegrals) {
   o.stop_load_factor = 2.0;
   if (std::getenv("BEAMFEA_TEST_VERBOSE")) o.progress = [](const std::string& s) { std::cerr << s << "\n"; };
   const PathResult r = follow_path(m, o);
-  ASSERT_GE(r.critical_points.size(), 1u) << r.termination;
-  EXPECT_EQ(r.critical_points[0].type, "bifurcation");
+  ASSERT_GE(r.critical_points.size(), 1u) << r.brief_report();
+  EXPECT_EQ(r.critical_points[0].type, CriticalPointType::Bifurcation);
   EXPECT_NEAR(r.critical_points[0].load_factor, 1.0, 2e-3);
   EXPECT_TRUE(r.critical_points[0].branch_switched);
   int compared = 0;
   check_elastica(r, L, 3e-3, compared);
-  EXPECT_GE(compared, 5) << r.termination;
+  EXPECT_GE(compared, 5) << r.brief_report();
   // The post-buckling branch of the elastica is stable.
   for (const auto& s : r.steps)
     if (std::abs(s.track[0][5]) > 0.4) {
@@ -103,7 +103,7 @@ TEST(PathFollowing, ElasticaByImperfectionApproachesEllipticIntegrals) {
   const PathResult r = follow_path(m, o);
   int compared = 0;
   check_elastica(r, L, 1e-2, compared);
-  EXPECT_GE(compared, 5) << r.termination;
+  EXPECT_GE(compared, 5) << r.brief_report();
 }
 
 // A cantilever rolled into a full circle by the end moment M = 2 pi EI / L (the classic test of
@@ -125,7 +125,7 @@ TEST(PathFollowing, CantileverRollsIntoAFullCircle) {
   o.track = {m.find_node("B")};
   if (std::getenv("BEAMFEA_TEST_VERBOSE")) o.progress = [](const std::string& s) { std::cerr << s << "\n"; };
   const PathResult r = follow_path(m, o);
-  ASSERT_TRUE(r.completed) << r.termination;
+  ASSERT_TRUE(r.completed) << r.brief_report();
   ASSERT_NEAR(r.steps.back().load_factor, 1.0, 1e-12);
   const NonlinearState& s = r.steps.back().state;
   EXPECT_LT(s.x[m.find_node("B")].norm(), 1e-6 * L);
@@ -166,11 +166,11 @@ TEST(PathFollowing, LeesFrameThroughBothLimitPointsAndSnapBack) {
   o.stop_steps = 70;
   if (std::getenv("BEAMFEA_TEST_VERBOSE")) o.progress = [](const std::string& s) { std::cerr << s << "\n"; };
   const PathResult r = follow_path(m, o);
-  ASSERT_TRUE(r.completed) << r.termination;
+  ASSERT_TRUE(r.completed) << r.brief_report();
   std::vector<const CriticalPoint*> limits;
   for (const auto& c : r.critical_points)
-    if (c.type == "limit_point") limits.push_back(&c);
-  ASSERT_GE(limits.size(), 2u) << r.critical_points.size() << " critical points; " << r.termination;
+    if (c.type == CriticalPointType::LimitPoint) limits.push_back(&c);
+  ASSERT_GE(limits.size(), 2u) << r.critical_points.size() << " critical points; " << r.brief_report();
   EXPECT_NEAR(limits[0]->load_factor, 1.85, 0.02 * 1.85);
   EXPECT_LT(limits[1]->load_factor, 0.0);  // the second limit point lies under a negative load
   double lmax = -1e300;
@@ -207,7 +207,7 @@ TEST(PathFollowing, ImposedMotionOfAChainEndGivesTheSpringReaction) {
   o.stiffness_node = m.find_node("N1");
   if (std::getenv("BEAMFEA_TEST_VERBOSE")) o.progress = [](const std::string& s) { std::cerr << s << "\n"; };
   const PathResult r = follow_path(m, o);
-  ASSERT_TRUE(r.completed) << r.termination;
+  ASSERT_TRUE(r.completed) << r.brief_report();
   const auto& s = r.steps.back();
   const double q = std::asin(0.3 / L);
   EXPECT_NEAR(s.track[0][1], 0.3, 1e-10);
@@ -260,11 +260,11 @@ TEST(PathFollowing, ArchBifurcationThenLimitPointAreClassified) {
   o.max_steps = 25;
   if (std::getenv("BEAMFEA_TEST_VERBOSE")) o.progress = [](const std::string& s) { std::cerr << s << "\n"; };
   const PathResult r = follow_path(m, o);
-  ASSERT_GE(r.critical_points.size(), 2u) << r.termination;
+  ASSERT_GE(r.critical_points.size(), 2u) << r.brief_report();
   const auto& bif = r.critical_points[0];
   const auto& lim = r.critical_points[1];
-  EXPECT_EQ(bif.type, "bifurcation");
-  EXPECT_EQ(lim.type, "limit_point");
+  EXPECT_EQ(bif.type, CriticalPointType::Bifurcation);
+  EXPECT_EQ(lim.type, CriticalPointType::LimitPoint);
   EXPECT_LT(bif.load_factor, lim.load_factor);
   EXPECT_NEAR(bif.load_factor / b.load_factors[0], 1.0, 0.02);
   const int crown = 6 * m.find_node("n10");
@@ -306,7 +306,7 @@ TEST(PathFollowing, VirtualSpringChainStiffnessAtStartEqualsLinearStiffness) {
   o.track = {m.find_node("E")};
   o.stiffness_node = m.find_node("E");
   const PathResult r = follow_path(m, o);
-  ASSERT_TRUE(r.completed) << r.termination;
+  ASSERT_TRUE(r.completed) << r.brief_report();
   ASSERT_TRUE(r.steps[0].stiffness.has_value());
   const Mat6& Kc = *r.steps[0].stiffness;
   EXPECT_LT((Kc - lin.K).cwiseAbs().maxCoeff(), 1e-8 * lin.K.cwiseAbs().maxCoeff());

@@ -1,0 +1,59 @@
+#pragma once
+// Critical points of a path: detection, location, classification and branch switching.
+//
+// Detection: a change of the negative-eigenvalue count of the constrained tangent between two
+// converged steps (solvers/path/stability.hpp). Location: bisection of the step (arc length, load
+// factor or control value) to `critical_tolerance` of the step, each trial state solved from the
+// step's start along the step's direction. Classification: a limit point when the critical mode phi
+// does work on the load pattern (|phi . p| > kLimitLoadWork |phi| |p|), a bifurcation otherwise.
+// Branch switching (arc-length control): from the last stable state before a bifurcation, the next
+// predictor is the critical mode scaled to the arc length (tried at 1, 1/2, 1/4, 1/8 of the step).
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+
+#include "solvers/kinsol_solver.hpp"
+#include "solvers/path/equilibrium.hpp"
+#include "solvers/path/path_types.hpp"
+#include "solvers/path/predictor.hpp"
+#include "solvers/path/stability.hpp"
+
+namespace beamfea {
+
+// The mode's normalised work on the load pattern above which a critical point is a limit point.
+inline constexpr double kLimitLoadWork = 1e-3;
+// At most this many bisections (the tolerance usually stops them first: 2^-10 < 1e-3).
+inline constexpr int kMaxBisections = 40;
+
+// The parts a critical-point search works with.
+struct CriticalPointParts {
+  const PathOptions& options;
+  const PathEquilibrium& eq;
+  KinsolSolver& kin;
+  StabilityAnalyzer& stability;
+  const Predictor& predictor;
+};
+
+// A critical point between two converged states, located and classified.
+struct LocatedCriticalPoint {
+  CriticalPoint point;
+  Converged before, after;    // the bracket at the end of the bisection (same count as the start / end)
+  double lo = 0.0, hi = 1.0;  // the bracket as fractions of the step
+  Eigen::VectorXd mode;       // the critical mode over the free coordinates (empty when not found)
+};
+
+// cur -> next: the step of signed size h (direction dir under arc length); neg_before/after the
+// negative-eigenvalue counts at cur and next; with_control: the controlled DOF is held (displacement
+// control). control_at(c, fraction): the path's control value of a state at that fraction of the step.
+LocatedCriticalPoint locate_critical_point(const CriticalPointParts& parts, const Converged& cur, const Converged& next,
+                                           double h, const Eigen::VectorXd& dir, int neg_before, int neg_after,
+                                           bool with_control,
+                                           const std::function<double(const Converged&, double)>& control_at);
+
+// Branch switching from the last stable state `from` along `mode` (free coordinates) with the arc
+// length |h| (or a fraction of it). On success, `out` is the first state on the secondary branch,
+// `ds` the arc length used and `dir` the direction of that step.
+bool switch_branch(const CriticalPointParts& parts, const Converged& from, const Eigen::VectorXd& mode, double h,
+                   Converged& out, double& ds, Eigen::VectorXd& dir, std::string& report);
+
+}  // namespace beamfea

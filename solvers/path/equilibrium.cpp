@@ -1,0 +1,279 @@
+#include "solvers/path/equilibrium.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "solvers/structure.hpp"
+
+namespace beamfea {
+
+namespace {
+// Forces below this fraction of the stiffest element's force for a displacement of L are round-off:
+// the floor of the force scale of the convergence test on models loaded lightly or not at all.
+constexpr double kRoundOffForceRatio = 1e-5;
+}  // namespace
+
+PathEquilibrium::PathEquilibrium(const Model& model, const PathOptions& o) : ns(model) {
+  const DofMap& map = ns.reference_map();
+  L = ns.length_scale();
+  gen_to_free.assign(ns.size(), -1);
+  for (int i = 0; i < ns.size(); ++i) {
+    if (map.prescribed_index(ns.gens()[i].raw) >= 0) continue;
+    gen_to_free[i] = static_cast<int>(free.size());
+    free.push_back(i);
+  }
+  for (int p = 0; p < map.prescribed_size(); ++p) {
+    const auto& pv = map.prescribed()[p];
+    if (pv.dof.owner == DofRef::Owner::Node && map.is_slave(pv.dof.index)) cons.push_back({pv.dof.index, pv.dof.comp, pv.value});
+  }
+  f_ext = external_force(model, map);
+  has_loads = f_ext.size() > 0 && f_ext.cwiseAbs().maxCoeff() > 0.0;
+  if (o.control == PathControl::Displacement) {
+    const int raw = map.raw_node(o.control_node, o.control_dof);
+    if (map.prescribed_index(raw) >= 0)
+      throw ModelError(model.describe({DofRef::Owner::Node, o.control_node, o.control_dof}),
+                       "is supported or prescribed: it cannot be the controlled DOF");
+    ctrl = {o.control_node, o.control_dof, 0.0};
+  }
+  if (!has_loads && o.control != PathControl::Displacement)
+    throw ModelError("", "path: the model has no loads; use displacement control to impose a motion");
+  nf = static_cast<int>(free.size());
+  nc = static_cast<int>(cons.size());
+  // Reference force for the convergence test.
+  double fmax = 0.0;
+  for (int n = 0; n < static_cast<int>(model.nodes.size()); ++n) {
+    fmax = std::max(fmax, f_ext.segment<3>(6 * n).cwiseAbs().maxCoeff());
+    fmax = std::max(fmax, f_ext.segment<3>(6 * n + 3).cwiseAbs().maxCoeff() / L);
+  }
+  for (int r = 6 * static_cast<int>(model.nodes.size()); r < map.raw_size(); ++r) fmax = std::max(fmax, std::abs(f_ext[r]));
+  const NonlinearState s0 = ns.reference_state();
+  const auto ev = ns.evaluate(s0, Eigen::VectorXd::Zero(map.raw_size()), true);
+  double kmax = 0.0;
+  for (int i = 0; i < ns.size(); ++i) {
+    const double k = std::abs(ev.tangent.coeff(i, i)) / (ns.is_rotation(i) ? L * L : 1.0);
+    kmax = std::max(kmax, k);
+  }
+  F_ref = std::max(fmax, kRoundOffForceRatio * kmax * L);
+  if (!(F_ref > 0.0)) F_ref = 1.0;
+}
+
+double PathEquilibrium::weighted_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const {
+  double s = 0.0;
+  for (int k = 0; k < nf; ++k) s += weight(free[k]) * a[k] * b[k];
+  return s;
+}
+
+double PathEquilibrium::cvalue(const NonlinearState& st, const ConstraintDef& c) const {
+  if (c.comp < 3) return st.x[c.node][c.comp] - ns.model().nodes[c.node].x[c.comp];
+  return log_so3(st.R[c.node])[c.comp - 3];
+}
+
+Eigen::VectorXd PathEquilibrium::delta_gens(const Eigen::VectorXd& u) const {
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(ns.size());
+  for (int k = 0; k < nf; ++k) d[free[k]] = u[k];
+  return d;
+}
+
+Eigen::VectorXd PathEquilibrium::start_unknowns(const Converged& c, const StepSpec& s) const {
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(unknowns(s));
+  u.segment(nf, nc) = c.mu;
+  if (s.kind != StepKind::Load) u[nf + nc] = extra_is_lambda(s) ? c.lambda : c.extra_mu;
+  return u;
+}
+
+PathEquilibrium::Eval PathEquilibrium::state_of(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u) const {
+  Eval e;
+  e.st = ns.retract(start.state, delta_gens(u));
+  e.lambda = s.kind == StepKind::Load ? s.lambda : (extra_is_lambda(s) ? u[nf + nc] : 0.0);
+  e.f_app = e.lambda * f_ext;
+  const DofMap& map = ns.reference_map();
+  for (int c = 0; c < nc; ++c) e.f_app[map.raw_node(cons[c].node, cons[c].comp)] += u[nf + c];
+  if (s.kind == StepKind::Control && !has_loads) e.f_app[map.raw_node(ctrl.node, ctrl.comp)] += u[nf + nc];
+  return e;
+}
+
+void PathEquilibrium::residual(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, Eigen::VectorXd& F) const {
+  const Eval e = state_of(start, s, u);
+  const auto ev = ns.evaluate(e.st, e.f_app, false);
+  F.resize(unknowns(s));
+  for (int k = 0; k < nf; ++k) F[k] = ev.residual[free[k]];
+  for (int c = 0; c < nc; ++c) F[nf + c] = cvalue(e.st, cons[c]) - cons[c].target;
+  if (s.kind == StepKind::Control) F[nf + nc] = cvalue(e.st, ctrl) - s.control;
+  if (s.kind == StepKind::Arc) {
+    const double dl = e.lambda - start.lambda;
+    F[nf + nc] = (weighted_dot(u, u) + psi2 * dl * dl - s.ds * s.ds) / (2.0 * s.ds);
+  }
+}
+
+std::vector<std::pair<int, double>> PathEquilibrium::crow(const NonlinearState& st, const std::vector<Twist>& tw,
+                                                          const ConstraintDef& c, const SparseMatrix* D) const {
+  std::vector<std::pair<int, double>> out;
+  const auto row = ns.raw_row(st, tw, c.node, c.comp);
+  if (!D) {
+    for (const auto& [g, v] : row)
+      if (gen_to_free[g] >= 0) out.emplace_back(gen_to_free[g], v);
+    return out;
+  }
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(ns.size());
+  for (const auto& [g, v] : row) r[g] = v;
+  const Eigen::VectorXd rd = SparseMatrix(D->transpose()) * r;
+  for (int k = 0; k < nf; ++k)
+    if (rd[free[k]] != 0.0) out.emplace_back(k, rd[free[k]]);
+  return out;
+}
+
+void PathEquilibrium::jacobian(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, SparseMatrix& J) const {
+  const Eval e = state_of(start, s, u);
+  const auto ev = ns.evaluate(e.st, e.f_app, true);
+  const Eigen::VectorXd dg = delta_gens(u);
+  const SparseMatrix D = ns.retraction_jacobian(dg);
+  const SparseMatrix KD = ev.tangent * D;
+  const auto tw = ns.twists(e.st);
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(KD.nonZeros() + 16 * (nc + 1));
+  for (int j = 0; j < KD.outerSize(); ++j) {
+    if (gen_to_free[j] < 0) continue;
+    for (SparseMatrix::InnerIterator it(KD, j); it; ++it)
+      if (gen_to_free[it.row()] >= 0) t.emplace_back(gen_to_free[it.row()], gen_to_free[j], it.value());
+  }
+  for (int c = 0; c < nc; ++c) {
+    for (const auto& [k, v] : crow(e.st, tw, cons[c], nullptr)) t.emplace_back(k, nf + c, -v);
+    for (const auto& [k, v] : crow(e.st, tw, cons[c], &D)) t.emplace_back(nf + c, k, v);
+  }
+  const int x = nf + nc;
+  if (s.kind != StepKind::Load) {
+    if (extra_is_lambda(s)) {
+      const Eigen::VectorXd p = ns.reduce(e.st, tw, f_ext);
+      for (int k = 0; k < nf; ++k)
+        if (p[free[k]] != 0.0) t.emplace_back(k, x, -p[free[k]]);
+    } else {
+      for (const auto& [k, v] : crow(e.st, tw, ctrl, nullptr)) t.emplace_back(k, x, -v);
+    }
+    if (s.kind == StepKind::Control) {
+      for (const auto& [k, v] : crow(e.st, tw, ctrl, &D)) t.emplace_back(x, k, v);
+    } else {
+      for (int k = 0; k < nf; ++k) t.emplace_back(x, k, weight(free[k]) * u[k] / s.ds);
+      t.emplace_back(x, x, psi2 * (e.lambda - start.lambda) / s.ds);
+    }
+    t.emplace_back(x, x, 0.0);
+  }
+  // Explicit zeros on the diagonal keep the pattern (and UMFPACK's symbolic analysis) constant.
+  for (int k = 0; k < x; ++k) t.emplace_back(k, k, 0.0);
+  J.resize(unknowns(s), unknowns(s));
+  J.setFromTriplets(t.begin(), t.end());
+}
+
+Eigen::VectorXd PathEquilibrium::fscale(const StepSpec& s) const {
+  Eigen::VectorXd f(unknowns(s));
+  for (int k = 0; k < nf; ++k) f[k] = 1.0 / (F_ref * (ns.is_rotation(free[k]) ? L : 1.0));
+  for (int c = 0; c < nc; ++c) f[nf + c] = cons[c].comp < 3 ? 1.0 / L : 1.0;
+  if (s.kind == StepKind::Control) f[nf + nc] = ctrl.comp < 3 ? 1.0 / L : 1.0;
+  if (s.kind == StepKind::Arc) f[nf + nc] = 1.0 / s.ds;
+  return f;
+}
+
+bool PathEquilibrium::solve(KinsolSolver& kin, const Converged& start, const StepSpec& s, Eigen::VectorXd u, Converged& out,
+                            std::string& report) const {
+  KinsolSummary sum;
+  try {
+    sum = kin.solve(
+        u, fscale(s), [&](const Eigen::VectorXd& uu, Eigen::VectorXd& F) { residual(start, s, uu, F); },
+        [&](const Eigen::VectorXd& uu, const Eigen::VectorXd&, SparseMatrix& J) { jacobian(start, s, uu, J); });
+  } catch (const ModelError& e) {  // e.g. a co-rotated frame that cannot be defined: a failed step
+    report = e.what();
+    return false;
+  }
+  report = sum.report();
+  if (sum.status != KinsolStatus::Converged) return false;
+  const Eval e = state_of(start, s, u);
+  out.state = e.st;
+  out.lambda = e.lambda;
+  out.mu = u.segment(nf, nc);
+  out.extra_mu = (s.kind == StepKind::Control && !has_loads) ? u[nf + nc] : 0.0;
+  out.iterations = sum.iterations;
+  return true;
+}
+
+Eigen::VectorXd PathEquilibrium::load_pattern(const NonlinearState& st) const {
+  const Eigen::VectorXd p = ns.reduce(st, ns.twists(st), f_ext);
+  Eigen::VectorXd pf(nf);
+  for (int k = 0; k < nf; ++k) pf[k] = p[free[k]];
+  return pf;
+}
+
+Eigen::VectorXd PathEquilibrium::tangent(const Converged& c) const {
+  StepSpec s;
+  if (has_loads) {
+    s.kind = StepKind::Load;
+    s.lambda = c.lambda;
+  } else {
+    s.kind = StepKind::Control;
+    s.control = cvalue(c.state, ctrl);
+  }
+  const Eigen::VectorXd u0 = start_unknowns(c, s);
+  SparseMatrix J;
+  jacobian(c, s, u0, J);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(J.rows());
+  if (has_loads) {
+    rhs.head(nf) = load_pattern(c.state);
+  } else {
+    rhs[nf + nc] = 1.0;
+  }
+  if (!predictor_lu_.factorize(J)) return {};
+  Eigen::VectorXd t = predictor_lu_.solver().solve(rhs);
+  if (!t.allFinite()) return {};
+  return t;
+}
+
+Eigen::VectorXd PathEquilibrium::increment(const Converged& a, const Converged& b) const {
+  Eigen::VectorXd du(nf);
+  const auto& gens = ns.gens();
+  for (int k = 0; k < nf; ++k) {
+    const auto& g = gens[free[k]];
+    switch (g.kind) {
+      case NonlinearStructure::GenKind::NodeTranslation: du[k] = b.state.x[g.owner][g.comp] - a.state.x[g.owner][g.comp]; break;
+      case NonlinearStructure::GenKind::NodeSpin:
+        du[k] = log_so3(b.state.R[g.owner] * a.state.R[g.owner].transpose())[g.comp];
+        break;
+      case NonlinearStructure::GenKind::JointScalar:
+      case NonlinearStructure::GenKind::JointSpherical: du[k] = b.state.q[g.owner][g.comp] - a.state.q[g.owner][g.comp]; break;
+    }
+  }
+  return du;
+}
+
+Eigen::MatrixXd PathEquilibrium::constraint_matrix(const NonlinearState& st, bool with_control) const {
+  const auto tw = ns.twists(st);
+  const int m = nc + (with_control ? 1 : 0);
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, nf);
+  for (int c = 0; c < m; ++c)
+    for (const auto& [k, v] : crow(st, tw, c < nc ? cons[c] : ctrl, nullptr)) C(c, k) += v;
+  return C;
+}
+
+bool PathEquilibrium::initial_state(KinsolSolver& kin, Converged& out, std::string& report) const {
+  Converged cur;
+  const DofMap& map = ns.reference_map();
+  bool nonzero = false;
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(ns.size());
+  for (int i = 0; i < ns.size(); ++i) {
+    const int p = map.prescribed_index(ns.gens()[i].raw);
+    if (p >= 0 && map.prescribed()[p].value != 0.0) {
+      d[i] = map.prescribed()[p].value;
+      nonzero = true;
+    }
+  }
+  cur.state = ns.retract(ns.reference_state(), d);
+  cur.mu = Eigen::VectorXd::Zero(nc);
+  for (const auto& c : cons) nonzero = nonzero || c.target != 0.0;
+  if (!nonzero) {
+    out = cur;
+    return true;
+  }
+  StepSpec s;
+  s.kind = StepKind::Load;
+  return solve(kin, cur, s, start_unknowns(cur, s), out, report);
+}
+
+}  // namespace beamfea

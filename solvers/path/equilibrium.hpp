@@ -1,0 +1,123 @@
+#pragma once
+// The bordered equilibrium system of one path step, solved by KINSOL (solvers/kinsol_solver.hpp).
+//
+// Unknowns u = [Delta over the free independent coordinates (nf), mu over the slave constraints
+// (nc), extra], the state being start (+) Delta (solvers/nonlinear_structure.hpp's retraction):
+//   r(x, lambda) = T^T (f_int - lambda f_ext - sum mu_c e_c [- extra e_ctrl]) = 0   (nf rows)
+//   c(x) - c_0 = 0                                 supports/imposed values on slave nodes (nc rows)
+//   the step's extra equation (StepKind):
+//     Load      none (lambda given);
+//     Control   u_ctrl(x) - s = 0, extra = lambda (with loads) or the controlled DOF's reaction
+//               (imposed motion, no loads);
+//     Arc       Crisfield's spherical constraint (Crisfield 1981; Crisfield 1991, vol. 1, eq. 9.13)
+//               (|Delta|_W^2 + psi^2 dlambda^2 - ds^2) / (2 ds) = 0, W: 1 on translations, L^2 on
+//               rotations; psi^2 is set by the step control (solvers/path/step_control.hpp).
+// The Jacobian is K_t D(Delta) bordered by the constraint rows and columns, D the derivative of the
+// retraction. The convergence test scales the rows (fscale) so that KINSOL's tolerance is relative
+// to the problem: forces by F_ref (the reference load, or the stiffest element's force for a
+// displacement of L where the load is smaller), constraint rows by L (translations), the arc row by ds.
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/model.hpp"
+#include "solvers/kinsol_solver.hpp"
+#include "solvers/nonlinear_structure.hpp"
+#include "solvers/path/path_types.hpp"
+#include "solvers/path/pattern_factor.hpp"
+
+namespace beamfea {
+
+// A raw DOF held at a value: supports or imposed values on slave nodes, or the controlled DOF.
+struct ConstraintDef {
+  int node = -1, comp = 0;
+  double target = 0.0;
+};
+
+enum class StepKind { Load, Control, Arc };
+
+// What one step solves for.
+struct StepSpec {
+  StepKind kind = StepKind::Load;
+  double lambda = 0.0;        // Load: the load factor; otherwise the start value
+  double control = 0.0;       // Control: the target of the controlled DOF
+  double ds = 0.0;            // Arc
+};
+
+// A converged equilibrium state.
+struct Converged {
+  NonlinearState state;
+  double lambda = 0.0;
+  Eigen::VectorXd mu;         // slave constraint multipliers
+  double extra_mu = 0.0;      // controlled DOF's reaction (imposed motion)
+  long iterations = 0;
+};
+
+class PathEquilibrium {
+ public:
+  // The controlled DOF is taken from the options under displacement control. Throws ModelError when
+  // the controlled DOF is supported, or when the model has no loads and the control is not a
+  // displacement.
+  PathEquilibrium(const Model& model, const PathOptions& o);
+
+  int unknowns(const StepSpec& s) const { return nf + nc + (s.kind == StepKind::Load ? 0 : 1); }
+  bool extra_is_lambda(const StepSpec& s) const {
+    return s.kind == StepKind::Arc || (s.kind == StepKind::Control && has_loads);
+  }
+  // Arc-length weight of a free coordinate: 1 on translations, L^2 on rotations.
+  double weight(int gen) const { return ns.is_rotation(gen) ? L * L : 1.0; }
+  // sum_k W_k a_k b_k over the free coordinates of a and b (the first nf entries).
+  double weighted_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const;
+
+  // The value of a constrained raw DOF at a state (translation from the reference, or log R).
+  double cvalue(const NonlinearState& st, const ConstraintDef& c) const;
+  double control_value(const NonlinearState& st) const { return cvalue(st, ctrl); }
+  Eigen::VectorXd delta_gens(const Eigen::VectorXd& u) const;
+  // Unknowns at the start of a step.
+  Eigen::VectorXd start_unknowns(const Converged& c, const StepSpec& s) const;
+
+  struct Eval {
+    NonlinearState st;
+    double lambda;
+    Eigen::VectorXd f_app;
+  };
+  Eval state_of(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u) const;
+  void residual(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, Eigen::VectorXd& F) const;
+  void jacobian(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, SparseMatrix& J) const;
+  Eigen::VectorXd fscale(const StepSpec& s) const;
+  // Solves one step from `start` with initial guess u (the predictor). False on failure, with the
+  // solver's report.
+  bool solve(KinsolSolver& kin, const Converged& start, const StepSpec& s, Eigen::VectorXd u, Converged& out,
+             std::string& report) const;
+  // Tangent direction at a converged state: [dDelta (nf), dmu (nc), dextra] per unit lambda (loads)
+  // or per unit control (imposed motion). Empty when the tangent is singular.
+  Eigen::VectorXd tangent(const Converged& c) const;
+  // Increment of the free coordinates from a to b (translations exact, spins by the logarithm).
+  Eigen::VectorXd increment(const Converged& a, const Converged& b) const;
+  // Reduced load pattern T^T f_ext over the free coordinates at a state.
+  Eigen::VectorXd load_pattern(const NonlinearState& st) const;
+
+  // Sparse row of a constraint over free gens at a state (D applied when given).
+  std::vector<std::pair<int, double>> crow(const NonlinearState& st, const std::vector<Twist>& tw,
+                                           const ConstraintDef& c, const SparseMatrix* D) const;
+  // Constraint rows (nc [+ control]) over the free gens at a state, dense.
+  Eigen::MatrixXd constraint_matrix(const NonlinearState& st, bool with_control) const;
+  // The state at the start of the path: the reference with the prescribed independent values
+  // imposed (and the slave constraints solved for when any is non-zero). False on failure.
+  bool initial_state(KinsolSolver& kin, Converged& out, std::string& report) const;
+
+  NonlinearStructure ns;
+  double L = 1.0, F_ref = 1.0, psi2 = 0.0;
+  std::vector<int> free, gen_to_free;
+  std::vector<ConstraintDef> cons;
+  ConstraintDef ctrl;
+  Eigen::VectorXd f_ext;
+  bool has_loads = false;
+  int nf = 0, nc = 0;
+
+ private:
+  mutable LuFactor predictor_lu_;   // tangent predictor: symbolic analysis kept along the path
+};
+
+}  // namespace beamfea

@@ -1,0 +1,114 @@
+#pragma once
+// Options in, summary out, for path following (solvers/path_following.hpp): the plain options
+// struct with its validate(), the per-step record, the critical points and the result with its
+// termination as an enum class (PathTermination) and a one-line brief_report().
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/model.hpp"
+#include "solvers/kinsol_solver.hpp"
+#include "solvers/nonlinear_structure.hpp"
+
+namespace beamfea {
+
+enum class PathControl { LoadFactor, Displacement, ArcLength };
+
+struct PathOptions {
+  PathControl control = PathControl::LoadFactor;
+  double target = 1.0;            // load control: final load factor; displacement: final value
+  int control_node = -1;          // displacement control
+  int control_dof = 0;            // 0..5
+  int increments = 20;            // load/displacement control: initial number of equal increments
+  double arc_length = 0.05;       // arc length: initial ds
+  double min_arc_length = 0.0;    // 0: arc_length * kDefaultMinStepRatio
+  double max_arc_length = 0.0;    // 0: arc_length * kDefaultMaxArcRatio
+  int desired_iterations = 5;
+  int max_cuts = 10;
+  int max_steps = 500;
+  // Stops.
+  std::optional<double> stop_load_factor;
+  int stop_node = -1, stop_dof = 0;
+  std::optional<double> stop_beyond;
+  std::optional<int> stop_steps;
+  // Stability and critical points.
+  bool stability = true;
+  bool locate_critical = true;
+  double critical_tolerance = 1e-3;  // of the step
+  bool branch_switch = false;
+  int stiffness_node = -1;
+  // Imperfection: seed the geometry with linear buckling mode `imperfection_mode` (1-based) with the
+  // largest nodal translation equal to `imperfection_amplitude`.
+  int imperfection_mode = 0;
+  double imperfection_amplitude = 0.0;
+  std::vector<int> track;           // nodes whose displacements are recorded
+  KinsolOptions newton;
+  std::function<void(const std::string&)> progress;  // may be empty
+  void validate(const Model& model) const;
+};
+
+struct PathStep {
+  int step = 0;
+  double load_factor = 0.0;
+  double control = 0.0;             // lambda (load control), the controlled DOF's value, or the path length
+  double arc_length = 0.0;          // step size used
+  long iterations = 0;
+  std::vector<Vec6> track;          // per tracked node: (x - X, log R)
+  double reaction = 0.0;            // imposed-motion control: reaction of the controlled DOF
+  int negative_eigenvalues = -1;
+  bool stable = false;
+  double min_eigenvalue = 0.0;
+  std::optional<Mat6> stiffness;
+  NonlinearState state;
+  std::vector<Vec12> end_forces;
+};
+
+enum class CriticalPointType { LimitPoint, Bifurcation };
+// "limit_point" or "bifurcation" (the result file's contract).
+const char* to_string(CriticalPointType t);
+
+struct CriticalPoint {
+  CriticalPointType type = CriticalPointType::Bifurcation;
+  double load_factor = 0.0;
+  int step = 0;                     // the step at whose end it was detected
+  double control = 0.0;
+  int negative_before = 0, negative_after = 0;
+  double load_work = 0.0;           // |phi . p| / (|phi| |p|)
+  Eigen::VectorXd mode;             // raw displacement (largest translation 1)
+  bool branch_switched = false;
+};
+
+// Why the path stopped. The first four are a completed path (the target or a stop condition was
+// reached); the others are an incomplete one.
+enum class PathTermination {
+  TargetReached,        // load or displacement control reached its target
+  StopLoadFactor,       // "stop": {"load_factor"}
+  StopBeyond,           // "stop": {"node", "dof", "beyond"}
+  StopSteps,            // "stop": {"steps"}
+  MaxSteps,             // max_steps converged steps without reaching the target or a stop
+  NoConvergence,        // max_cuts step cuts (or the minimum step) without convergence
+  NoForwardSolution,    // arc length: only solutions behind the start were found
+  InitialStateFailed,   // the prescribed values could not be imposed at the start
+};
+bool is_completed(PathTermination t);
+
+struct PathResult {
+  std::vector<PathStep> steps;      // all converged steps; steps[0] is the initial state
+  std::vector<CriticalPoint> critical_points;
+  PathTermination termination = PathTermination::InitialStateFailed;
+  bool completed = false;           // is_completed(termination)
+  // What brief_report() quotes: the stop value or the load factor where it failed, a count (stop
+  // steps, max_steps, cuts), a label (the stop's node and DOF) or the Newton solver's report.
+  double termination_value = 0.0;
+  int termination_count = 0;
+  std::string termination_detail;
+  int free_dofs = 0;
+  long factorizations = 0, symbolic_analyses = 0;
+  // One line: why the path stopped (the result file's "termination").
+  std::string brief_report() const;
+  // Sets the termination and `completed`.
+  void finish(PathTermination t, double value = 0.0, int count = 0, std::string detail = {});
+};
+
+}  // namespace beamfea

@@ -1,0 +1,36 @@
+#pragma once
+// A sparse factorisation whose symbolic analysis is kept while the sparsity pattern does not change
+// (the path's tangent predictor LU and the inertia LDL^T refactor the same pattern at every step).
+#include <Eigen/SparseCholesky>
+#include <Eigen/UmfPackSupport>
+
+#include "solvers/sparse_factor.hpp"
+
+namespace beamfea {
+
+template <class Solver>
+class PatternFactor {
+ public:
+  // Returns false when the numeric factorisation fails.
+  bool factorize(const SparseMatrix& A0) {
+    A_ = A0;
+    A_.makeCompressed();
+    if (!pattern_.same_or_remember(A_)) solver_.analyzePattern(A_);
+    solver_.factorize(A_);
+    if (solver_.info() != Eigen::Success) {
+      pattern_.forget();
+      return false;
+    }
+    return true;
+  }
+  const Solver& solver() const { return solver_; }
+
+ private:
+  SparseMatrix A_;
+  Solver solver_;
+  PatternMemory pattern_;
+};
+using LdltFactor = PatternFactor<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>>;
+using LuFactor = PatternFactor<Eigen::UmfPackLU<SparseMatrix>>;
+
+}  // namespace beamfea

@@ -1,0 +1,181 @@
+#include "solvers/path/stability.hpp"
+
+#include <Eigen/SVD>
+#include <Eigen/UmfPackSupport>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "solvers/eigen_lowest.hpp"
+
+namespace beamfea {
+
+namespace {
+// Pivots below this fraction of the largest constraint coefficient are zero (a dependent row).
+constexpr double kNullSpacePivotTolerance = 1e-12;
+// Shift of the shift-invert eigen-solver just below a positive definite (Jacobi-scaled, so O(1))
+// spectrum: fast convergence to the lowest eigenvalue.
+constexpr double kEigenShiftMargin = 1e-6;
+// Singular values of the node compliance below this fraction of the largest are zero (motions
+// that cannot reach the node).
+constexpr double kComplianceRankTolerance = 1e-10;
+}  // namespace
+
+SparseMatrix null_space(const Eigen::MatrixXd& C0, int n) {
+  std::vector<Eigen::Triplet<double>> t;
+  if (C0.rows() == 0) {
+    SparseMatrix Z(n, n);
+    Z.setIdentity();
+    return Z;
+  }
+  Eigen::MatrixXd C = C0;
+  std::vector<int> pivot_col;
+  std::vector<char> is_pivot(n, 0);
+  const double scale = C.cwiseAbs().maxCoeff();
+  int r = 0;
+  for (; r < C.rows(); ++r) {
+    Eigen::Index pr, pc;
+    const double best = C.bottomRows(C.rows() - r).cwiseAbs().maxCoeff(&pr, &pc);
+    if (!(best > kNullSpacePivotTolerance * scale)) break;
+    pr += r;
+    C.row(r).swap(C.row(pr));
+    C.row(r) /= C(r, pc);
+    for (Eigen::Index i = 0; i < C.rows(); ++i)
+      if (i != r && C(i, pc) != 0.0) C.row(i) -= C(i, pc) * C.row(r);
+    pivot_col.push_back(static_cast<int>(pc));
+    is_pivot[pc] = 1;
+  }
+  int col = 0;
+  for (int j = 0; j < n; ++j) {
+    if (is_pivot[j]) continue;
+    t.emplace_back(j, col, 1.0);
+    for (int i = 0; i < r; ++i)
+      if (C(i, j) != 0.0) t.emplace_back(pivot_col[i], col, -C(i, j));
+    ++col;
+  }
+  SparseMatrix Z(n, col);
+  Z.setFromTriplets(t.begin(), t.end());
+  return Z;
+}
+
+StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_control, bool want_mode) {
+  const PathEquilibrium& P = eq_;
+  StabilityAnalysis out;
+  StepSpec s;
+  s.kind = StepKind::Load;
+  s.lambda = c.lambda;
+  const PathEquilibrium::Eval e = P.state_of(c, s, P.start_unknowns(c, s));
+  Eigen::VectorXd f_app = e.f_app;
+  if (P.ctrl.node >= 0 && !P.has_loads) f_app[P.ns.reference_map().raw_node(P.ctrl.node, P.ctrl.comp)] += c.extra_mu;
+  const auto ev = P.ns.evaluate(c.state, f_app, true);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int j = 0; j < ev.tangent.outerSize(); ++j) {
+    if (P.gen_to_free[j] < 0) continue;
+    for (SparseMatrix::InnerIterator it(ev.tangent, j); it; ++it)
+      if (P.gen_to_free[it.row()] >= 0) t.emplace_back(P.gen_to_free[it.row()], P.gen_to_free[j], it.value());
+  }
+  SparseMatrix Kff(P.nf, P.nf);
+  Kff.setFromTriplets(t.begin(), t.end());
+  out.Z = null_space(P.constraint_matrix(c.state, with_control), P.nf);
+  out.K = SparseMatrix(out.Z.transpose() * Kff * out.Z);
+  out.p = out.Z.transpose() * P.load_pattern(c.state);
+  SparseMatrix S = SparseMatrix(0.5 * (out.K + SparseMatrix(out.K.transpose())));
+  const int n = static_cast<int>(S.rows());
+  if (n == 0) return out;
+  // Inertia by LDL^T (Sylvester): the number of negative pivots.
+  if (inertia_ldlt_.factorize(S)) {
+    out.info.negative = static_cast<int>((inertia_ldlt_.solver().vectorD().array() < 0.0).count());
+  } else {
+    out.info.negative = -1;
+  }
+  // Lowest eigenvalue of the Jacobi-scaled matrix.
+  Eigen::VectorXd sc(n);
+  for (int i = 0; i < n; ++i) {
+    const double d = std::abs(S.coeff(i, i));
+    sc[i] = d > 0.0 ? 1.0 / std::sqrt(d) : 1.0;
+  }
+  const SparseMatrix A = SparseMatrix(sc.asDiagonal() * S * sc.asDiagonal());
+  double shift = -kEigenShiftMargin;
+  if (out.info.negative != 0) {
+    // Below the Gershgorin lower bound of the spectrum.
+    double g = 0.0;
+    for (int j = 0; j < A.outerSize(); ++j) {
+      double diag = 0.0, off = 0.0;
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+        if (it.row() == j) diag += it.value();
+        else off += std::abs(it.value());
+      }
+      g = std::min(g, diag - off);
+    }
+    shift = g - kEigenShiftMargin;
+  }
+  const int want = want_mode ? std::max(1, out.info.negative) + 1 : 1;
+  try {
+    const EigenPairs ep = lowest_eigenpairs(A, std::min(want, n), shift);
+    if (ep.values.size() > 0) {
+      out.info.min_eigenvalue = ep.values[0];
+      if (want_mode) {
+        Eigen::Index best = 0;
+        ep.values.cwiseAbs().minCoeff(&best);
+        out.info.mode = out.Z * Eigen::VectorXd(sc.cwiseProduct(ep.vectors.col(best)));
+      }
+    }
+  } catch (const Error&) {
+    out.info.min_eigenvalue = NAN;
+  }
+  return out;
+}
+
+std::optional<Mat6> StabilityAnalyzer::node_stiffness(const Converged& c, const StabilityAnalysis& st, int node) const {
+  const PathEquilibrium& P = eq_;
+  const auto tw = P.ns.twists(c.state);
+  const int n = static_cast<int>(st.K.rows());
+  if (n == 0) return std::nullopt;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int j = 0; j < st.K.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(st.K, j); it; ++it) t.emplace_back(static_cast<int>(it.row()), j, it.value());
+  bool moves = false;
+  for (int k = 0; k < 6; ++k) {
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(P.nf);
+    for (const auto& [g, v] : P.ns.raw_row(c.state, tw, node, k))
+      if (P.gen_to_free[g] >= 0) r[P.gen_to_free[g]] += v;
+    const Eigen::VectorXd rz = st.Z.transpose() * r;
+    if (rz.size() > 0 && rz.cwiseAbs().maxCoeff() > 0.0) moves = true;
+    for (int i = 0; i < n; ++i)
+      if (rz[i] != 0.0) {
+        t.emplace_back(n + k, i, rz[i]);
+        t.emplace_back(i, n + k, rz[i]);
+      }
+  }
+  if (!moves) return std::nullopt;  // the node is held
+  SparseMatrix A(n + 6, n + 6);
+  A.setFromTriplets(t.begin(), t.end());
+  Eigen::UmfPackLU<SparseMatrix> lu;
+  lu.compute(A);
+  if (lu.info() == Eigen::Success) {
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(n + 6, 6);
+    B.bottomRows(6).setIdentity();
+    const Eigen::MatrixXd X = lu.solve(B);
+    if (X.allFinite()) return Mat6(-X.bottomRows(6));
+  }
+  // Fewer than six independent motions reach the node (a chain with fewer joints): the
+  // stiffness is the pseudo-inverse of the compliance T_n K^-1 T_n^T, of rank below six.
+  Eigen::UmfPackLU<SparseMatrix> lk;
+  lk.compute(st.K);
+  if (lk.info() != Eigen::Success) return std::nullopt;
+  Eigen::MatrixXd Tn(n, 6);
+  for (int j = 0; j < n; ++j)
+    for (int k = 0; k < 6; ++k) Tn(j, k) = A.coeff(n + k, j);
+  const Eigen::MatrixXd Y = lk.solve(Tn);
+  if (!Y.allFinite()) return std::nullopt;
+  const Mat6 C = Tn.transpose() * Y;
+  Eigen::JacobiSVD<Mat6> svd(C, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const double smax = svd.singularValues()[0];
+  Vec6 inv = Vec6::Zero();
+  for (int k = 0; k < 6; ++k)
+    if (svd.singularValues()[k] > kComplianceRankTolerance * smax) inv[k] = 1.0 / svd.singularValues()[k];
+  return Mat6(svd.matrixV() * inv.asDiagonal() * svd.matrixU().transpose());
+}
+
+}  // namespace beamfea

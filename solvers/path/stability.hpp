@@ -1,0 +1,50 @@
+#pragma once
+// Stability of a converged path state (the FEA form of Pashkevich et al. 2010, eqs. 18-23), and
+// the loaded Cartesian stiffness of a node (their eq. 28).
+//
+// The tangent over the free coordinates is restricted to the null space Z of the constraint
+// Jacobian (eqs. 19-21; Z by exact elimination), symmetrised, and its inertia counted by a sparse
+// LDL^T (Sylvester's law of inertia): stable when it has no negative eigenvalue (eq. 23: the second
+// variation of the energy is positive on all admissible variations). min_eigenvalue is the lowest
+// eigenvalue of the Jacobi-scaled matrix (dimensionless). The loaded Cartesian stiffness of a node
+// is the condensed tangent [ K_t  T_n^T ; T_n  0 ] [X; M] = [0; I],  K_c = -M.
+#include <Eigen/Core>
+#include <optional>
+
+#include "solvers/path/equilibrium.hpp"
+#include "solvers/path/pattern_factor.hpp"
+
+namespace beamfea {
+
+// Stability of a state: inertia and lowest eigenvalue of the constrained symmetrised tangent.
+struct StabilityInfo {
+  int negative = 0;                 // -1 when the LDL^T failed
+  double min_eigenvalue = 0.0;
+  Eigen::VectorXd mode;             // over the free independent coordinates (Z applied), when asked
+};
+
+struct StabilityAnalysis {
+  StabilityInfo info;
+  SparseMatrix Z;                   // null-space basis of the constraint rows
+  SparseMatrix K;                   // Z^T K_ff Z (not symmetrised)
+  Eigen::VectorXd p;                // Z^T p_free
+};
+
+// Null-space basis Z (n x (n - rank)) of C by Gauss-Jordan elimination with full pivoting.
+SparseMatrix null_space(const Eigen::MatrixXd& C, int n);
+
+class StabilityAnalyzer {
+ public:
+  explicit StabilityAnalyzer(const PathEquilibrium& eq) : eq_(eq) {}
+  // with_control: the controlled DOF is held too (displacement control). want_mode: the critical
+  // mode (the eigenvector of the eigenvalue nearest zero) is returned in info.mode.
+  StabilityAnalysis analyse(const Converged& c, bool with_control, bool want_mode);
+  // Loaded Cartesian stiffness of a node; empty when the node is held.
+  std::optional<Mat6> node_stiffness(const Converged& c, const StabilityAnalysis& st, int node) const;
+
+ private:
+  const PathEquilibrium& eq_;
+  LdltFactor inertia_ldlt_;         // inertia count: symbolic analysis kept along the path
+};
+
+}  // namespace beamfea

@@ -1,0 +1,60 @@
+#pragma once
+// The step controls of a path: what a step prescribes (a load factor, a value of the controlled DOF
+// or an arc length), its size, its cuts on failure and its adaptation to the Newton iteration count.
+//
+//   load factor    h = (target - lambda_0) / increments, bounded by h0 * kMaxIncrementGrowth;
+//   displacement   h = (target - u_0) / increments, idem;
+//   arc length     h = ds, within [min_arc_length, max_arc_length] (defaults relative to ds).
+// After a converged step h <- h * clamp(sqrt(desired / iterations), 1/2, 2) (Crisfield 1991, vol. 1,
+// eq. 9.40 with the exponent 1/2); after a failure h <- h / 2.
+#include <Eigen/Core>
+#include <cmath>
+
+#include "solvers/path/equilibrium.hpp"
+#include "solvers/path/path_types.hpp"
+
+namespace beamfea {
+
+// Default step bounds, relative to the first step h0.
+inline constexpr double kDefaultMinStepRatio = 1e-4;   // hmin = h0 * 1e-4 (all controls)
+inline constexpr double kDefaultMaxArcRatio = 10.0;    // arc length: hmax = 10 ds
+inline constexpr double kMaxIncrementGrowth = 4.0;     // load/displacement: hmax = 4 h0
+// Adaptation after a converged step: the factor sqrt(desired / iterations) is clamped to these.
+inline constexpr double kMinStepGrowth = 0.5;
+inline constexpr double kMaxStepGrowth = 2.0;
+inline constexpr double kCutFactor = 0.5;              // a failed step is halved
+// The target of load/displacement control is reached within this fraction of max(1, |target|)
+// (plus the same fraction of the first step).
+inline constexpr double kTargetTolerance = 1e-12;
+
+// The arc-length weight psi^2 of the load factor (equilibrium.hpp): a unit load-factor increment
+// weighs like a displacement of one model length, or like the initial tangent displacement where
+// that is larger (stiff primary paths, e.g. a column).
+double arc_length_scaling(const PathEquilibrium& eq, const Converged& start);
+
+class StepControl {
+ public:
+  StepControl(const PathOptions& o, const PathEquilibrium& eq, const Converged& start);
+
+  // The path's control value at a state: lambda, the controlled DOF, or the path length so far.
+  double value(const Converged& c) const;
+  // Load/displacement control: true when the target is reached; otherwise the step is clipped so
+  // as not to overshoot it. Arc length: always false.
+  bool target_reached(const Converged& cur);
+  // Halves the step; false when it falls below the minimum.
+  bool cut();
+  // A step of size h was accepted: the path length grows by |h|.
+  void advance() { path_length += std::abs(h); }
+  // Adapts h to the iteration count of the last converged step, within [hmin, hmax].
+  void adapt(long iterations);
+
+  double h = 0.0;          // signed step (load factor, control value or arc length)
+  double h0 = 0.0, hmin = 0.0, hmax = 0.0;
+  double path_length = 0.0;  // arc length: sum of the accepted |h|
+
+ private:
+  const PathOptions& o_;
+  const PathEquilibrium& eq_;
+};
+
+}  // namespace beamfea
