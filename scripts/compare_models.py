@@ -47,7 +47,10 @@ Quantities (tangents k = dP/d(deflection) of the displacement-controlled curve, 
   P_at_L          force at the large deflection
 
 Files are relative to the spec. Run:
-  /usr/bin/python3 scripts/compare_models.py SPEC --beamfea build/cli/beamfea --out OUT [--only ID ...]
+  /usr/bin/python3 scripts/compare_models.py SPEC --out OUT [--only ID ...]
+runs the models in process with the Python module (beamfea.run, docs/python.md: an installed
+beamfea or the one built in build/python); with --beamfea build/cli/beamfea it runs the program
+instead (the same engine, the same numbers). Either way OUT/<pair>/<model>/ receives beamfea's files.
 When an analysis type is missing from the beamfea used, the models are run without it and the
 report says what is missing; nothing is invented.
 """
@@ -61,7 +64,15 @@ import re
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from find_beamfea import import_beamfea  # noqa: E402
+
 DOFS = ["ux", "uy", "uz", "rx", "ry", "rz"]
+
+
+def nonempty(x):
+    """True for a non-empty list or NumPy array (results from the module hold arrays)."""
+    return x is not None and len(x) > 0
 
 
 def load(path):
@@ -73,8 +84,9 @@ REUSE = False  # --reuse: keep results.json of an earlier run of the very same m
 
 
 def run_beamfea(exe, doc, out_dir, log):
-    """Runs beamfea on doc; drops analyses of a type this beamfea does not know. Returns
-    (results or None, [missing types], error message)."""
+    """Runs beamfea on doc, in process (exe None: the Python module) or with the program `exe`;
+    drops analyses of a type this beamfea does not know. Writes OUT files into out_dir either
+    way. Returns (results or None, [missing types], error message)."""
     os.makedirs(out_dir, exist_ok=True)
     model_file, res_file = os.path.join(out_dir, "model.json"), os.path.join(out_dir, "results.json")
     if REUSE and os.path.exists(model_file) and os.path.exists(res_file) and load(model_file) == doc:
@@ -85,20 +97,48 @@ def run_beamfea(exe, doc, out_dir, log):
         model_file = os.path.join(out_dir, "model.json")
         with open(model_file, "w") as f:
             json.dump(doc, f, indent=1)
-        p = subprocess.run([exe, "run", model_file, "--out", out_dir], capture_output=True, text=True)
-        with open(os.path.join(out_dir, "beamfea.log"), "w") as f:
-            f.write(p.stdout + p.stderr)
-        m = re.search(r"unknown type '([^']+)'", p.stderr + p.stdout)
-        if m and "analys" in (p.stderr + p.stdout):
-            missing.append(m.group(1))
-            doc["analyses"] = [a for a in doc.get("analyses", []) if a.get("type") != m.group(1)]
-            log(f"    beamfea has no analysis '{m.group(1)}': running without it")
+        if exe is None:
+            res, unknown, err = _run_module(doc, out_dir)
+        else:
+            res, unknown, err = _run_program(exe, model_file, out_dir)
+        if unknown:
+            missing.append(unknown)
+            doc["analyses"] = [a for a in doc.get("analyses", []) if a.get("type") != unknown]
+            log(f"    beamfea has no analysis '{unknown}': running without it")
             continue
-        res_file = os.path.join(out_dir, "results.json")
-        if os.path.exists(res_file):
-            return load(res_file), missing, (p.stderr.strip().splitlines() or [""])[-1] if p.returncode else ""
-        return None, missing, (p.stderr.strip() or p.stdout.strip())[-500:]
+        return res, missing, err
     return None, missing, "too many missing analysis types"
+
+
+def _run_module(doc, out_dir):
+    """(results or None, unknown analysis type or None, error message) of beamfea.run."""
+    bf = import_beamfea()
+    try:
+        res = bf.run(doc, out=out_dir)
+    except bf.InputError as e:
+        m = re.search(r"unknown type '([^']+)'", str(e))
+        if m and (e.pointer or "").startswith("/analyses"):
+            return None, m.group(1), ""
+        return None, None, str(e)
+    except bf.Error as e:
+        return None, None, str(e)
+    failed = [f"{k}: {a.get('message', a.get('status'))}" for k, a in res.get("analyses", {}).items()
+              if isinstance(a, dict) and a.get("status", "ok") != "ok"]
+    return res, None, failed[-1] if failed else ""
+
+
+def _run_program(exe, model_file, out_dir):
+    """The same with the program: `exe run model_file --out out_dir`."""
+    p = subprocess.run([exe, "run", model_file, "--out", out_dir], capture_output=True, text=True)
+    with open(os.path.join(out_dir, "beamfea.log"), "w") as f:
+        f.write(p.stdout + p.stderr)
+    m = re.search(r"unknown type '([^']+)'", p.stderr + p.stdout)
+    if m and "analys" in (p.stderr + p.stdout):
+        return None, m.group(1), ""
+    res_file = os.path.join(out_dir, "results.json")
+    if os.path.exists(res_file):
+        return load(res_file), None, (p.stderr.strip().splitlines() or [""])[-1] if p.returncode else ""
+    return None, None, (p.stderr.strip() or p.stdout.strip())[-500:]
 
 
 def unloaded_stiffness(exe, doc, node, dof, out_dir, log):
@@ -137,7 +177,7 @@ def extract_curve(res, spec):
     fs = spec.get("force", {}).get("scale", 1.0)
     analyses = res.get("analyses", {})
     for a in analyses.values():
-        if a.get("type") == "buckling" and a.get("load_factors"):
+        if a.get("type") == "buckling" and nonempty(a.get("load_factors")):
             c.buckling = [fs * x for x in a["load_factors"]]
     a = analyses.get(pa)
     if not a or "steps" not in a:
@@ -152,7 +192,7 @@ def extract_curve(res, spec):
         k = s.get("stiffness")
         # The engine's loaded stiffness entry dF/du of the node; the deflection and the force are
         # assumed measured along the same direction (both scales of the same sign), so dP/dd = dF/du.
-        c.k.append(k[dof][dof] if k else None)
+        c.k.append(k[dof][dof] if nonempty(k) else None)
     for cp in a.get("critical_points", []):
         # the step at whose end the engine detected it; the critical point lies between that step
         # and the one before, at the critical load factor
@@ -326,7 +366,8 @@ def normalise_pair(p):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("spec")
-    ap.add_argument("--beamfea", default="build/cli/beamfea")
+    ap.add_argument("--beamfea", default=None,
+                    help="run this beamfea program (default: the Python module, in process)")
     ap.add_argument("--out", default="comparison")
     ap.add_argument("--only", nargs="*", default=None, help="pair ids to run")
     ap.add_argument("--no-plots", action="store_true")
@@ -336,7 +377,7 @@ def main():
     REUSE = args.reuse
     spec = load(args.spec)
     base = os.path.dirname(os.path.abspath(args.spec))
-    exe = os.path.abspath(args.beamfea)
+    exe = os.path.abspath(args.beamfea) if args.beamfea else None
     os.makedirs(args.out, exist_ok=True)
     qnames = spec.get("quantities", ["critical_force", "unloaded", "near_before", "near_after", "large", "P_at_L"])
     node = spec.get("stiffness_node", spec["deflection"]["node"])

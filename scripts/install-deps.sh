@@ -11,6 +11,7 @@ packages=(
   libopenblas0-pthread          # CHOLMOD's supernodal factorisation is 6-14x faster than with reference BLAS
   openmpi-bin libopenmpi-dev    # `beamfea sweep` under mpirun
   python3-matplotlib python3-numpy  # plots of the examples (Debian's /usr/bin/python3)
+  pybind11-dev python3-pybind11 python3-dev python3-pytest  # the Python module (python/) and its tests
   python3-vtk9                  # tests read the .vtu files back with VTK's own reader
 )
 

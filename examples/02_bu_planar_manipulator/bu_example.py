@@ -1,13 +1,15 @@
 #!/usr/bin/python3
 """Bu (2012) planar 3-DOF manipulator: every actuator allocation scheme, with beamfea.
 
-    /usr/bin/python3 examples/02_bu_planar_manipulator/bu_example.py [--beamfea PATH]
+    /usr/bin/python3 examples/02_bu_planar_manipulator/bu_example.py [--beamfea PATH] [--no-plots]
 
 1. inverse kinematics at P1..P5 (P = (0, y), y = 1.1 .. 1.5, platform horizontal), branch with
    both elbows outward (the one that reproduces the paper's printed Jacobians);
-2. writes out/bu_model.json: the 6R loop J1..J6 as beams and revolute joints, poses as node
-   overrides, two "actuator_allocation" analyses (the paper's two schemes, all 20 schemes);
-3. runs `beamfea run out/bu_model.json --out out`;
+2. builds the model as a dict: the 6R loop J1..J6 as beams and revolute joints, poses as node
+   overrides, "actuator_allocation" analyses (the paper's two schemes, all 20 schemes), and
+   writes it to out/bu_model.json for inspection;
+3. runs it in process, `beamfea.run(model)` (the Python module), or with --beamfea PATH the
+   program, `PATH run out/bu_model.json --out out` (the same engine, the same numbers);
 4. writes out/tables.json, out/tables.md and PNG plots of the stiffness along P1..P5.
 
 Units: E is chosen so that EI_z = 1 and k_act = 1, so K_A is in units of k_act and K_S in units
@@ -25,6 +27,8 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "out")
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from find_beamfea import import_beamfea  # noqa: E402
 
 L12, L23, L3P, L4P, L45, L56 = 0.9, 1.0, 0.4, 0.4, 1.0, 0.6
 J1, J6 = np.array([-0.5, 0.0]), np.array([0.5, 0.0])
@@ -114,27 +118,27 @@ def fmt_mat(m):
 
 
 def main():
+    global OUT
     ap = argparse.ArgumentParser()
-    ap.add_argument("--beamfea", default=None, help="path of the beamfea executable")
+    ap.add_argument("--beamfea", default=None,
+                    help="run this beamfea program instead of the Python module (the same engine)")
     ap.add_argument("--no-plots", action="store_true")
+    ap.add_argument("--out", default=OUT, help="output folder (default: out/ beside this script)")
     args = ap.parse_args()
-    exe = args.beamfea
-    if exe is None:
-        for b in ["build", "build-bu", "build-release"]:
-            cand = os.path.join(ROOT, b, "cli", "beamfea")
-            if os.path.exists(cand):
-                exe = cand
-                break
-    if exe is None:
-        sys.exit("beamfea executable not found: build it or pass --beamfea")
+    OUT = os.path.abspath(args.out)
     os.makedirs(OUT, exist_ok=True)
     poses = {k: inverse_kinematics(y) for k, y in POSES.items()}
+    doc = model(poses)
     path = os.path.join(OUT, "bu_model.json")
     with open(path, "w") as f:
-        json.dump(model(poses), f, indent=1)
-    subprocess.run([exe, "run", path, "--out", OUT, "--no-vtk", "--quiet"], check=True)
-    with open(os.path.join(OUT, "results.json")) as f:
-        res = json.load(f)["analyses"]
+        json.dump(doc, f, indent=1)
+    if args.beamfea:
+        subprocess.run([args.beamfea, "run", path, "--out", OUT, "--no-vtk", "--quiet"], check=True)
+        with open(os.path.join(OUT, "results.json")) as f:
+            res = json.load(f)["analyses"]
+    else:
+        # arrays come back as NumPy arrays; out= also writes results.json and the CSV tables
+        res = import_beamfea().run(doc, out=OUT, vtk=False)["analyses"]
 
     # Tables: per scheme and pose, J, K_A, per-link integrals (unit y-force), K_S, totals.
     tables = {"paper": {}, "all": []}
@@ -180,7 +184,7 @@ def main():
                               "worst_pose": r["worst_pose"],
                               "poses": {p["pose"]: p["components"] for p in s["poses"]}})
     with open(os.path.join(OUT, "tables.json"), "w") as f:
-        json.dump(tables, f, indent=1)
+        json.dump(tables, f, indent=1, default=lambda a: a.tolist())  # NumPy arrays as lists
     with open(os.path.join(OUT, "tables.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     print("\n".join(md))

@@ -1,5 +1,13 @@
 #!/usr/bin/python3
-"""Heat map of the tip stiffness from out/cases.csv, and a check against the joint springs.
+"""Heat map of the tip stiffness over the workspace, and a check against the joint springs.
+
+    /usr/bin/python3 plot.py                     # runs the sweep in process: beamfea.sweep(...)
+    /usr/bin/python3 plot.py --csv out/cases.csv # plots the table of `beamfea sweep sweep.json --out out`
+    /usr/bin/python3 plot.py --quick             # every 3rd angle (the test suite's run)
+
+The table (one row per pose: theta1_deg, theta2_deg, K[0][0] .. K[5][5], status) comes either
+from beamfea.sweep, in process, on the sweep of make_cases.py, or from the program's CSV file;
+both are the same cases through the same engine.
 
 K (6x6, ux uy uz rx ry rz) is the stiffness of the tip node with its rotations kept, so the
 stiffness against a force alone (the tip free to rotate) is the inverse of the translational
@@ -9,49 +17,92 @@ in the weakest direction, which depends on theta2 only (a shoulder rotation rota
 planar Jacobian); flexible links only add compliance, so the computed stiffness must stay
 at or below the rigid-link value, and close to it where the joints dominate.
 """
+import argparse
 import csv
 import math
+import os
+import sys
 
-import matplotlib
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
 import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
+sys.path.insert(0, HERE)
+import make_cases  # noqa: E402
+from find_beamfea import import_beamfea  # noqa: E402
 
 L1, L2, k1, k2 = 0.4, 0.3, 2000.0, 1000.0
 
-rows = list(csv.DictReader(open("out/cases.csv")))
-t1s = sorted({float(r["theta1_deg"]) for r in rows})
-t2s = sorted({float(r["theta2_deg"]) for r in rows})
-kmin = np.full((len(t1s), len(t2s)), np.nan)
-kyy = np.full((len(t1s), len(t2s)), np.nan)
-worst_ratio = 0.0
-for r in rows:
-    if r["status"] != "ok":
-        continue
-    i, j = t1s.index(float(r["theta1_deg"])), t2s.index(float(r["theta2_deg"]))
-    K = np.array([[float(r[f"K[{a}][{b}]"]) for b in range(6)] for a in range(6)])
-    K2 = np.linalg.inv(np.linalg.inv(K)[:2, :2])
-    kmin[i, j] = np.linalg.eigvalsh(K2)[0]
-    kyy[i, j] = K2[1, 1]
-    a, b = math.radians(float(r["theta1_deg"])), math.radians(float(r["theta1_deg"]) + float(r["theta2_deg"]))
-    J = np.array([[-L1 * math.sin(a) - L2 * math.sin(b), -L2 * math.sin(b)],
-                  [L1 * math.cos(a) + L2 * math.cos(b), L2 * math.cos(b)]])
-    C_rigid = J @ np.diag([1 / k1, 1 / k2]) @ J.T
-    if abs(np.linalg.det(J)) > 1e-3:
-        K_rigid = np.linalg.inv(C_rigid)
-        worst_ratio = max(worst_ratio, kmin[i, j] / np.linalg.eigvalsh(K_rigid)[0])
 
-ok = sum(r["status"] == "ok" for r in rows)
-print(f"{ok}/{len(rows)} cases ok; weakest-direction stiffness {np.nanmin(kmin):.4g} .. {np.nanmax(kmin):.4g} N/m")
-print(f"largest ratio to the rigid-link joint-spring value (away from theta2 = 0): {worst_ratio:.4f} (must be <= 1)")
+def table_from_csv(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    cols = {}
+    for name in rows[0]:
+        cells = [r[name] for r in rows]
+        try:
+            cols[name] = np.array([float(c) if c else np.nan for c in cells])
+        except ValueError:
+            cols[name] = cells
+    return cols
 
-fig, axes = plt.subplots(1, 2, figsize=(10, 3.6), sharey=True)
-for ax, field, title in ((axes[0], kyy, "log10 k_yy [N/m]"), (axes[1], kmin, "log10 weakest-direction stiffness [N/m]")):
-    im = ax.pcolormesh(t2s, t1s, np.log10(field), shading="nearest", cmap="viridis")
-    ax.set_xlabel("elbow angle theta2 [deg]")
-    ax.set_title(title)
-    fig.colorbar(im, ax=ax)
-axes[0].set_ylabel("shoulder angle theta1 [deg]")
-fig.tight_layout()
-fig.savefig("stiffness_map.png", dpi=80)
-print("wrote stiffness_map.png")
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--csv", help="the program's table (beamfea sweep sweep.json --out out -> out/cases.csv)")
+    ap.add_argument("--quick", action="store_true", help="every 3rd angle, in process")
+    ap.add_argument("--png", default=os.path.join(HERE, "stiffness_map.png"))
+    args = ap.parse_args()
+    if args.csv:
+        cols = table_from_csv(args.csv)
+    else:
+        spec = make_cases.sweep_spec(os.path.join(HERE, "model.json"), step=3 if args.quick else 1)
+        cols = import_beamfea().sweep(spec)  # a DataFrame with pandas, else a dict of NumPy columns
+    t1 = np.asarray(cols["theta1_deg"], dtype=float)
+    t2 = np.asarray(cols["theta2_deg"], dtype=float)
+    status = list(cols["status"])
+    K_all = np.stack([np.stack([np.asarray(cols[f"K[{a}][{b}]"], dtype=float) for b in range(6)], axis=-1)
+                      for a in range(6)], axis=-2)  # (cases, 6, 6)
+
+    t1s, t2s = sorted(set(t1)), sorted(set(t2))
+    kmin = np.full((len(t1s), len(t2s)), np.nan)
+    kyy = np.full((len(t1s), len(t2s)), np.nan)
+    worst_ratio = 0.0
+    for n in range(len(status)):
+        if status[n] != "ok":
+            continue
+        i, j = t1s.index(t1[n]), t2s.index(t2[n])
+        K2 = np.linalg.inv(np.linalg.inv(K_all[n])[:2, :2])
+        kmin[i, j] = np.linalg.eigvalsh(K2)[0]
+        kyy[i, j] = K2[1, 1]
+        a, b = math.radians(t1[n]), math.radians(t1[n] + t2[n])
+        J = np.array([[-L1 * math.sin(a) - L2 * math.sin(b), -L2 * math.sin(b)],
+                      [L1 * math.cos(a) + L2 * math.cos(b), L2 * math.cos(b)]])
+        C_rigid = J @ np.diag([1 / k1, 1 / k2]) @ J.T
+        if abs(np.linalg.det(J)) > 1e-3:
+            K_rigid = np.linalg.inv(C_rigid)
+            worst_ratio = max(worst_ratio, kmin[i, j] / np.linalg.eigvalsh(K_rigid)[0])
+
+    ok = sum(s == "ok" for s in status)
+    print(f"{ok}/{len(status)} cases ok; weakest-direction stiffness {np.nanmin(kmin):.4g} .. {np.nanmax(kmin):.4g} N/m")
+    print(f"largest ratio to the rigid-link joint-spring value (away from theta2 = 0): {worst_ratio:.4f} (must be <= 1)")
+    if ok != len(status) or worst_ratio > 1.0:
+        sys.exit("check failed")
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.6), sharey=True)
+    for ax, field, title in ((axes[0], kyy, "log10 k_yy [N/m]"), (axes[1], kmin, "log10 weakest-direction stiffness [N/m]")):
+        im = ax.pcolormesh(t2s, t1s, np.log10(field), shading="nearest", cmap="viridis")
+        ax.set_xlabel("elbow angle theta2 [deg]")
+        ax.set_title(title)
+        fig.colorbar(im, ax=ax)
+    axes[0].set_ylabel("shoulder angle theta1 [deg]")
+    fig.tight_layout()
+    fig.savefig(args.png, dpi=80)
+    print(f"wrote {args.png}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,8 +1,11 @@
 #!/usr/bin/python3
 """The comparison report of the Pashkevich chain: one command regenerates everything.
 
-  /usr/bin/python3 examples/05_pashkevich_chain/report.py --beamfea build/cli/beamfea \\
-      --out examples/05_pashkevich_chain/out [--skip-convergence]
+  /usr/bin/python3 examples/05_pashkevich_chain/report.py \\
+      --out examples/05_pashkevich_chain/out [--skip-convergence] [--beamfea build/cli/beamfea]
+
+Every model runs in process with the Python module (beamfea.run, docs/python.md); with
+--beamfea PATH the program runs them instead (the same engine, the same numbers).
 
 1. writes the models (generate.py: models A, B, C x postures S, Pi, Z, lumped and beam, and the
    mesh / spring-count series under OUT/conv_models/);
@@ -36,7 +39,7 @@ def critical_force(exe, file, out_dir, log):
     if not res:
         return None, f"error: {err}"
     an = res.get("analyses", {})
-    if "buckling" in an and an["buckling"].get("load_factors"):
+    if "buckling" in an and cm.nonempty(an["buckling"].get("load_factors")):
         return an["buckling"]["load_factors"][0], "buckling"
     p = an.get("path")
     if p is None:
@@ -106,7 +109,7 @@ def figures(out, log):
         if not os.path.exists(f):
             return None
         a = cm.load(f)["analyses"].get("buckling")
-        return a if a and a.get("load_factors") else None
+        return a if a and cm.nonempty(a.get("load_factors")) else None
 
     fig, ax = plt.subplots(figsize=(6, 4))
     for model, scale, col in (("B", 1.0, "C0"), ("C", 0.16, "C3")):
@@ -167,7 +170,7 @@ def figures(out, log):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--beamfea", default=os.path.join(ROOT, "build", "cli", "beamfea"))
+    ap.add_argument("--beamfea", default=None, help="run this beamfea program (default: the Python module, in process)")
     ap.add_argument("--out", default=os.path.join(HERE, "out"))
     ap.add_argument("--skip-convergence", action="store_true")
     ap.add_argument("--only", nargs="*", default=None)
@@ -176,12 +179,12 @@ def main():
     ap.add_argument("--reuse", action="store_true", help="reuse the results of unchanged models in OUT")
     args = ap.parse_args()
     cm.REUSE = args.reuse
-    exe = os.path.abspath(args.beamfea)
+    exe = os.path.abspath(args.beamfea) if args.beamfea else None
     log = lambda s: print(s, file=sys.stderr, flush=True)
     subprocess.run([sys.executable, os.path.join(HERE, "generate.py"), "--convergence",
                     os.path.join(args.out, "conv_models")], check=True)
     cmd = [sys.executable, os.path.join(ROOT, "scripts", "compare_models.py"), os.path.join(HERE, "comparison_spec.json"),
-           "--beamfea", exe, "--out", args.out]
+           "--out", args.out] + (["--beamfea", exe] if exe else [])
     if args.only:
         cmd += ["--only"] + args.only
     if args.reuse:

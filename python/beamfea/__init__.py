@@ -1,0 +1,126 @@
+"""beamfea: matrix structural analysis of 3-D frames of Euler-Bernoulli beams, in process.
+
+    import beamfea
+    res = beamfea.run(model)            # model: a dict in the JSON format, or a path
+    res["analyses"]["lin"]["nodes"]["tip"]["displacement"]   # a float64 ndarray
+
+The model format is the program's (docs/input-format.md); results have the structure of
+results.json (docs/python.md says how arrays become NumPy arrays). Errors:
+InputError(ValueError) with .pointer and .entity, ModelError with .entity. A failed analysis
+(a mechanism, no convergence) is not an exception: its result says so in "status".
+"""
+import os
+from typing import Any, Dict, Iterable, Mapping, Optional, Union
+
+from . import _beamfea
+from ._errors import Error, InputError, ModelError
+
+__version__: str = _beamfea.__version__
+__all__ = ["run", "check", "sweep", "Error", "InputError", "ModelError", "__version__"]
+
+Model = Union[Mapping[str, Any], str, "os.PathLike[str]"]
+
+
+def _is_path(x: Any) -> bool:
+    return isinstance(x, (str, os.PathLike))
+
+
+def run(model: Model, analyses: Union[None, str, Iterable[Any]] = None,
+        out: Union[None, str, "os.PathLike[str]"] = None, *, vtk: bool = True) -> Dict[str, Any]:
+    """Run the analyses of a model and return its results.
+
+    Args:
+        model: the model, as a dict in beamfea's JSON format (docs/input-format.md; NumPy
+            arrays and scalars are accepted anywhere a list or a number is) or the path of a
+            model file.
+        analyses: which analyses to run. None: all of the model's "analyses". A string or a
+            list of strings: only the analyses with these ids. A list of dicts: these analysis
+            specs, in place of the model's "analyses" (their errors point into "/analyses").
+        out: a folder. When given, results.json and each analysis's files (VTK for ParaView)
+            are written there, as `beamfea run model.json --out DIR` does. When None, nothing
+            at all is written.
+        vtk: with `out`, also write the VTK files (False: as `--no-vtk`).
+
+    Returns:
+        dict: the structure of results.json: {"beamfea": version, "model": {...counts},
+        "analyses": {id: result}}. Every array of numbers is a float64 numpy.ndarray, an array
+        of equal-length arrays a 2-D one (stiffness and compliance matrices, Jacobians; deeper
+        nesting gives more dimensions); null inside such an array is NaN. Other arrays are
+        lists, objects dicts, a non-finite number None (as in results.json). Each analysis
+        result has its "status" ("ok" or what failed, with a "message"): a failed analysis is
+        returned, not raised.
+
+    Raises:
+        InputError: bad input (.pointer is the JSON pointer of the field at fault, .entity the
+            node, element, analysis... it belongs to).
+        ModelError: a model that cannot be analysed as given (.entity names what).
+
+    The engine runs with the GIL released: cases run on a ThreadPoolExecutor run in parallel.
+    """
+    only: list = []
+    specs: Any = None
+    if isinstance(analyses, str):
+        only = [analyses]
+    elif analyses is not None:
+        items = list(analyses)
+        if all(isinstance(a, str) for a in items):
+            only = items
+        elif all(isinstance(a, Mapping) for a in items):
+            specs = items
+        else:
+            raise TypeError("analyses: a list of analysis ids (str) or of analysis specs (dict), not a mix")
+    if out is not None:
+        out = os.fspath(out)
+    return _beamfea.run(model if _is_path(model) else _as_dict(model), only, specs, out, bool(vtk))
+
+
+def check(model: Model) -> Dict[str, int]:
+    """Validate a model (and its analysis specs) without analysing it.
+
+    Args:
+        model: a dict in beamfea's JSON format, or the path of a model file.
+
+    Returns:
+        dict: the counts {"nodes", "elements", "members", "joints"} of the model as meshed.
+
+    Raises:
+        InputError, ModelError: as run() does.
+    """
+    return _beamfea.check(model if _is_path(model) else _as_dict(model))
+
+
+def sweep(spec: Union[Mapping[str, Any], str, "os.PathLike[str]"], jobs: Optional[int] = None) -> Any:
+    """Run a sweep (docs/sweep.md): many cases of one base model, in process, into one table.
+
+    Args:
+        spec: a sweep document as a dict (a relative "base" path is taken from the current
+            folder) or the path of a sweep file (relative to the file's folder).
+        jobs: worker threads; None or 0: all cores.
+
+    Returns:
+        The table of `beamfea sweep` (DIR/cases.csv) as columns, in its order: "case", the
+        parameters, the outputs flattened ("K[0][0]"...), "status" ("ok", "analysis failed",
+        "bad input"), "message", "wall_time_s". A pandas.DataFrame when pandas can be
+        imported, else a dict of columns: numeric columns are float64 numpy.ndarrays (NaN
+        where a case has no value), the others lists.
+
+    Raises:
+        InputError: a bad sweep document (a bad case is a row with status "bad input").
+    """
+    if jobs is None:
+        jobs = 0
+    if int(jobs) < 0:
+        raise ValueError("jobs must be at least 1 (or 0/None for all cores)")
+    columns = _beamfea.sweep(spec if _is_path(spec) else _as_dict(spec), int(jobs))
+    try:
+        import pandas
+    except ImportError:
+        return columns
+    return pandas.DataFrame(columns)
+
+
+def _as_dict(x: Any) -> Any:
+    """A Mapping that is not a dict is copied into one (the engine reads dicts)."""
+    if isinstance(x, Mapping) and not isinstance(x, dict):
+        return dict(x)
+    return x

@@ -1,0 +1,31 @@
+# Type stubs of the beamfea package (docstrings in __init__.py, docs/python.md).
+import os
+from typing import Any, Dict, Iterable, Mapping, Optional, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+Model = Union[Mapping[str, Any], str, os.PathLike[str]]
+# Results mirror results.json: dicts, lists, str, int, float, bool, None, and float64 arrays.
+Result = Dict[str, Any]
+FloatArray = npt.NDArray[np.float64]
+
+class Error(Exception): ...
+
+class InputError(Error, ValueError):
+    pointer: Optional[str]
+    entity: Optional[str]
+    def __init__(self, message: str, pointer: Optional[str] = ..., entity: Optional[str] = ...) -> None: ...
+
+class ModelError(Error):
+    entity: Optional[str]
+    def __init__(self, message: str, entity: Optional[str] = ...) -> None: ...
+
+def run(model: Model, analyses: Union[None, str, Iterable[str], Iterable[Mapping[str, Any]]] = ...,
+        out: Union[None, str, os.PathLike[str]] = ..., *, vtk: bool = ...) -> Result: ...
+def check(model: Model) -> Dict[str, int]: ...
+# A pandas.DataFrame when pandas is importable, else a dict of columns.
+def sweep(spec: Union[Mapping[str, Any], str, os.PathLike[str]],
+          jobs: Optional[int] = ...) -> Union[Dict[str, Union[FloatArray, list]], Any]: ...

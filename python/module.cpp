@@ -1,0 +1,161 @@
+// _beamfea: the compiled half of the `beamfea` Python package (beamfea/__init__.py is the face
+// users read: signatures, docstrings, pandas). Everything goes through io's public API,
+// load_and_check and run_document, as the program does, so the answers are the program's.
+//
+// The GIL is held while Python objects are converted to JSON and the results back to Python,
+// and released while the engine runs: threads of a ThreadPoolExecutor run cases in parallel.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <optional>
+
+#include "io/model_reader.hpp"
+#include "io/run.hpp"
+#include "python/convert.hpp"
+#include "python/errors.hpp"
+#include "python/sweep_table.hpp"
+
+namespace py = pybind11;
+using namespace beamfea;
+using namespace beamfea::python;
+
+namespace {
+
+// A model given as a dict (converted) or a path (read and parsed; errors name the file).
+nlohmann::json document_of(const py::object& model) {
+  if (py::isinstance<py::dict>(model)) {
+    auto doc = json_from_python(model, "");
+    return doc;
+  }
+  if (py::isinstance<py::str>(model) || py::hasattr(model, "__fspath__")) {
+    const std::string path = py::str(py::module_::import("os").attr("fspath")(model));
+    py::gil_scoped_release release;
+    return read_json_file(path);
+  }
+  return json_from_python(model, "");  // a Mapping, or an InputError naming the type
+}
+
+// The ids ("id", "node") of the items of a model's top-level lists, for naming the entity of
+// an error met while converting the model itself (a NaN, a set).
+nlohmann::json id_skeleton(const py::handle& model) {
+  nlohmann::json doc = nlohmann::json::object();
+  if (!py::isinstance<py::dict>(model)) return doc;
+  for (auto [key, value] : py::reinterpret_borrow<py::dict>(model)) {
+    if (!py::isinstance<py::str>(key) || !py::isinstance<py::list>(value)) continue;
+    nlohmann::json items = nlohmann::json::array();
+    for (auto item : py::reinterpret_borrow<py::list>(value)) {
+      nlohmann::json ids = nlohmann::json::object();
+      if (py::isinstance<py::dict>(item))
+        for (const char* k : {"id", "node"})
+          if (item.contains(k)) {
+            py::object v = item[k];
+            if (py::isinstance<py::str>(v)) ids[k] = v.cast<std::string>();
+            else if (PyLong_Check(v.ptr()) && !PyBool_Check(v.ptr())) ids[k] = v.cast<long long>();
+          }
+      items.push_back(std::move(ids));
+    }
+    doc[key.cast<std::string>()] = std::move(items);
+  }
+  return doc;
+}
+
+// Every id of `only` must name an analysis of the document.
+void check_ids(const nlohmann::json& doc, const std::vector<std::string>& only) {
+  std::vector<std::string> ids;
+  if (auto it = doc.find("analyses"); it != doc.end() && it->is_array())
+    for (const auto& a : *it)
+      if (a.is_object() && a.contains("id")) ids.push_back(a["id"].is_string() ? a["id"].get<std::string>() : a["id"].dump());
+  for (const auto& id : only) {
+    if (std::find(ids.begin(), ids.end(), id) != ids.end()) continue;
+    std::string known;
+    for (const auto& k : ids) known += (known.empty() ? "" : ", ") + k;
+    throw InputError("/analyses", "no analysis with id '" + id + "' (the model has: " + (known.empty() ? "none" : known) + ")");
+  }
+}
+
+py::object run(const py::object& model, const std::vector<std::string>& only, const py::object& specs,
+               const std::optional<std::string>& out, bool vtk) {
+  nlohmann::json doc;
+  try {
+    doc = document_of(model);
+    if (!specs.is_none()) doc["analyses"] = json_from_python(specs, "/analyses");
+  } catch (const InputError& e) {
+    nlohmann::json ids = id_skeleton(model);
+    if (!specs.is_none()) ids["analyses"] = id_skeleton(py::dict(py::arg("analyses") = specs))["analyses"];
+    raise_input_error(e, &ids);
+  }
+  RunReport report;
+  try {
+    py::gil_scoped_release release;
+    const Model m = load_and_check(doc);
+    check_ids(doc, only);
+    RunOptions options;
+    if (out) options.out_dir = *out;
+    options.write_vtk = vtk;
+    options.only = only;
+    options.verbose = false;
+    report = run_document(m, doc, options);
+  } catch (const InputError& e) {
+    raise_input_error(e, &doc);
+  }
+  return python_from_json(report.results);
+}
+
+py::dict check(const py::object& model) {
+  nlohmann::json doc;
+  try {
+    doc = document_of(model);
+  } catch (const InputError& e) {
+    const nlohmann::json ids = id_skeleton(model);
+    raise_input_error(e, &ids);
+  }
+  try {
+    py::gil_scoped_release release;
+    const Model m = load_and_check(doc);
+    py::gil_scoped_acquire acquire;
+    py::dict d;
+    d["nodes"] = m.nodes.size();
+    d["elements"] = m.elements.size();
+    d["members"] = m.members.size();
+    d["joints"] = m.joints.size();
+    return d;
+  } catch (const InputError& e) {
+    raise_input_error(e, &doc);
+  }
+}
+
+py::object sweep(const py::object& spec, int jobs) {
+  nlohmann::json doc;
+  std::filesystem::path directory = std::filesystem::current_path();
+  try {
+    if (!py::isinstance<py::dict>(spec) && (py::isinstance<py::str>(spec) || py::hasattr(spec, "__fspath__"))) {
+      const std::string path = py::str(py::module_::import("os").attr("fspath")(spec));
+      directory = std::filesystem::absolute(path).parent_path();
+      doc = read_json_file(path);
+    } else {
+      doc = json_from_python(spec, "");
+    }
+  } catch (const InputError& e) {
+    const nlohmann::json ids = id_skeleton(spec);
+    raise_input_error(e, &ids);
+  }
+  try {
+    const Sweep s = read_sweep(doc, directory);
+    return sweep_columns(s, jobs);
+  } catch (const InputError& e) {
+    raise_input_error(e, &doc);
+  }
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_beamfea, m) {
+  m.doc() = "beamfea's engine (use the beamfea package, not this module)";
+  m.attr("__version__") = BEAMFEA_PYTHON_VERSION;
+  register_error_translator();
+  m.def("run", &run, py::arg("model"), py::arg("only"), py::arg("specs"), py::arg("out"), py::arg("vtk"));
+  m.def("check", &check, py::arg("model"));
+  m.def("sweep", &sweep, py::arg("spec"), py::arg("jobs"));
+}

@@ -1,0 +1,132 @@
+#include "python/sweep_table.hpp"
+
+#include <pybind11/numpy.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "python/convert.hpp"
+
+namespace py = pybind11;
+
+namespace beamfea::python {
+
+namespace {
+
+std::vector<SweepCaseResult> run_cases(const Sweep& sweep, int jobs) {
+  const std::size_t n = sweep.size();
+  std::vector<SweepCaseResult> results(n);
+  if (jobs <= 0) jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  jobs = static_cast<int>(std::max<std::size_t>(1, std::min<std::size_t>(jobs, n)));
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t i = next++; i < n; i = next++) results[i] = run_sweep_case(sweep, i);
+  };
+  std::vector<std::thread> workers;
+  for (int w = 1; w < jobs; ++w) workers.emplace_back(work);
+  work();
+  for (auto& t : workers) t.join();
+  return results;
+}
+
+// A cell of the table as a number, if it is one ("" is NaN).
+std::optional<double> number(const std::string& cell) {
+  if (cell.empty()) return std::numeric_limits<double>::quiet_NaN();
+  char* end = nullptr;
+  const double x = std::strtod(cell.c_str(), &end);
+  if (end != cell.c_str() + cell.size()) return std::nullopt;
+  return x;
+}
+
+// A float64 ndarray when every cell is a number or empty, else a list of str (None if empty).
+py::object column(const std::vector<std::string>& cells) {
+  std::vector<double> values;
+  values.reserve(cells.size());
+  for (const auto& c : cells) {
+    const auto x = number(c);
+    if (!x) {
+      py::list l;
+      for (const auto& s : cells) l.append(s.empty() ? py::object(py::none()) : py::object(py::str(s)));
+      return l;
+    }
+    values.push_back(*x);
+  }
+  py::array_t<double> a(static_cast<py::ssize_t>(values.size()));
+  std::copy(values.begin(), values.end(), a.mutable_data());
+  return a;
+}
+
+// A parameter column: numbers (null: NaN) as float64, anything else as a list of Python values.
+py::object parameter_column(const std::vector<nlohmann::ordered_json>& values) {
+  bool numeric = true;
+  for (const auto& v : values) numeric = numeric && (v.is_number() || v.is_null());
+  if (numeric) {
+    py::array_t<double> a(static_cast<py::ssize_t>(values.size()));
+    double* out = a.mutable_data();
+    for (const auto& v : values) *out++ = v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
+    return a;
+  }
+  py::list l;
+  for (const auto& v : values) l.append(python_from_json(v));
+  return l;
+}
+
+}  // namespace
+
+py::dict sweep_columns(const Sweep& sweep, int jobs) {
+  std::vector<SweepCaseResult> results;
+  {
+    py::gil_scoped_release release;
+    results = run_cases(sweep, jobs);
+  }
+  const std::size_t n = results.size();
+  py::dict table;
+  py::list ids;
+  for (std::size_t i = 0; i < n; ++i) ids.append(sweep.case_id(i));
+  table["case"] = ids;
+
+  std::vector<std::vector<nlohmann::ordered_json>> params(sweep.parameter_names.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto p = sweep.parameters(i);
+    for (std::size_t k = 0; k < p.size() && k < params.size(); ++k) params[k].emplace_back(p[k]);
+  }
+  for (std::size_t k = 0; k < params.size(); ++k) table[py::str(sweep.parameter_names[k])] = parameter_column(params[k]);
+
+  // Output columns as in DIR/cases.csv (docs/sweep.md): those of the first case that ends ok,
+  // or the output's name alone when none does; other cases fill the columns they share.
+  const auto first_ok = std::find_if(results.begin(), results.end(),
+                                     [](const SweepCaseResult& r) { return r.status == SweepCaseResult::Status::Ok; });
+  for (std::size_t o = 0; o < sweep.outputs.size(); ++o) {
+    std::vector<std::string> names;
+    if (first_ok != results.end() && !first_ok->outputs[o].empty())
+      for (const auto& kv : first_ok->outputs[o]) names.push_back(kv.first);
+    else
+      names.push_back(sweep.outputs[o].name);
+    std::map<std::string, std::vector<std::string>> cells;
+    for (const auto& name : names) cells.emplace(name, std::vector<std::string>(n));
+    for (std::size_t i = 0; i < n; ++i)
+      for (const auto& [name, text] : results[i].outputs[o])
+        if (auto it = cells.find(name); it != cells.end()) it->second[i] = text;
+    for (const auto& name : names) table[py::str(name)] = column(cells[name]);
+  }
+
+  py::list status, message;
+  py::array_t<double> wall(static_cast<py::ssize_t>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    status.append(to_string(results[i].status));
+    message.append(results[i].message);
+    wall.mutable_data()[i] = results[i].wall_time_s;
+  }
+  table["status"] = status;
+  table["message"] = message;
+  table["wall_time_s"] = wall;
+  return table;
+}
+
+}  // namespace beamfea::python
