@@ -44,16 +44,30 @@ bool Joint::has_stiffness() const {
   return false;
 }
 
-template <class V>
-static int find_by_id(const V& v, const std::string& id) {
-  for (std::size_t i = 0; i < v.size(); ++i)
-    if (v[i].id == id) return static_cast<int>(i);
-  return -1;
+namespace {
+
+template <class V, class T>
+int add_indexed(V& items, IdIndex& index, T item) {
+  const int i = static_cast<int>(items.size());
+  // An index out of step (items pushed directly) is rebuilt first, so that it stays usable.
+  if (index.size() != items.size()) {
+    index.clear();
+    for (std::size_t k = 0; k < items.size(); ++k) index.add(items[k].id, static_cast<int>(k));
+  }
+  items.push_back(std::move(item));
+  index.add(items.back().id, i);
+  return i;
 }
 
-int Model::find_node(const std::string& id) const { return find_by_id(nodes, id); }
-int Model::find_member(const std::string& id) const { return find_by_id(members, id); }
-int Model::find_joint(const std::string& id) const { return find_by_id(joints, id); }
+}  // namespace
+
+int Model::add_node(Node n) { return add_indexed(nodes, node_index, std::move(n)); }
+int Model::add_member(Member m) { return add_indexed(members, member_index, std::move(m)); }
+int Model::add_joint(Joint j) { return add_indexed(joints, joint_index, std::move(j)); }
+
+int Model::find_node(const std::string& id) const { return node_index.find(nodes, id); }
+int Model::find_member(const std::string& id) const { return member_index.find(members, id); }
+int Model::find_joint(const std::string& id) const { return joint_index.find(joints, id); }
 
 std::string Model::describe(const DofRef& d) const {
   if (d.owner == DofRef::Owner::Node)

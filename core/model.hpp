@@ -9,6 +9,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/rotation.hpp"
@@ -138,6 +139,32 @@ struct JointLoad {
   double value = 0.0;
 };
 
+// Index from ids to positions in one of Model's vectors. Kept by Model::add_node / add_member /
+// add_joint; a lookup falls back to a linear scan when the vector was filled directly (tests build
+// models with push_back), so it is never wrong, only faster when kept. The first of two equal ids
+// wins, as a scan would find it.
+class IdIndex {
+ public:
+  // Records `id` at position `i`; returns false (and keeps the first) when `id` is already there.
+  bool add(const std::string& id, int i) { return map_.emplace(id, i).second; }
+  // The position of `id` in `items`, or -1 (the index is used when in step with `items`).
+  template <class V>
+  int find(const V& items, const std::string& id) const {
+    if (map_.size() == items.size()) {
+      auto it = map_.find(id);
+      return it == map_.end() ? -1 : it->second;
+    }
+    for (std::size_t i = 0; i < items.size(); ++i)
+      if (items[i].id == id) return static_cast<int>(i);
+    return -1;
+  }
+  void clear() { map_.clear(); }
+  std::size_t size() const { return map_.size(); }
+
+ private:
+  std::unordered_map<std::string, int> map_;
+};
+
 struct Model {
   std::vector<Node> nodes;
   std::vector<Material> materials;
@@ -151,6 +178,12 @@ struct Model {
   std::vector<JointLoad> joint_loads;
   std::vector<PointMass> masses;
 
+  // Appending with an index kept (ids must be unique: the caller checks; a repeated id is not
+  // indexed and a later lookup finds the first). Each returns the new position.
+  int add_node(Node n);
+  int add_member(Member m);
+  int add_joint(Joint j);
+
   int find_node(const std::string& id) const;    // -1 if absent
   int find_member(const std::string& id) const;  // -1 if absent
   int find_joint(const std::string& id) const;   // -1 if absent
@@ -159,6 +192,11 @@ struct Model {
   // Length scale of the model (bounding-box diagonal, at least 1e-300); used to make
   // rotations and translations commensurable in rank decisions.
   double length_scale() const;
+
+  // Id indexes of nodes, members and joints (see IdIndex).
+  IdIndex node_index;
+  IdIndex member_index;
+  IdIndex joint_index;
 };
 
 }  // namespace beamfea

@@ -75,4 +75,6 @@ Vec3 beam_displacement_at(const Mat3& R, double L, const Vec12& u_global, double
   return R.transpose() * local;
 }
 
+Mat6 cantilever_tip_stiffness(const BeamSection& s, double L) { return beam_local_stiffness(s, L).bottomRightCorner<6, 6>(); }
+
 }  // namespace beamfea

@@ -34,6 +34,11 @@ Mat12 beam_transformation(const Mat3& R);
 // Local elastic stiffness of a member of length L.
 Mat12 beam_local_stiffness(const BeamSection& s, double L);
 
+// Stiffness of the tip (end 2) of a cantilever of length L clamped at end 1, in the beam's local
+// axes (6x6, x along the beam): the end-2 block of the local matrix. Pashkevich, Klimchik &
+// Chablat (2010) eq. 39 (a virtual spring's stiffness "from a beam").
+Mat6 cantilever_tip_stiffness(const BeamSection& s, double L);
+
 // The linear beam in global axes: kinematics are the 12 global nodal displacements/rotations.
 class LinearBeam {
  public:

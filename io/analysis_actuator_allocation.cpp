@@ -54,6 +54,8 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
   Spec s;
   const std::string what = "actuator_allocation analysis";
   auto& o = s.options;
+  expect_keys(spec, p, {"id", "type", "description", "platform_node", "candidate_joints", "actuators",
+                        "actuator_stiffness", "directions", "structural_terms", "poses", "schemes", "rank_by"});
   o.platform_node = node_ref(model, require(spec, p, "platform_node", what), child(p, "platform_node"));
   // Candidates
   const std::string pc = child(p, "candidate_joints");
@@ -63,6 +65,7 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
     const std::string pi = child(pc, i);
     ActuatorCandidate c;
     if (cands[i].is_object()) {
+      expect_keys(cands[i], pi, {"joint", "coordinate"});
       c.joint = joint_ref(model, require(cands[i], pi, "joint", "candidate"), child(pi, "joint"));
       if (cands[i].contains("coordinate")) c.coordinate = integer(cands[i]["coordinate"], child(pi, "coordinate"), "coordinate");
       if (c.coordinate < 0 || c.coordinate >= model.joints[c.joint].coordinates())
@@ -136,6 +139,7 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
     for (std::size_t i = 0; i < poses.size(); ++i) {
       const std::string pi = child(pp, i);
       const auto& po = object(poses[i], pi, "pose");
+      expect_keys(po, pi, {"id", "nodes"});
       Pose pose;
       pose.id = po.contains("id") ? json_in::id(po["id"], child(pi, "id"), "pose") : "pose" + std::to_string(i + 1);
       for (const auto& q : s.poses)
@@ -146,6 +150,7 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
         for (std::size_t j = 0; j < nodes.size(); ++j) {
           const std::string pj = child(pn, j);
           const auto& nj = object(nodes[j], pj, "pose node");
+          expect_keys(nj, pj, {"node", "xyz"});
           const int n = node_ref(model, require(nj, pj, "node", "pose node"), child(pj, "node"));
           pose.nodes.emplace_back(n, vec3(require(nj, pj, "xyz", "pose node"), child(pj, "xyz"), "pose node xyz"));
         }
@@ -201,6 +206,7 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
   if (spec.contains("rank_by")) {
     const std::string pr = child(p, "rank_by");
     const auto& r = object(spec["rank_by"], pr, what + " rank_by");
+    expect_keys(r, pr, {"stiffness", "direction"});
     if (r.contains("stiffness")) {
       const std::string c = string(r["stiffness"], child(pr, "stiffness"), "rank_by stiffness");
       s.rank_component = -1;

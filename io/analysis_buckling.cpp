@@ -16,6 +16,7 @@ namespace beamfea {
 namespace {
 
 void check_buckling(const Model&, const nlohmann::json& spec, const std::string& p) {
+  json_in::expect_keys(spec, p, {"id", "type", "description", "modes"});
   if (spec.contains("modes")) {
     const int m = json_in::integer(spec["modes"], json_in::child(p, "modes"), "buckling modes");
     if (m < 1 || m > 1000) throw InputError(json_in::child(p, "modes"), "buckling: modes must be between 1 and 1000");

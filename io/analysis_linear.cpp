@@ -59,7 +59,9 @@ ojson element_json(const Model& model, const std::vector<Vec12>& end_forces) {
   return out;
 }
 
-void check_linear_static(const Model&, const nlohmann::json&, const std::string&) {}
+void check_linear_static(const Model&, const nlohmann::json& spec, const std::string& p) {
+  json_in::expect_keys(spec, p, {"id", "type", "description"});
+}
 
 AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   const Model& model = ctx.model;
@@ -108,6 +110,7 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
 }
 
 void check_stiffness(const Model& model, const nlohmann::json& spec, const std::string& p) {
+  json_in::expect_keys(spec, p, {"id", "type", "description", "node"});
   node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
 }
 

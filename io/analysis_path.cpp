@@ -42,8 +42,12 @@ int dof_of(const nlohmann::json& v, const std::string& p) {
 
 PathOptions parse(const Model& model, const nlohmann::json& spec, const std::string& p) {
   PathOptions o;
+  json_in::expect_keys(spec, p, {"id", "type", "description", "control", "stop", "max_steps", "track", "stiffness_node",
+                                 "branch_switch", "stability", "desired_iterations", "max_cuts", "imperfection",
+                                 "save_every"});
   const auto& c = json_in::object(json_in::require(spec, p, "control", "path analysis"), child(p, "control"), "path control");
   const std::string pc = child(p, "control");
+  json_in::expect_keys(c, pc, {"load_factor", "to", "node", "dof", "arc_length", "min", "max", "increments"});
   const int kinds = (c.contains("load_factor") ? 1 : 0) + (c.contains("to") ? 1 : 0) + (c.contains("arc_length") ? 1 : 0);
   if (kinds != 1)
     throw InputError(pc, "path control: give exactly one of 'load_factor', 'to' (with node and dof) or 'arc_length'");
@@ -67,6 +71,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
   if (spec.contains("stop")) {
     const std::string ps = child(p, "stop");
     const auto& s = json_in::object(spec["stop"], ps, "path stop");
+    json_in::expect_keys(s, ps, {"load_factor", "beyond", "node", "dof", "steps"});
     if (s.contains("load_factor")) o.stop_load_factor = json_in::number(s["load_factor"], child(ps, "load_factor"), "stop load_factor");
     if (s.contains("beyond")) {
       o.stop_beyond = json_in::number(s["beyond"], child(ps, "beyond"), "stop beyond");
@@ -96,6 +101,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
   if (spec.contains("imperfection")) {
     const std::string pi = child(p, "imperfection");
     const auto& im = json_in::object(spec["imperfection"], pi, "imperfection");
+    json_in::expect_keys(im, pi, {"mode", "amplitude"});
     o.imperfection_mode =
         json_in::integer_at_least(json_in::require(im, pi, "mode", "imperfection"), child(pi, "mode"), "imperfection mode", 1);
     o.imperfection_amplitude = json_in::number(json_in::require(im, pi, "amplitude", "imperfection"), child(pi, "amplitude"), "imperfection amplitude");

@@ -1,6 +1,10 @@
 #include "io/json_util.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 namespace beamfea::json_in {
 
@@ -15,6 +19,71 @@ std::string child(const std::string& pointer, const std::string& key) {
 }
 
 std::string child(const std::string& pointer, std::size_t index) { return pointer + "/" + std::to_string(index); }
+
+namespace {
+
+// Levenshtein distance (insertions, deletions, substitutions), O(|a| |b|).
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// Keys longer than this are not compared (a suggestion for them would mean nothing anyway).
+constexpr std::size_t kMaxSuggestedKeyLength = 64;
+
+}  // namespace
+
+std::string nearest_key(std::string_view key, std::initializer_list<std::string_view> known) {
+  if (key.size() > kMaxSuggestedKeyLength) return "";
+  std::string best;
+  std::size_t best_d = std::numeric_limits<std::size_t>::max();
+  for (std::string_view k : known) {
+    const std::size_t d = edit_distance(key, k);
+    if (d < best_d) {
+      best_d = d;
+      best = std::string(k);
+    }
+  }
+  // A suggestion only when at most about a third of the key differs (or a case change).
+  const std::size_t limit = std::max<std::size_t>(2, key.size() / 3);
+  if (best_d <= limit) return best;
+  for (std::string_view k : known) {
+    if (k.size() != key.size()) continue;
+    bool same = true;
+    for (std::size_t i = 0; i < k.size() && same; ++i) same = std::tolower(static_cast<unsigned char>(k[i])) ==
+                                                             std::tolower(static_cast<unsigned char>(key[i]));
+    if (same) return std::string(k);
+  }
+  return "";
+}
+
+void expect_keys(const json& obj, const std::string& pointer, std::initializer_list<std::string_view> known) {
+  if (!obj.is_object()) return;
+  for (const auto& [k, v] : obj.items()) {
+    if (!k.empty() && k[0] == '_') continue;
+    if (k == "comment") continue;
+    if (std::find(known.begin(), known.end(), std::string_view(k)) != known.end()) continue;
+    std::string message = "unknown key '" + k + "'";
+    const std::string near = nearest_key(k, known);
+    if (!near.empty()) message += " (did you mean '" + near + "'?)";
+    else {
+      message += " (known keys:";
+      for (std::string_view n : known) message.append(" ").append(n);
+      message += "; keys starting with '_' and \"comment\" are free)";
+    }
+    throw InputError(child(pointer, k), message);
+  }
+}
 
 const json& require(const json& obj, const std::string& pointer, const std::string& key, const std::string& what) {
   if (!obj.is_object()) throw InputError(pointer, what + ": expected an object");
@@ -38,12 +107,25 @@ double positive(const json& v, const std::string& pointer, const std::string& wh
 
 int integer(const json& v, const std::string& pointer, const std::string& what) {
   if (!v.is_number_integer()) throw InputError(pointer, what + ": expected an integer");
+  constexpr auto lo = std::numeric_limits<int>::min();
+  constexpr auto hi = std::numeric_limits<int>::max();
+  if (v.is_number_unsigned() ? v.get<std::uint64_t>() > static_cast<std::uint64_t>(hi)
+                             : (v.get<std::int64_t>() < lo || v.get<std::int64_t>() > hi))
+    throw InputError(pointer, what + ": " + v.dump() + " is out of range for an integer here");
   return v.get<int>();
 }
 
 int integer_at_least(const json& v, const std::string& pointer, const std::string& what, int min) {
   const int x = integer(v, pointer, what);
   if (x < min) throw InputError(pointer, what + " must be at least " + std::to_string(min) + " (got " + std::to_string(x) + ")");
+  return x;
+}
+
+int integer_in(const json& v, const std::string& pointer, const std::string& what, int min, int max) {
+  const int x = integer(v, pointer, what);
+  if (x < min || x > max)
+    throw InputError(pointer, what + " must be between " + std::to_string(min) + " and " + std::to_string(max) +
+                                  " (got " + std::to_string(x) + ")");
   return x;
 }
 
@@ -63,6 +145,7 @@ std::string id(const json& v, const std::string& pointer, const std::string& wha
     if (s.empty()) throw InputError(pointer, what + ": id must not be empty");
     return s;
   }
+  if (v.is_number_unsigned()) return std::to_string(v.get<std::uint64_t>());
   if (v.is_number_integer()) return std::to_string(v.get<long long>());
   throw InputError(pointer, what + ": an id must be a string or an integer");
 }

@@ -1,7 +1,9 @@
 #pragma once
 // Typed access to JSON input with errors that carry the JSON pointer of the field at fault.
 #include <nlohmann/json.hpp>
+#include <initializer_list>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -15,12 +17,25 @@ using json = nlohmann::json;
 std::string child(const std::string& pointer, const std::string& key);
 std::string child(const std::string& pointer, std::size_t index);
 
+// The one key policy of every input object (model, analysis specs, stop/control blocks, sweep
+// files): a key of `obj` that is not in `known` is an InputError at its pointer, suggesting the
+// nearest known key by edit distance ("did you mean 'supports'?"). Keys starting with '_' and
+// the key "comment" are free (for the user's notes). Adding a key to the format is adding it to
+// the `known` list at the call site: one line. Does nothing when `obj` is not an object (the
+// caller's type check reports that).
+void expect_keys(const json& obj, const std::string& pointer, std::initializer_list<std::string_view> known);
+// The known key nearest to `key` by edit distance, or "" when none is close enough to suggest.
+std::string nearest_key(std::string_view key, std::initializer_list<std::string_view> known);
+
 const json& require(const json& obj, const std::string& pointer, const std::string& key, const std::string& what);
 double number(const json& v, const std::string& pointer, const std::string& what);
 double positive(const json& v, const std::string& pointer, const std::string& what);
+// An integer that fits an int (values beyond it are an error, never wrapped).
 int integer(const json& v, const std::string& pointer, const std::string& what);
 // An integer no smaller than `min`.
 int integer_at_least(const json& v, const std::string& pointer, const std::string& what, int min);
+// An integer in [min, max] (documented bounds on sizes that would exhaust memory or time).
+int integer_in(const json& v, const std::string& pointer, const std::string& what, int min, int max);
 bool boolean(const json& v, const std::string& pointer, const std::string& what);
 std::string string(const json& v, const std::string& pointer, const std::string& what);
 // An id: a string or an integer, returned as a string.

@@ -90,6 +90,7 @@ void check_patch(const json& base, const json& patch, const std::string& where) 
     const auto& op = patch[k];
     if (!op.is_object() || !op.contains("op") || !op.contains("path"))
       throw InputError(child(where, k), "a JSON Patch operation needs \"op\" and \"path\"");
+    json_in::expect_keys(op, child(where, k), {"op", "path", "value", "from"});
     // Type check for a plain replacement of an existing value, as for "set".
     if (op["op"] == "replace" && op.contains("value") && op["path"].is_string()) {
       const auto p = read_pointer(op["path"], child(child(where, k), "path"));
@@ -102,20 +103,6 @@ void check_patch(const json& base, const json& patch, const std::string& where) 
     copy.patch_inplace(patch);
   } catch (const json::exception& e) {
     throw InputError(where, std::string("the JSON Patch does not apply to the base model: ") + e.what());
-  }
-}
-
-void check_keys(const json& obj, const std::string& where, std::initializer_list<const char*> known) {
-  for (const auto& [k, v] : obj.items()) {
-    if (!k.empty() && k[0] == '_') continue;
-    if (k == "comment" || k == "description" || k == "title") continue;
-    bool found = false;
-    for (const char* n : known) found = found || k == n;
-    if (!found) {
-      std::string list;
-      for (const char* n : known) list += (list.empty() ? "" : ", ") + std::string(n);
-      throw InputError(child(where, k), "unknown field '" + k + "' (expected " + list + ")");
-    }
   }
 }
 
@@ -139,7 +126,7 @@ SweepOutput read_output(const json& v, const std::string& where) {
     path = v.get<std::string>();
     o.name = path;
   } else if (v.is_object()) {
-    check_keys(v, where, {"name", "path"});
+    json_in::expect_keys(v, where, {"name", "path"});
     path = json_in::string(json_in::require(v, where, "path", "output"), child(where, "path"), "output path");
     o.name = v.contains("name") ? json_in::string(v["name"], child(where, "name"), "output name") : path;
   } else {
@@ -598,7 +585,7 @@ json Sweep::document(std::size_t index) const {
 Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
   Sweep s;
   if (!doc.is_object()) throw InputError("", "a sweep must be a JSON object");
-  check_keys(doc, "", {"base", "model", "grid", "cases", "outputs", "analyses"});
+  json_in::expect_keys(doc, "", {"base", "model", "grid", "cases", "outputs", "analyses", "description", "title"});
 
   // The base model, parsed once.
   if (doc.contains("base") == doc.contains("model"))
@@ -634,7 +621,7 @@ Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
     for (std::size_t a = 0; a < g.size(); ++a) {
       const std::string p = child("/grid", a);
       const auto& ax = json_in::object(g[a], p, "grid axis");
-      check_keys(ax, p, {"name", "pointer", "values", "patches"});
+      json_in::expect_keys(ax, p, {"name", "pointer", "values", "patches"});
       SweepAxis axis;
       if (ax.contains("patches")) {
         if (ax.contains("pointer")) throw InputError(child(p, "pointer"), "a grid axis has \"pointer\" or \"patches\", not both");
@@ -676,7 +663,7 @@ Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
     for (std::size_t i = 0; i < cs.size(); ++i) {
       const std::string p = child("/cases", i);
       const auto& c = json_in::object(cs[i], p, "case");
-      check_keys(c, p, {"id", "parameters", "set", "patch"});
+      json_in::expect_keys(c, p, {"id", "parameters", "set", "patch"});
       SweepListCase lc;
       lc.id = c.contains("id") ? json_in::id(c["id"], child(p, "id"), "case") : std::to_string(i);
       if (lc.id.empty() || lc.id == "." || lc.id == ".." ||

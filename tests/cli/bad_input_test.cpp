@@ -110,6 +110,55 @@ TEST(BadInput, CheckCommandValidatesWithoutRunning) {
   EXPECT_NE(r.output.find("/elements/0/section"), std::string::npos) << r.output;
 }
 
+// One key policy (issue 9): every object rejects unknown keys, suggesting the nearest known one;
+// '_'-prefixed keys and "comment" are free.
+TEST(StrictKeys, MisspelledTopLevelKeySuggestsTheKnownOne) {
+  json d = base();
+  d["suports"] = d["supports"];
+  d.erase("supports");
+  expect_bad(run_doc("key_top", d), {"/suports", "unknown key 'suports'", "did you mean 'supports'?"});
+}
+
+TEST(StrictKeys, UnknownKeyInAnEntryIsNamedWithItsPointer) {
+  json d = base();
+  d["materials"][0]["Ee"] = 1.0;
+  expect_bad(run_doc("key_material", d), {"/materials/0/Ee", "did you mean 'E'?"});
+  json e = base();
+  e["elements"][0]["divisons"] = 4;
+  expect_bad(run_doc("key_element", e), {"/elements/0/divisons", "did you mean 'divisions'?"});
+  json f = base();
+  f["loads"][0]["forse"] = {0, 1, 0};
+  expect_bad(run_doc("key_load", f), {"/loads/0/forse", "did you mean 'force'?"});
+}
+
+TEST(StrictKeys, UnknownKeyInAnAnalysisSpecAndItsBlocksIsRejected) {
+  json d = base();
+  d["analyses"].push_back({{"id", "b"}, {"type", "buckling"}, {"mode", 2}});
+  expect_bad(run_doc("key_buckling", d), {"/analyses/1/mode", "did you mean 'modes'?"});
+  json e = base();
+  e["analyses"] = {{{"id", "p"}, {"type", "path"}, {"control", {{"load_factor", 1.0}, {"incremnts", 4}}}}};
+  expect_bad(run_doc("key_control", e), {"/analyses/0/control/incremnts", "did you mean 'increments'?"});
+  json f = base();
+  f["analyses"] = {{{"id", "p"}, {"type", "path"}, {"control", {{"load_factor", 1.0}}}, {"stop", {{"step", 3}}}}};
+  expect_bad(run_doc("key_stop", f), {"/analyses/0/stop/step", "did you mean 'steps'?"});
+}
+
+TEST(StrictKeys, UnderscoreKeysAndCommentsAreFree) {
+  json d = base();
+  d["_note"] = "mine";
+  d["comment"] = "a cantilever";
+  d["nodes"][0]["_label"] = 3;
+  d["analyses"][0]["comment"] = "first";
+  const auto o = run_doc("key_free", d);
+  EXPECT_EQ(o.code, 0) << o.message;
+}
+
+TEST(StrictKeys, AFarFetchedKeyListsTheKnownKeys) {
+  json d = base();
+  d["nodes"][0]["zzzzzzzz"] = 1;
+  expect_bad(run_doc("key_far", d), {"/nodes/0/zzzzzzzz", "known keys: id xyz"});
+}
+
 TEST(AnalysisFailure, MechanismExitsWithOneAndNamesTheJoint) {
   json d = base();
   d["nodes"].push_back({{"id", "C"}, {"xyz", {2, 0, 0}}});

@@ -1,0 +1,49 @@
+#pragma once
+// The model reader's parts, one per collection of the model file (io/model_reader.cpp calls them
+// in order; each appends to the model and throws InputError naming the JSON pointer):
+//   io/read_properties.cpp  nodes, materials, sections
+//   io/read_members.cpp     elements (members), meshed by core/meshing
+//   io/read_joints.cpp      joints
+//   io/read_boundary.cpp    supports, loads, prescribed values
+// Internal to io/: not installed as an API.
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <unordered_map>
+
+#include "core/model.hpp"
+
+namespace beamfea::reader {
+
+using json = nlohmann::json;
+
+// What the parts share while reading one document.
+struct ReadState {
+  const json& doc;
+  Model& model;
+  std::unordered_map<std::string, int> materials;  // id -> index
+  std::unordered_map<std::string, int> sections;   // id -> index
+  double length_scale = 1.0;                       // of the user's nodes, computed once
+};
+
+// The array at doc[key] (pointer "/key"); an empty array when absent and not required.
+const json& collection(const json& doc, const char* key, bool required);
+
+// Records `id` of item `i` of the collection at `base`; a repeated id is an InputError naming
+// both places.
+void check_unique(std::map<std::string, std::size_t>& seen, const std::string& kind, const std::string& base,
+                  const std::string& id, std::size_t i);
+
+// A node DOF {"node", "dof"} or a joint coordinate {"joint", "coordinate"} named in object `e`.
+DofRef read_dof_target(const Model& m, const json& e, const std::string& p, const std::string& what);
+
+void read_nodes(ReadState& s);
+void read_materials(ReadState& s);
+void read_sections(ReadState& s);
+void read_members(ReadState& s);
+void read_joints(ReadState& s);
+void read_supports(ReadState& s);
+void read_loads(ReadState& s);
+void read_prescribed(ReadState& s);
+
+}  // namespace beamfea::reader

@@ -1,0 +1,83 @@
+// Model reader, part 4: supports, loads, prescribed values.
+#include <set>
+
+#include "core/errors.hpp"
+#include "io/json_util.hpp"
+#include "io/model_reader.hpp"
+#include "io/model_reader_parts.hpp"
+
+namespace beamfea::reader {
+
+using namespace json_in;
+
+void read_supports(ReadState& s) {
+  Model& m = s.model;
+  const auto& arr = collection(s.doc, "supports", false);
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    const std::string p = child("/supports", i);
+    const auto& o = object(arr[i], p, "support");
+    expect_keys(o, p, {"node", "fix"});
+    Support sup;
+    sup.node = node_ref(m, require(o, p, "node", "support"), child(p, "node"));
+    const std::string what = "support at node '" + m.nodes[sup.node].id + "'";
+    const auto& fix = require(o, p, "fix", what);
+    if (fix.is_string() && fix.get<std::string>() == "all") {
+      sup.fixed.fill(true);
+    } else {
+      array(fix, child(p, "fix"), what);
+      for (std::size_t k = 0; k < fix.size(); ++k) {
+        const std::string name = string(fix[k], child(child(p, "fix"), k), what);
+        const int d = dof_index(name);
+        if (d < 0)
+          throw InputError(child(child(p, "fix"), k), what + ": unknown DOF '" + name + "' (expected ux uy uz rx ry rz)");
+        sup.fixed[d] = true;
+      }
+    }
+    m.supports.push_back(sup);
+  }
+}
+
+void read_loads(ReadState& s) {
+  Model& m = s.model;
+  const auto& arr = collection(s.doc, "loads", false);
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    const std::string p = child("/loads", i);
+    const auto& o = object(arr[i], p, "load");
+    if (o.contains("joint")) {
+      expect_keys(o, p, {"joint", "coordinate", "value"});
+      JointLoad l;
+      const DofRef d = read_dof_target(m, o, p, "load");
+      l.joint = d.index;
+      l.coordinate = d.comp;
+      l.value = number(require(o, p, "value", "load on joint '" + m.joints[l.joint].id + "'"), child(p, "value"), "load value");
+      m.joint_loads.push_back(l);
+      continue;
+    }
+    expect_keys(o, p, {"node", "force", "moment"});
+    NodalLoad l;
+    l.node = node_ref(m, require(o, p, "node", "load"), child(p, "node"));
+    const std::string what = "load at node '" + m.nodes[l.node].id + "'";
+    if (o.contains("force")) l.force = vec3(o["force"], child(p, "force"), what + " force");
+    if (o.contains("moment")) l.moment = vec3(o["moment"], child(p, "moment"), what + " moment");
+    m.loads.push_back(l);
+  }
+}
+
+void read_prescribed(ReadState& s) {
+  Model& m = s.model;
+  const auto& arr = collection(s.doc, "prescribed", false);
+  std::set<std::pair<int, int>> seen;
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    const std::string p = child("/prescribed", i);
+    const auto& o = object(arr[i], p, "prescribed value");
+    expect_keys(o, p, {"node", "dof", "joint", "coordinate", "value"});
+    Prescribed pr;
+    pr.dof = read_dof_target(m, o, p, "prescribed value");
+    pr.value = number(require(o, p, "value", "prescribed " + m.describe(pr.dof)), child(p, "value"), "prescribed value");
+    if (!seen.insert({pr.dof.owner == DofRef::Owner::Node ? pr.dof.index : -1 - pr.dof.index, pr.dof.comp}).second)
+      throw InputError(p, m.describe(pr.dof) + " is prescribed twice");
+    m.prescribed.push_back(pr);
+  }
+}
+
+}  // namespace beamfea::reader

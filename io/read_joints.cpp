@@ -1,0 +1,154 @@
+// Model reader, part 3: joints (revolute, universal, spherical, virtual springs).
+#include <Eigen/Eigenvalues>
+
+#include "core/errors.hpp"
+#include "elements/beam.hpp"
+#include "io/json_util.hpp"
+#include "io/model_reader.hpp"
+#include "io/model_reader_parts.hpp"
+
+namespace beamfea::reader {
+
+using namespace json_in;
+
+namespace {
+
+// Relative distance (times the length scale) above which a joint's two nodes do not coincide.
+constexpr double kCoincident = 1e-9;
+// |sin| of the angle between two axes below which they are parallel.
+constexpr double kParallelAxes = 1e-6;
+// |cos| above which a virtual spring's axes are not orthogonal.
+constexpr double kOrthogonalAxes = 1e-9;
+// Relative asymmetry / negative eigenvalue tolerated in a full stiffness matrix (round-off of
+// values the user computed elsewhere).
+constexpr double kMatrixTolerance = 1e-9;
+
+JointType joint_type(const std::string& type, const std::string& p, const std::string& what) {
+  if (type == "revolute") return JointType::Revolute;
+  if (type == "universal") return JointType::Universal;
+  if (type == "spherical") return JointType::Spherical;
+  if (type == "virtual_spring") return JointType::VirtualSpring;
+  throw InputError(p, what + ": unknown type '" + type + "' (expected revolute, universal, spherical, virtual_spring)");
+}
+
+void read_axes(Joint& j, const json& o, const std::string& p, const std::string& what, const std::string& type) {
+  const int nc = joint_coordinate_count(j.type);
+  // Axes: one per rotation coordinate; a virtual spring gives its frame (x, y, z), used for its
+  // three translations and its three rotations alike.
+  const int naxes = j.type == JointType::VirtualSpring ? 3 : nc;
+  std::vector<Vec3> axes_in;
+  if (o.contains("axes")) {
+    const auto& axes = array(o["axes"], child(p, "axes"), what + " axes");
+    if (static_cast<int>(axes.size()) != naxes)
+      throw InputError(child(p, "axes"), what + ": a " + type + " joint needs " + std::to_string(naxes) + " axes");
+    for (std::size_t k = 0; k < axes.size(); ++k) {
+      Vec3 a = vec3(axes[k], child(child(p, "axes"), k), what + " axis");
+      if (a.norm() == 0.0) throw InputError(child(child(p, "axes"), k), what + ": axis is zero");
+      axes_in.push_back(a.normalized());
+    }
+  } else if (j.type == JointType::Spherical || j.type == JointType::VirtualSpring) {
+    axes_in = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+  } else {
+    throw InputError(child(p, "axes"), what + ": missing field 'axes'");
+  }
+  for (int a = 0; a < naxes; ++a)
+    for (int b = a + 1; b < naxes; ++b)
+      if (axes_in[a].cross(axes_in[b]).norm() < kParallelAxes)
+        throw InputError(child(p, "axes"), what + ": axes " + std::to_string(a) + " and " + std::to_string(b) + " are parallel");
+  j.axes = axes_in;
+  if (j.type == JointType::VirtualSpring) {
+    for (int a = 0; a < 3; ++a)
+      for (int b = a + 1; b < 3; ++b)
+        if (std::abs(axes_in[a].dot(axes_in[b])) > kOrthogonalAxes)
+          throw InputError(child(p, "axes"), what + ": the axes of a virtual spring must be orthogonal");
+    j.translations = 3;
+    j.axes.insert(j.axes.end(), axes_in.begin(), axes_in.end());
+  }
+}
+
+void read_stiffness(Joint& j, const json& st, const std::string& sp, const std::string& what) {
+  const int nc = joint_coordinate_count(j.type);
+  if (st.is_array() && !st.empty() && st[0].is_array()) {
+    // A full matrix, symmetric, positive semi-definite.
+    if (static_cast<int>(st.size()) != nc)
+      throw InputError(sp, what + ": expected a " + std::to_string(nc) + "x" + std::to_string(nc) + " stiffness matrix");
+    Eigen::MatrixXd K(nc, nc);
+    for (int r = 0; r < nc; ++r) {
+      auto row = numbers(st[r], child(sp, r), what + " stiffness");
+      if (static_cast<int>(row.size()) != nc)
+        throw InputError(child(sp, r), what + ": expected " + std::to_string(nc) + " values in each row");
+      for (int c = 0; c < nc; ++c) K(r, c) = row[c];
+    }
+    if ((K - K.transpose()).cwiseAbs().maxCoeff() > kMatrixTolerance * K.cwiseAbs().maxCoeff())
+      throw InputError(sp, what + ": the stiffness matrix must be symmetric");
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(K);
+    if (es.eigenvalues().minCoeff() < -kMatrixTolerance * K.cwiseAbs().maxCoeff())
+      throw InputError(sp, what + ": the stiffness matrix must be positive semi-definite");
+    j.stiffness_matrix = K;
+    for (int c = 0; c < nc; ++c) j.stiffness[c] = K(c, c);
+  } else {
+    auto k = numbers(st, sp, what + " stiffness");
+    if (static_cast<int>(k.size()) != nc)
+      throw InputError(sp, what + ": expected " + std::to_string(nc) + " stiffness value(s)");
+    for (int c = 0; c < nc; ++c)
+      if (k[c] < 0.0) throw InputError(child(sp, c), what + ": stiffness must not be negative");
+    j.stiffness = k;
+  }
+}
+
+// "stiffness_from_beam": the tip stiffness of a cantilever (elements/beam.hpp), in the joint
+// frame (x along the link).
+void read_stiffness_from_beam(Joint& j, const ReadState& s, const json& o, const std::string& p, const std::string& what) {
+  const Model& m = s.model;
+  if (j.type != JointType::VirtualSpring)
+    throw InputError(child(p, "stiffness_from_beam"), what + ": stiffness_from_beam needs a virtual_spring joint");
+  if (o.contains("stiffness"))
+    throw InputError(child(p, "stiffness_from_beam"), what + ": give \"stiffness\" or \"stiffness_from_beam\", not both");
+  const std::string bp = child(p, "stiffness_from_beam");
+  const auto& b = object(o["stiffness_from_beam"], bp, what + " stiffness_from_beam");
+  expect_keys(b, bp, {"material", "section", "length"});
+  const std::string mid = json_in::id(require(b, bp, "material", what), child(bp, "material"), what + " material");
+  const std::string sid = json_in::id(require(b, bp, "section", what), child(bp, "section"), what + " section");
+  const auto mi = s.materials.find(mid);
+  const auto si = s.sections.find(sid);
+  if (mi == s.materials.end()) throw InputError(child(bp, "material"), what + ": unknown material '" + mid + "'");
+  if (si == s.sections.end()) throw InputError(child(bp, "section"), what + ": unknown section '" + sid + "'");
+  const double L = positive(require(b, bp, "length", what), child(bp, "length"), what + " length");
+  const auto& mat = m.materials[mi->second];
+  const auto& sec = m.sections[si->second];
+  j.stiffness_matrix = cantilever_tip_stiffness(BeamSection{mat.E, mat.G, sec.A, sec.Iy, sec.Iz, sec.J}, L);
+  for (int c = 0; c < j.coordinates(); ++c) j.stiffness[c] = j.stiffness_matrix(c, c);
+}
+
+}  // namespace
+
+void read_joints(ReadState& s) {
+  Model& m = s.model;
+  const auto& arr = collection(s.doc, "joints", false);
+  std::map<std::string, std::size_t> seen;
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    const std::string p = child("/joints", i);
+    const auto& o = object(arr[i], p, "joint");
+    expect_keys(o, p, {"id", "type", "nodes", "axes", "stiffness", "stiffness_from_beam"});
+    Joint j;
+    j.id = json_in::id(require(o, p, "id", "joint"), child(p, "id"), "joint");
+    check_unique(seen, "joint", "/joints", j.id, i);
+    const std::string what = "joint '" + j.id + "'";
+    const std::string type = string(require(o, p, "type", what), child(p, "type"), what);
+    j.type = joint_type(type, child(p, "type"), what);
+    const auto& nodes = require(o, p, "nodes", what);
+    if (!nodes.is_array() || nodes.size() != 2) throw InputError(child(p, "nodes"), what + ": expected two node ids");
+    for (int k = 0; k < 2; ++k) j.nodes[k] = node_ref(m, nodes[k], child(child(p, "nodes"), k));
+    if (j.nodes[0] == j.nodes[1]) throw InputError(child(p, "nodes"), what + ": joins a node to itself");
+    if ((m.nodes[j.nodes[0]].x - m.nodes[j.nodes[1]].x).norm() > kCoincident * s.length_scale)
+      throw InputError(child(p, "nodes"), what + ": nodes '" + m.nodes[j.nodes[0]].id + "' and '" +
+                                              m.nodes[j.nodes[1]].id + "' do not coincide");
+    read_axes(j, o, p, what, type);
+    j.stiffness.assign(joint_coordinate_count(j.type), 0.0);
+    if (o.contains("stiffness")) read_stiffness(j, o["stiffness"], child(p, "stiffness"), what);
+    if (o.contains("stiffness_from_beam")) read_stiffness_from_beam(j, s, o, p, what);
+    m.add_joint(std::move(j));
+  }
+}
+
+}  // namespace beamfea::reader

@@ -1,0 +1,86 @@
+// Model reader, part 2: elements (members), meshed into analysis elements by core/meshing.
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "core/meshing.hpp"
+#include "io/json_util.hpp"
+#include "io/model_reader.hpp"
+#include "io/model_reader_parts.hpp"
+
+namespace beamfea::reader {
+
+using namespace json_in;
+
+namespace {
+
+// Upper bound of "divisions" per member (docs/input-format.md): 10,000 segments resolve any
+// beam's deflection far below its discretisation error; more would only exhaust memory.
+constexpr int kMaxDivisions = 10000;
+// Relative length below which a member's end nodes coincide (times the model's length scale).
+constexpr double kZeroLength = 1e-12;
+// |sin| of the angle between orientation and member below which they are parallel.
+constexpr double kParallelOrientation = 1e-8;
+
+int find_property(const std::unordered_map<std::string, int>& index, const std::string& id) {
+  auto it = index.find(id);
+  return it == index.end() ? -1 : it->second;
+}
+
+}  // namespace
+
+void read_members(ReadState& s) {
+  Model& m = s.model;
+  const auto& arr = collection(s.doc, "elements", false);
+  std::map<std::string, std::size_t> seen;
+  m.members.reserve(arr.size());
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    const std::string p = child("/elements", i);
+    const auto& o = object(arr[i], p, "element");
+    expect_keys(o, p, {"id", "type", "nodes", "material", "section", "orientation", "divisions"});
+    Member mem;
+    mem.id = json_in::id(require(o, p, "id", "element"), child(p, "id"), "element");
+    check_unique(seen, "element", "/elements", mem.id, i);
+    const std::string what = "element '" + mem.id + "'";
+    const std::string type = string(require(o, p, "type", what), child(p, "type"), what);
+    if (type == "beam") mem.type = MemberType::Beam;
+    else if (type == "rigid") mem.type = MemberType::Rigid;
+    else throw InputError(child(p, "type"), what + ": unknown type '" + type + "' (expected beam or rigid)");
+    const auto& nodes = require(o, p, "nodes", what);
+    if (!nodes.is_array() || nodes.size() != 2) throw InputError(child(p, "nodes"), what + ": expected two node ids");
+    for (int k = 0; k < 2; ++k) mem.nodes[k] = node_ref(m, nodes[k], child(child(p, "nodes"), k));
+    const Vec3 x1 = m.nodes[mem.nodes[0]].x, x2 = m.nodes[mem.nodes[1]].x;
+    const double L = (x2 - x1).norm();
+    if (!(L > kZeroLength * s.length_scale))
+      throw InputError(child(p, "nodes"), what + ": zero length (nodes '" + m.nodes[mem.nodes[0]].id + "' and '" +
+                                              m.nodes[mem.nodes[1]].id + "' coincide)");
+    if (mem.type == MemberType::Beam) {
+      const std::string mid = json_in::id(require(o, p, "material", what), child(p, "material"), what + " material");
+      mem.material = find_property(s.materials, mid);
+      if (mem.material < 0) throw InputError(child(p, "material"), what + ": unknown material '" + mid + "'");
+      const std::string sid = json_in::id(require(o, p, "section", what), child(p, "section"), what + " section");
+      mem.section = find_property(s.sections, sid);
+      if (mem.section < 0) throw InputError(child(p, "section"), what + ": unknown section '" + sid + "'");
+      const Vec3 ex = (x2 - x1) / L;
+      if (o.contains("orientation")) {
+        mem.orientation = vec3(o["orientation"], child(p, "orientation"), what + " orientation");
+        if (mem.orientation.norm() == 0.0 || mem.orientation.normalized().cross(ex).norm() < kParallelOrientation)
+          throw InputError(child(p, "orientation"), what + ": orientation is zero or parallel to the member");
+      } else {
+        // Default: global Z in the local x-z plane; for a vertical member, global X.
+        mem.orientation = std::abs(ex.z()) > 1.0 - kParallelOrientation ? Vec3(1, 0, 0) : Vec3(0, 0, 1);
+      }
+      if (o.contains("divisions"))
+        mem.divisions = integer_in(o["divisions"], child(p, "divisions"), what + " divisions", 1, kMaxDivisions);
+    } else {
+      if (o.contains("divisions") && o["divisions"] != 1)
+        throw InputError(child(p, "divisions"), what + ": a rigid link cannot be divided");
+      for (const char* key : {"material", "section", "orientation"})
+        if (o.contains(key)) throw InputError(child(p, key), what + ": a rigid link has no " + std::string(key));
+    }
+    if (const std::string taken = taken_internal_node_id(m, mem); !taken.empty())
+      throw InputError(child(p, "id"), what + ": internal node id '" + taken + "' is taken");
+    add_meshed_member(m, std::move(mem));
+  }
+}
+
+}  // namespace beamfea::reader

@@ -1,0 +1,121 @@
+// Model reader, part 1: nodes, materials, sections (io/model_reader_parts.hpp).
+#include "core/errors.hpp"
+#include "elements/section_shapes.hpp"
+#include "io/json_util.hpp"
+#include "io/model_reader_parts.hpp"
+
+namespace beamfea::reader {
+
+using namespace json_in;
+
+void read_nodes(ReadState& s) {
+  Model& m = s.model;
+  const auto& arr = collection(s.doc, "nodes", true);
+  std::map<std::string, std::size_t> seen;
+  m.nodes.reserve(arr.size());
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    const std::string p = child("/nodes", i);
+    const auto& n = object(arr[i], p, "node");
+    expect_keys(n, p, {"id", "xyz"});
+    Node node;
+    node.id = json_in::id(require(n, p, "id", "node"), child(p, "id"), "node");
+    check_unique(seen, "node", "/nodes", node.id, i);
+    node.x = vec3(require(n, p, "xyz", "node '" + node.id + "'"), child(p, "xyz"), "node '" + node.id + "' xyz");
+    m.add_node(std::move(node));
+  }
+}
+
+void read_materials(ReadState& s) {
+  Model& m = s.model;
+  const auto& arr = collection(s.doc, "materials", false);
+  std::map<std::string, std::size_t> seen;
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    const std::string p = child("/materials", i);
+    const auto& o = object(arr[i], p, "material");
+    expect_keys(o, p, {"id", "E", "G", "nu"});
+    Material mat;
+    mat.id = json_in::id(require(o, p, "id", "material"), child(p, "id"), "material");
+    check_unique(seen, "material", "/materials", mat.id, i);
+    const std::string what = "material '" + mat.id + "'";
+    mat.E = positive(require(o, p, "E", what), child(p, "E"), what + " E");
+    if (o.contains("G")) {
+      mat.G = positive(o["G"], child(p, "G"), what + " G");
+    } else if (o.contains("nu")) {
+      const double nu = number(o["nu"], child(p, "nu"), what + " nu");
+      if (!(nu > -1.0 && nu < 0.5)) throw InputError(child(p, "nu"), what + ": nu must lie in (-1, 0.5)");
+      mat.G = mat.E / (2.0 * (1.0 + nu));
+    } else {
+      throw InputError(child(p, "G"), what + ": missing field 'G' (or 'nu')");
+    }
+    s.materials.emplace(mat.id, static_cast<int>(m.materials.size()));
+    m.materials.push_back(mat);
+  }
+}
+
+namespace {
+
+Section read_section(const json& o, const std::string& p, const std::string& id) {
+  Section sec;
+  sec.id = id;
+  const std::string what = "section '" + id + "'";
+  if (o.contains("shape")) {
+    const std::string shape = string(o["shape"], child(p, "shape"), what);
+    SectionProperties sp;
+    if (shape == "rectangle") {
+      const double b = positive(require(o, p, "b", what), child(p, "b"), what + " b");
+      const double h = positive(require(o, p, "h", what), child(p, "h"), what + " h");
+      sp = rectangle_section(b, h);
+    } else if (shape == "circle") {
+      double r;
+      if (o.contains("d")) r = 0.5 * positive(o["d"], child(p, "d"), what + " d");
+      else r = positive(require(o, p, "r", what), child(p, "r"), what + " r");
+      sp = circle_section(r);
+    } else if (shape == "tube") {
+      const double d = positive(require(o, p, "d", what), child(p, "d"), what + " d");
+      const double t = positive(require(o, p, "t", what), child(p, "t"), what + " t");
+      if (!(t < 0.5 * d)) throw InputError(child(p, "t"), what + ": wall thickness must be below the radius");
+      sp = tube_section(d, t);
+    } else {
+      throw InputError(child(p, "shape"), what + ": unknown shape '" + shape + "' (expected rectangle, circle, tube)");
+    }
+    sec.A = sp.A;
+    sec.Iy = sp.Iy;
+    sec.Iz = sp.Iz;
+    sec.J = sp.J;
+    sec.ky = sp.ky;
+    sec.kz = sp.kz;
+  }
+  // Explicit properties override the shape's.
+  auto prop = [&](const char* key, double& out, bool required) {
+    if (o.contains(key)) out = positive(o[key], child(p, key), what + " " + key);
+    else if (required && !o.contains("shape"))
+      throw InputError(child(p, key), what + ": missing field '" + std::string(key) + "'");
+  };
+  prop("A", sec.A, true);
+  prop("Iy", sec.Iy, true);
+  prop("Iz", sec.Iz, true);
+  prop("J", sec.J, true);
+  if (o.contains("k")) sec.ky = sec.kz = positive(o["k"], child(p, "k"), what + " k");
+  prop("ky", sec.ky, false);
+  prop("kz", sec.kz, false);
+  return sec;
+}
+
+}  // namespace
+
+void read_sections(ReadState& s) {
+  Model& m = s.model;
+  const auto& arr = collection(s.doc, "sections", false);
+  std::map<std::string, std::size_t> seen;
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    const std::string p = child("/sections", i);
+    const auto& o = object(arr[i], p, "section");
+    expect_keys(o, p, {"id", "shape", "b", "h", "d", "r", "t", "A", "Iy", "Iz", "J", "k", "ky", "kz"});
+    const std::string id = json_in::id(require(o, p, "id", "section"), child(p, "id"), "section");
+    check_unique(seen, "section", "/sections", id, i);
+    s.sections.emplace(id, static_cast<int>(m.sections.size()));
+    m.sections.push_back(read_section(o, p, id));
+  }
+}
+
+}  // namespace beamfea::reader
