@@ -1,7 +1,5 @@
 #include "python/convert.hpp"
 
-#include <pybind11/numpy.h>
-
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -112,6 +110,23 @@ void fill(const ojson& v, double*& out) {
 
 }  // namespace
 
+namespace {
+// numpy.empty, looked up when the module is imported (not lazily: a function-local static
+// initialised under the GIL can deadlock with a second thread) and kept for the process's life.
+PyObject* numpy_empty = nullptr;
+}  // namespace
+
+void init_conversions() { numpy_empty = py::object(py::module_::import("numpy").attr("empty")).release().ptr(); }
+
+py::object new_float_array(const std::vector<py::ssize_t>& shape, double*& data) {
+  py::tuple dims(shape.size());
+  for (std::size_t i = 0; i < shape.size(); ++i) dims[i] = py::int_(shape[i]);
+  py::object a = py::reinterpret_borrow<py::object>(numpy_empty)(dims, "float64");
+  const py::buffer_info info = py::reinterpret_borrow<py::buffer>(a).request(true);
+  data = static_cast<double*>(info.ptr);
+  return a;
+}
+
 py::object python_from_json(const ojson& v) {
   switch (v.type()) {
     case ojson::value_t::null:
@@ -139,8 +154,8 @@ py::object python_from_json(const ojson& v) {
     }
     case ojson::value_t::array: {
       if (const auto shape = numeric_shape(v); !shape.empty()) {
-        py::array_t<double> a(shape);
-        double* out = a.mutable_data();
+        double* out = nullptr;
+        py::object a = new_float_array(shape, out);
         fill(v, out);
         return a;
       }

@@ -154,6 +154,7 @@ py::object sweep(const py::object& spec, int jobs) {
 PYBIND11_MODULE(_beamfea, m) {
   m.doc() = "beamfea's engine (use the beamfea package, not this module)";
   m.attr("__version__") = BEAMFEA_PYTHON_VERSION;
+  init_conversions();
   register_error_translator();
   m.def("run", &run, py::arg("model"), py::arg("only"), py::arg("specs"), py::arg("out"), py::arg("vtk"));
   m.def("check", &check, py::arg("model"));

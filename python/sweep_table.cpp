@@ -1,7 +1,5 @@
 #include "python/sweep_table.hpp"
 
-#include <pybind11/numpy.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -57,8 +55,9 @@ py::object column(const std::vector<std::string>& cells) {
     }
     values.push_back(*x);
   }
-  py::array_t<double> a(static_cast<py::ssize_t>(values.size()));
-  std::copy(values.begin(), values.end(), a.mutable_data());
+  double* out = nullptr;
+  py::object a = new_float_array({static_cast<py::ssize_t>(values.size())}, out);
+  std::copy(values.begin(), values.end(), out);
   return a;
 }
 
@@ -67,8 +66,8 @@ py::object parameter_column(const std::vector<nlohmann::ordered_json>& values) {
   bool numeric = true;
   for (const auto& v : values) numeric = numeric && (v.is_number() || v.is_null());
   if (numeric) {
-    py::array_t<double> a(static_cast<py::ssize_t>(values.size()));
-    double* out = a.mutable_data();
+    double* out = nullptr;
+    py::object a = new_float_array({static_cast<py::ssize_t>(values.size())}, out);
     for (const auto& v : values) *out++ = v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
     return a;
   }
@@ -117,11 +116,12 @@ py::dict sweep_columns(const Sweep& sweep, int jobs) {
   }
 
   py::list status, message;
-  py::array_t<double> wall(static_cast<py::ssize_t>(n));
+  double* wall_data = nullptr;
+  py::object wall = new_float_array({static_cast<py::ssize_t>(n)}, wall_data);
   for (std::size_t i = 0; i < n; ++i) {
     status.append(to_string(results[i].status));
     message.append(results[i].message);
-    wall.mutable_data()[i] = results[i].wall_time_s;
+    wall_data[i] = results[i].wall_time_s;
   }
   table["status"] = status;
   table["message"] = message;

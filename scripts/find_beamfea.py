@@ -1,7 +1,9 @@
 """import_beamfea(): the beamfea Python module, for the scripts and examples of this repository.
 
-An installed module (cmake --install, pip install .) or one on PYTHONPATH comes first; else the
-one built in this checkout, <repository>/build/python (or the folder BEAMFEA_PYTHON names)."""
+Which one: the folder named by BEAMFEA_PYTHON (the test suite sets it to its build's); else the
+one built in this checkout, <repository>/build/python, so that a script runs the code beside it
+even when an older beamfea is installed; else an installed one (cmake --install, pip install .)
+or one on PYTHONPATH."""
 import importlib
 import os
 import sys
@@ -10,17 +12,13 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def import_beamfea(required=True):
+    folder = os.environ.get("BEAMFEA_PYTHON", os.path.join(ROOT, "build", "python"))
+    if os.path.isdir(os.path.join(folder, "beamfea")) and folder not in sys.path:
+        sys.path.insert(0, folder)
     try:
         return importlib.import_module("beamfea")
     except ImportError:
-        pass
-    folder = os.environ.get("BEAMFEA_PYTHON", os.path.join(ROOT, "build", "python"))
-    if os.path.isdir(os.path.join(folder, "beamfea")):
-        sys.path.insert(0, folder)
-        try:
-            return importlib.import_module("beamfea")
-        except ImportError:
-            sys.path.remove(folder)
-    if required:
-        sys.exit("cannot import beamfea: build it (scripts/build.sh) or put <build>/python on PYTHONPATH")
-    return None
+        if required:
+            sys.exit("cannot import beamfea: build it (scripts/build.sh), install it, or set BEAMFEA_PYTHON "
+                     "to <build>/python")
+        return None
