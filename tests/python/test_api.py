@@ -140,3 +140,18 @@ def test_help_says_what_run_returns():
     doc = beamfea.run.__doc__
     assert "Returns:" in doc and "results.json" in doc and "ndarray" in doc
     assert "Raises:" in doc and "InputError" in doc
+
+
+def test_type_stubs_declare_the_public_api():
+    import ast
+    import inspect
+    stub = os.path.join(os.path.dirname(beamfea.__file__), "__init__.pyi")
+    tree = ast.parse(open(stub).read())
+    declared = {n.name for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+    declared |= {t.id for n in tree.body if isinstance(n, ast.AnnAssign) for t in [n.target]}
+    assert set(beamfea.__all__) <= declared
+    # the stub's parameters are the function's
+    for fn in ("run", "check", "sweep"):
+        stub_fn = next(n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == fn)
+        stub_args = [a.arg for a in stub_fn.args.args + stub_fn.args.kwonlyargs]
+        assert stub_args == list(inspect.signature(getattr(beamfea, fn)).parameters), fn
