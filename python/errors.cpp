@@ -64,6 +64,9 @@ std::string entity_at(const nlohmann::json& document, const std::string& pointer
   return kind + " " + index;
 }
 
+namespace {
+
+// Each sets the Python error indicator (the GIL is held).
 void set_input_error(const InputError& e, const nlohmann::json* document) {
   const std::string entity = document ? entity_at(*document, e.pointer()) : std::string();
   set_error("InputError", error_class("InputError")(e.what(), optional_str(e.pointer()), optional_str(entity)));
@@ -74,6 +77,8 @@ void set_model_error(const ModelError& e) {
 }
 
 void set_base_error(const Error& e) { set_error("Error", error_class("Error")(e.what())); }
+
+}  // namespace
 
 void raise_input_error(const InputError& e, const nlohmann::json* document) {
   set_input_error(e, document);
