@@ -23,9 +23,20 @@ bool is_numpy(py::handle h, const char* what) {
   return py::isinstance(h, np.attr(what));
 }
 
+// Deeper than any model: a dict or list that contains itself would otherwise recurse until the
+// C stack overflows.
+constexpr int kMaxDepth = 200;
+
+nlohmann::json convert(py::handle h, const std::string& pointer, int depth);
+
 }  // namespace
 
-nlohmann::json json_from_python(py::handle h, const std::string& pointer) {
+nlohmann::json json_from_python(py::handle h, const std::string& pointer) { return convert(h, pointer, 0); }
+
+namespace {
+
+nlohmann::json convert(py::handle h, const std::string& pointer, int depth) {
+  if (depth > kMaxDepth) throw InputError(pointer, "nested more than " + std::to_string(kMaxDepth) + " levels deep (does it contain itself?)");
   if (h.is_none()) return nullptr;
   if (PyBool_Check(h.ptr())) return h.ptr() == Py_True;
   if (PyLong_Check(h.ptr())) {
@@ -51,7 +62,7 @@ nlohmann::json json_from_python(py::handle h, const std::string& pointer) {
       if (!PyUnicode_Check(k.ptr()))
         throw InputError(pointer, "keys must be strings, not " + type_name(k) + " (" + std::string(py::repr(k)) + ")");
       const std::string key = k.cast<std::string>();
-      obj[key] = json_from_python(v, json_in::child(pointer, key));
+      obj[key] = convert(v, json_in::child(pointer, key), depth + 1);
     }
     return obj;
   }
@@ -59,17 +70,15 @@ nlohmann::json json_from_python(py::handle h, const std::string& pointer) {
     nlohmann::json arr = nlohmann::json::array();
     const auto seq = py::reinterpret_borrow<py::sequence>(h);
     const std::size_t n = seq.size();
-    for (std::size_t i = 0; i < n; ++i) arr.push_back(json_from_python(seq[i], json_in::child(pointer, i)));
+    for (std::size_t i = 0; i < n; ++i) arr.push_back(convert(seq[i], json_in::child(pointer, i), depth + 1));
     return arr;
   }
-  if (is_numpy(h, "ndarray")) return json_from_python(h.attr("tolist")(), pointer);
-  if (is_numpy(h, "generic")) return json_from_python(h.attr("item")(), pointer);
+  if (is_numpy(h, "ndarray")) return convert(h.attr("tolist")(), pointer, depth + 1);
+  if (is_numpy(h, "generic")) return convert(h.attr("item")(), pointer, depth + 1);
   if (py::isinstance(h, py::module_::import("collections.abc").attr("Mapping")))
-    return json_from_python(py::dict(py::reinterpret_borrow<py::object>(h)), pointer);
+    return convert(py::dict(py::reinterpret_borrow<py::object>(h)), pointer, depth + 1);
   throw InputError(pointer, "cannot be written as JSON: an object of type " + type_name(h));
 }
-
-namespace {
 
 using ojson = nlohmann::ordered_json;
 

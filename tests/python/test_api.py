@@ -155,3 +155,10 @@ def test_type_stubs_declare_the_public_api():
         stub_fn = next(n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == fn)
         stub_args = [a.arg for a in stub_fn.args.args + stub_fn.args.kwonlyargs]
         assert stub_args == list(inspect.signature(getattr(beamfea, fn)).parameters), fn
+
+
+def test_a_model_that_contains_itself_is_an_input_error_not_a_crash():
+    doc = cantilever()
+    doc["_note"] = [doc]
+    with pytest.raises(beamfea.InputError, match="contain itself"):
+        beamfea.run(doc)
