@@ -3,7 +3,8 @@
 // {"id": "p", "type": "path", "track": ["D"], "stiffness_node": "D", "max_steps": 500,
 //  "control": {"load_factor": 2.0, "increments": 20}                 load control, or
 //  "control": {"node": "D", "dof": "ux", "to": -1.0, "increments": 20}  displacement control, or
-//  "control": {"arc_length": 0.05, "min": 1e-5, "max": 0.5}            arc length (initial step)
+//  "control": {"arc_length": 0.05, "min": 1e-5, "max": 0.5}            arc length (initial step), or
+//  "control": {"arc_length": "auto"}                                  the first step from the structure
 //  "stop": {"load_factor": 2.0} | {"node": "D", "dof": "uy", "beyond": -60.0} | {"steps": 300},
 //  "branch_switch": true, "imperfection": {"mode": 1, "amplitude": 0.001},
 //  "stability": true, "save_every": 1, "desired_iterations": 5, "max_cuts": 10}
@@ -11,8 +12,10 @@
 // Result analyses.<id>: type, status, termination, completed, free_dofs, control,
 // steps[] {step, load_factor, control, arc_length, iterations, nodes.<tracked>.displacement,
 //          negative_eigenvalues, stable, min_eigenvalue, stiffness (when stiffness_node), reaction
-//          (imposed motion)}, critical_points[] {type, load_factor, step, control, negative_before,
-//          negative_after, load_work, branch_switched, mode.nodes.<id>.displacement},
+//          (imposed motion), step_control (displacement control: "displacement", or "arc_length" through
+//          a snap-back of the controlled DOF)}, critical_points[] {type, load_factor, step, control,
+//          negative_before, negative_after, load_work, reaction (imposed motion), branch_switched,
+//          mode.nodes.<id>.displacement},
 // files: csv, vtk. Files: DIR/<id>.csv (one row per step), DIR/<id>.pvd and DIR/<id>_step<k>.vtu.
 #include <fmt/format.h>
 
@@ -61,7 +64,13 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
     o.target = json_in::number(c["to"], child(pc, "to"), "control to");
   } else {
     o.control = PathControl::ArcLength;
-    o.arc_length = json_in::positive(c["arc_length"], child(pc, "arc_length"), "arc_length");
+    if (c["arc_length"].is_string()) {
+      const std::string v = json_in::string(c["arc_length"], child(pc, "arc_length"), "arc_length");
+      if (v != "auto") throw InputError(child(pc, "arc_length"), "arc_length: a positive number or \"auto\", not '" + v + "'");
+      o.arc_length_auto = true;
+    } else {
+      o.arc_length = json_in::positive(c["arc_length"], child(pc, "arc_length"), "arc_length");
+    }
     if (c.contains("min")) o.min_arc_length = json_in::positive(c["min"], child(pc, "min"), "arc_length min");
     if (c.contains("max")) o.max_arc_length = json_in::positive(c["max"], child(pc, "max"), "arc_length max");
   }
@@ -168,6 +177,8 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
     j["min_eigenvalue"] = s.min_eigenvalue;
     if (o.stiffness_node >= 0) j["stiffness"] = s.stiffness ? to_json(*s.stiffness) : ojson(nullptr);
     if (imposed) j["reaction"] = s.reaction;
+    // Displacement control: "arc_length" on the steps taken through a snap-back of the controlled DOF.
+    if (o.control == PathControl::Displacement) j["step_control"] = control_name(s.step_control);
     steps.push_back(j);
   }
   out.result["steps"] = steps;
@@ -181,6 +192,7 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
     j["negative_before"] = c.negative_before;
     j["negative_after"] = c.negative_after;
     j["load_work"] = c.load_work;
+    if (imposed) j["reaction"] = c.reaction;
     j["branch_switched"] = c.branch_switched;
     j["mode"] = c.mode.size() ? ojson{{"nodes", node_map(model, c.mode)}} : ojson(nullptr);
     cps.push_back(j);

@@ -9,6 +9,7 @@
 #include "solvers/buckling.hpp"
 #include "solvers/path/critical_points.hpp"
 #include "solvers/path/equilibrium.hpp"
+#include "solvers/path/path_scales.hpp"
 #include "solvers/path/predictor.hpp"
 #include "solvers/path/stability.hpp"
 #include "solvers/path/step_control.hpp"
@@ -30,9 +31,10 @@ namespace {
 
 // The record of a converged state; returns its negative-eigenvalue count (-1 without stability).
 int record(PathResult& res, const PathOptions& o, const Model& original, const PathEquilibrium& P,
-           StabilityAnalyzer& stab, const Converged& c, int step, double control, double ds) {
+           StabilityAnalyzer& stab, const Converged& c, int step, double control, double ds, PathControl kind) {
   PathStep ps;
   ps.step = step;
+  ps.step_control = kind;
   ps.load_factor = c.lambda;
   ps.control = control;
   ps.arc_length = ds;
@@ -107,9 +109,23 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
     res.finish(PathTermination::InitialStateFailed, 0.0, 0, rep);
     return res;
   }
-  if (o.control == PathControl::ArcLength) P.psi2 = arc_length_scaling(P, cur);
-  StepControl control(o, P, cur);
-  int neg = record(res, o, original, P, stab, cur, 0, control.value(cur), 0.0);
+  // The structure's own scales: the arc-length weight of the load factor, the automatic first
+  // step and the force scale of the convergence test (solvers/path/path_scales.hpp).
+  const PathScales scales = path_scales(model, P, cur, P.has_loads);
+  if (scales.lambda_ref > 0.0) P.set_load_scale(scales.lambda_ref);
+  P.psi2 = scales.psi * scales.psi;
+  double ds0 = o.arc_length;
+  if (o.control == PathControl::ArcLength && o.arc_length_auto) {
+    if (!(scales.ds_auto > 0.0)) {
+      res.finish(PathTermination::NoAutomaticStep);
+      return res;
+    }
+    ds0 = scales.ds_auto;
+    say(fmt::format("arc_length auto: first step {:.6g} (load factor scale {:.6g}, psi {:.6g})", ds0, scales.lambda_ref,
+                    scales.psi));
+  }
+  StepControl control(o, P, cur, ds0);
+  int neg = record(res, o, original, P, stab, cur, 0, control.value(cur), 0.0, o.control);
 
   int step = 0, cuts = 0;
   bool switched = false;
@@ -117,9 +133,21 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
     ++cuts;
     const bool ok = control.cut() && cuts <= o.max_cuts;
     say(fmt::format("step {}: {}; cutting the step to {:.4g}", step + 1, what, control.h));
-    if (!ok) res.finish(why, cur.lambda, cuts, rep);
-    return ok;
+    if (ok) return true;
+    // Displacement control at a snap-back of the controlled DOF: on under arc length, with the
+    // arc length of the last accepted step.
+    const Eigen::VectorXd& d = predictor.previous_direction;
+    if (P.has_loads && d.size() && control.fall_back_to_arc_length(cur, std::sqrt(predictor.arc_dot(d, d)))) {
+      cuts = 0;
+      say(fmt::format("step {}: the controlled DOF turns back: arc length from here (ds {:.4g})", step + 1, control.h));
+      return true;
+    }
+    res.finish(why, cur.lambda, cuts, rep);
+    return false;
   };
+  // Displacement control: the slope of the load factor (or reaction) against the controlled DOF,
+  // whose change of sign is a limit point.
+  double slope = disp && o.locate_critical ? P.conjugate_slope(cur) : NAN;
   while (true) {
     if (control.target_reached(cur)) {
       res.finish(PathTermination::TargetReached);
@@ -131,6 +159,7 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
     }
     StepSpec spec;
     Eigen::VectorXd u;
+    predictor.control = control.mode;
     predictor.make_step(cur, control.h, spec, u);
     Converged next;
     if (!P.solve(kin, cur, spec, u, next, rep)) {
@@ -138,21 +167,56 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
       continue;
     }
     const Eigen::VectorXd dir = predictor.direction(cur, next);
+    if (control.mode == PathControl::ArcLength) {
+      // The corrector went far from the predictor: Newton may have jumped to another branch (over
+      // a limit point, with the same inertia at both ends). Cut the step.
+      Eigen::VectorXd moved = dir;
+      moved.head(P.nf) -= u.head(P.nf);
+      moved[P.nf] -= u[P.nf + P.nc] - cur.lambda;
+      if (predictor.arc_dot(moved, moved) > kMaxCorrectorRatio * kMaxCorrectorRatio * control.h * control.h) {
+        if (!fail(PathTermination::NoConvergence, "the corrector went far from the predictor (a jump?)")) break;
+        continue;
+      }
+    }
     // The spherical constraint has a second root behind the start: a step that went back along the
     // path is rejected and cut.
-    if (o.control == PathControl::ArcLength && predictor.previous_direction.size() &&
-        predictor.arc_dot(dir, predictor.previous_direction) < 0.0) {
-      if (!fail(PathTermination::NoForwardSolution, "the step went back along the path")) break;
-      continue;
+    if (control.mode == PathControl::ArcLength && predictor.previous_direction.size()) {
+      const Eigen::VectorXd& d = predictor.previous_direction;
+      if (predictor.arc_dot(dir, d) < 0.0) {
+        if (!fail(PathTermination::NoForwardSolution, "the step went back along the path")) break;
+        continue;
+      }
     }
     ++step;
     control.advance();
     const int neg_before = neg;
-    neg = record(res, o, original, P, stab, next, step, control.value(next), std::abs(control.h));
+    neg = record(res, o, original, P, stab, next, step, control.value(next), std::abs(control.h), control.mode);
     say(fmt::format("step {}: load factor {:.6g}, control {:.6g}, {} iterations, {} negative eigenvalues", step,
                     next.lambda, control.value(next), next.iterations, neg));
 
-    if (o.stability && o.locate_critical && neg >= 0 && neg_before >= 0 && neg != neg_before) {
+    const bool fall_back = control.mode != o.control;  // no critical points in a snap-back fall-back
+    bool control_turns = false;  // the step straddles a turn of the controlled DOF (not of the load)
+    if (disp && o.locate_critical) {
+      const double slope_next = P.conjugate_slope(next);
+      if (!fall_back && slope * slope_next < 0.0) {
+        const double h = control.h;
+        LocatedCriticalPoint lc = locate_extremum(parts, cur, next, h, slope,
+                                                  [&](const Converged& c, double) { return control.value(c); });
+        // The slope changes sign through zero at an extremum of the load factor (or reaction), and
+        // through infinity where the controlled DOF turns back: only the first is a limit point.
+        const auto conj = [&](const Converged& c) { return P.has_loads ? c.lambda : c.extra_mu; };
+        const double mid = 0.5 * (conj(lc.before) + conj(lc.after));
+        control_turns = (mid - conj(cur)) * (mid - conj(next)) <= 0.0;
+        if (!control_turns) {
+          lc.point.step = step;
+          say(fmt::format("critical point (limit_point) at load factor {:.6g}, step {}", lc.point.load_factor, step));
+          res.critical_points.push_back(lc.point);
+        }
+      }
+      slope = slope_next;
+    }
+    if (!fall_back && !control_turns && o.stability && o.locate_critical && neg >= 0 && neg_before >= 0 &&
+        neg != neg_before) {
       const double h = control.h, s_end = control.path_length;
       const auto control_at = [&](const Converged& c, double f) {
         return o.control == PathControl::ArcLength ? s_end - (1.0 - f) * std::abs(h) : control.value(c);
@@ -172,11 +236,11 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
           // Replace the primary-path step by the located point and the first secondary step.
           res.steps.pop_back();
           const double s_lo = s_end - std::abs(h) + lc.lo * std::abs(h);
-          record(res, o, original, P, stab, lc.before, step, s_lo, lc.lo * std::abs(h));
+          record(res, o, original, P, stab, lc.before, step, s_lo, lc.lo * std::abs(h), o.control);
           ++step;
           control.path_length = s_lo + ds;
           control.h = h < 0 ? -ds : ds;
-          neg = record(res, o, original, P, stab, cb, step, control.path_length, ds);
+          neg = record(res, o, original, P, stab, cb, step, control.path_length, ds, o.control);
           predictor.previous_direction = db;
           cur = cb;
           res.critical_points.push_back(cp);
@@ -190,8 +254,11 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
     }
 
     predictor.previous_direction = dir;
+    if (fall_back && control.resume_displacement(cur, next))
+      say(fmt::format("step {}: the controlled DOF moves toward its target again: displacement control", step));
+    else
+      control.adapt(next.iterations);
     cur = next;
-    control.adapt(next.iterations);
     cuts = 0;
     if (stopped(res, o, original, next, step)) break;
   }

@@ -71,8 +71,67 @@ LocatedCriticalPoint locate_critical_point(const CriticalPointParts& parts, cons
     c.point.load_work = pf.norm() > 0.0 ? w : 0.0;
     c.point.mode = raw_mode(P, c.after.state, c.mode);
   }
-  const bool limit = P.has_loads && !with_control && c.point.load_work > kLimitLoadWork;
+  bool limit = P.has_loads && !with_control && c.point.load_work > kLimitLoadWork;
+  if (parts.options.control == PathControl::ArcLength && P.has_loads) {
+    // The turn of the load factor: the sign of dlambda along the path (the tangent [t; 1] oriented
+    // by the step's direction) on both sides of the located point. It turns at a limit point and not
+    // at a bifurcation, whatever the symmetry of the structure (the work of a mode on the load is
+    // small at the limit point of an unsymmetric arch).
+    const Eigen::VectorXd tb = P.tangent(c.before), ta = P.tangent(c.after);
+    if (tb.size() && ta.size()) {
+      Eigen::VectorXd db(P.nf + 1), da(P.nf + 1);
+      db << tb.head(P.nf), 1.0;
+      da << ta.head(P.nf), 1.0;
+      limit = (parts.predictor.arc_dot(db, dir) > 0.0) != (parts.predictor.arc_dot(da, dir) > 0.0);
+    }
+  }
   c.point.type = limit ? CriticalPointType::LimitPoint : CriticalPointType::Bifurcation;
+  return c;
+}
+
+LocatedCriticalPoint locate_extremum(const CriticalPointParts& parts, const Converged& cur, const Converged& next,
+                                     double h, double slope_before,
+                                     const std::function<double(const Converged&, double)>& control_at) {
+  const PathEquilibrium& P = parts.eq;
+  LocatedCriticalPoint c;
+  c.before = cur;
+  c.after = next;
+  const bool positive_before = slope_before > 0.0;
+  for (int it = 0; it < kMaxBisections && c.hi - c.lo > parts.options.critical_tolerance; ++it) {
+    const double mid = 0.5 * (c.lo + c.hi);
+    StepSpec s;
+    Eigen::VectorXd u;
+    parts.predictor.make_step(cur, mid * h, s, u);
+    Converged cm;
+    std::string report;
+    if (!P.solve(parts.kin, cur, s, u, cm, report)) break;
+    const double slope = P.conjugate_slope(cm);
+    if (std::isnan(slope)) break;
+    if ((slope > 0.0) == positive_before) {
+      c.lo = mid;
+      c.before = cm;
+    } else {
+      c.hi = mid;
+      c.after = cm;
+    }
+  }
+  c.point.type = CriticalPointType::LimitPoint;
+  c.point.load_factor = 0.5 * (c.before.lambda + c.after.lambda);
+  c.point.reaction = 0.5 * (c.before.extra_mu + c.after.extra_mu);
+  c.point.control = 0.5 * (control_at(c.before, c.lo) + control_at(c.after, c.hi));
+  // The structure with the controlled DOF released: its inertia changes at the extremum.
+  if (parts.options.stability) {
+    c.point.negative_before = parts.stability.analyse(c.before, false, false).info.negative;
+    const StabilityAnalysis st = parts.stability.analyse(c.after, false, true);
+    c.point.negative_after = st.info.negative;
+    if (st.info.mode.size()) {
+      c.mode = st.info.mode;
+      const Eigen::VectorXd pf = P.has_loads ? P.load_pattern(c.after.state) : Eigen::VectorXd();
+      if (pf.size() && pf.norm() > 0.0)
+        c.point.load_work = std::abs(pf.dot(c.mode)) / std::max(1e-300, pf.norm() * c.mode.norm());
+      c.point.mode = raw_mode(P, c.after.state, c.mode);
+    }
+  }
   return c;
 }
 

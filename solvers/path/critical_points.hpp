@@ -4,8 +4,13 @@
 // Detection: a change of the negative-eigenvalue count of the constrained tangent between two
 // converged steps (solvers/path/stability.hpp). Location: bisection of the step (arc length, load
 // factor or control value) to `critical_tolerance` of the step, each trial state solved from the
-// step's start along the step's direction. Classification: a limit point when the critical mode phi
-// does work on the load pattern (|phi . p| > kLimitLoadWork |phi| |p|), a bifurcation otherwise.
+// step's start along the step's direction. Classification under arc length: a limit point when the
+// load factor turns (dlambda along the path changes sign across the located point), a bifurcation
+// otherwise; under load control (where no tangent orientation is known), a limit point when the
+// critical mode phi does work on the load pattern (|phi . p| > kLimitLoadWork |phi| |p|). Under
+// displacement control, the inertia with the controlled DOF held changes at bifurcations; the
+// extrema of the load factor (or of the reaction, imposed motion) are the limit points, found by
+// the sign of the conjugate slope (locate_extremum).
 // Branch switching (arc-length control): from the last stable state before a bifurcation, the next
 // predictor is the critical mode scaled to the arc length (tried at 1, 1/2, 1/4, 1/8 of the step).
 #include <Eigen/Core>
@@ -49,6 +54,15 @@ LocatedCriticalPoint locate_critical_point(const CriticalPointParts& parts, cons
                                            double h, const Eigen::VectorXd& dir, int neg_before, int neg_after,
                                            bool with_control,
                                            const std::function<double(const Converged&, double)>& control_at);
+
+// Displacement control: an extremum of the load factor (or, for imposed motion, of the controlled
+// DOF's reaction) between cur and next, where PathEquilibrium::conjugate_slope changes sign
+// (slope_before its value at cur). Located by bisection on the sign of the slope; a limit point; the
+// counts and the mode are those of the structure with the controlled DOF released (the structure
+// under its load, whose inertia changes there).
+LocatedCriticalPoint locate_extremum(const CriticalPointParts& parts, const Converged& cur, const Converged& next,
+                                     double h, double slope_before,
+                                     const std::function<double(const Converged&, double)>& control_at);
 
 // Branch switching from the last stable state `from` along `mode` (free coordinates) with the arc
 // length |h| (or a fraction of it). On success, `out` is the first state on the secondary branch,

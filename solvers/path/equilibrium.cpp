@@ -54,7 +54,13 @@ PathEquilibrium::PathEquilibrium(const Model& model, const PathOptions& o) : ns(
     const double k = std::abs(ev.tangent.coeff(i, i)) / (ns.is_rotation(i) ? L * L : 1.0);
     kmax = std::max(kmax, k);
   }
-  F_ref = std::max(fmax, kRoundOffForceRatio * kmax * L);
+  f_max = fmax;
+  F_floor = kRoundOffForceRatio * kmax * L;
+  set_load_scale(1.0);
+}
+
+void PathEquilibrium::set_load_scale(double lambda_ref) {
+  F_ref = std::max(f_max * lambda_ref, F_floor);
   if (!(F_ref > 0.0)) F_ref = 1.0;
 }
 
@@ -224,6 +230,16 @@ Eigen::VectorXd PathEquilibrium::tangent(const Converged& c) const {
   Eigen::VectorXd t = predictor_lu_.solver().solve(rhs);
   if (!t.allFinite()) return {};
   return t;
+}
+
+double PathEquilibrium::conjugate_slope(const Converged& c) const {
+  const Eigen::VectorXd t = tangent(c);
+  if (!t.size()) return NAN;
+  if (!has_loads) return t[nf + nc];
+  const auto tw = ns.twists(c.state);
+  double rate = 0.0;  // du_c / dlambda
+  for (const auto& [k, v] : crow(c.state, tw, ctrl, nullptr)) rate += v * t[k];
+  return 1.0 / rate;  // +-inf where the controlled DOF does not move with the load (its snap-back)
 }
 
 Eigen::VectorXd PathEquilibrium::increment(const Converged& a, const Converged& b) const {

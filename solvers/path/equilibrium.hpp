@@ -14,8 +14,10 @@
 //               rotations; psi^2 is set by the step control (solvers/path/step_control.hpp).
 // The Jacobian is K_t D(Delta) bordered by the constraint rows and columns, D the derivative of the
 // retraction. The convergence test scales the rows (fscale) so that KINSOL's tolerance is relative
-// to the problem: forces by F_ref (the reference load, or the stiffest element's force for a
-// displacement of L where the load is smaller), constraint rows by L (translations), the arc row by ds.
+// to the problem: forces by F_ref (the reference load at the structure's own load scale lambda_ref,
+// so the same for a reference load of 1 or 1000; not below a round-off floor tied to the stiffest
+// element), constraint rows by L (translations: a displacement error relative to the model size),
+// the arc row by ds.
 #include <Eigen/Core>
 #include <string>
 #include <utility>
@@ -93,6 +95,11 @@ class PathEquilibrium {
   // Tangent direction at a converged state: [dDelta (nf), dmu (nc), dextra] per unit lambda (loads)
   // or per unit control (imposed motion). Empty when the tangent is singular.
   Eigen::VectorXd tangent(const Converged& c) const;
+  // Displacement control: the slope of the controlled DOF's conjugate along the path, dlambda/du_c
+  // (with loads) or dR/du_c (imposed motion, R the controlled DOF's reaction), from the tangent.
+  // A change of its sign between two states is an extremum of the load factor (or the reaction): a
+  // limit point. NaN when the tangent is singular.
+  double conjugate_slope(const Converged& c) const;
   // Increment of the free coordinates from a to b (translations exact, spins by the logarithm).
   Eigen::VectorXd increment(const Converged& a, const Converged& b) const;
   // Reduced load pattern T^T f_ext over the free coordinates at a state.
@@ -107,8 +114,14 @@ class PathEquilibrium {
   // imposed (and the slave constraints solved for when any is non-zero). False on failure.
   bool initial_state(KinsolSolver& kin, Converged& out, std::string& report) const;
 
+  // The force scale of the convergence test: the reference load at the load factor lambda_ref
+  // (solvers/path/path_scales.hpp), not below the round-off floor F_floor.
+  void set_load_scale(double lambda_ref);
+
   NonlinearStructure ns;
   double L = 1.0, F_ref = 1.0, psi2 = 0.0;
+  double f_max = 0.0;     // largest reference load component (moments / L)
+  double F_floor = 0.0;   // round-off: kRoundOffForceRatio x the stiffest element's force for a displacement L
   std::vector<int> free, gen_to_free;
   std::vector<ConstraintDef> cons;
   ConstraintDef ctrl;

@@ -38,7 +38,8 @@ bool is_completed(PathTermination t) {
     case PathTermination::MaxSteps:
     case PathTermination::NoConvergence:
     case PathTermination::NoForwardSolution:
-    case PathTermination::InitialStateFailed: return false;
+    case PathTermination::InitialStateFailed:
+    case PathTermination::NoAutomaticStep: return false;
   }
   return false;
 }
@@ -66,6 +67,8 @@ std::string PathResult::brief_report() const {
                          termination_value);
     case PathTermination::InitialStateFailed:
       return "the initial state with the prescribed values did not converge: " + termination_detail;
+    case PathTermination::NoAutomaticStep:
+      return "arc_length auto: no scale for the first step (the tangent at the start is singular)";
   }
   return "?";
 }

@@ -21,9 +21,10 @@ struct PathOptions {
   int control_node = -1;          // displacement control
   int control_dof = 0;            // 0..5
   int increments = 20;            // load/displacement control: initial number of equal increments
-  double arc_length = 0.05;       // arc length: initial ds
-  double min_arc_length = 0.0;    // 0: arc_length * kDefaultMinStepRatio
-  double max_arc_length = 0.0;    // 0: arc_length * kDefaultMaxArcRatio
+  double arc_length = 0.05;       // arc length: initial ds (a length, solvers/path/path_scales.hpp)
+  bool arc_length_auto = false;   // "arc_length": "auto": the first ds from the structure's scales
+  double min_arc_length = 0.0;    // 0: first ds * kDefaultMinStepRatio
+  double max_arc_length = 0.0;    // 0: first ds * kDefaultMaxArcRatio
   int desired_iterations = 5;
   int max_cuts = 10;
   int max_steps = 500;
@@ -53,6 +54,7 @@ struct PathStep {
   double load_factor = 0.0;
   double control = 0.0;             // lambda (load control), the controlled DOF's value, or the path length
   double arc_length = 0.0;          // step size used
+  PathControl step_control = PathControl::LoadFactor;  // the kind of step (arc length in a snap-back fall-back)
   long iterations = 0;
   std::vector<Vec6> track;          // per tracked node: (x - X, log R)
   double reaction = 0.0;            // imposed-motion control: reaction of the controlled DOF
@@ -75,6 +77,7 @@ struct CriticalPoint {
   double control = 0.0;
   int negative_before = 0, negative_after = 0;
   double load_work = 0.0;           // |phi . p| / (|phi| |p|)
+  double reaction = 0.0;            // imposed motion: the controlled DOF's reaction there
   Eigen::VectorXd mode;             // raw displacement (largest translation 1)
   bool branch_switched = false;
 };
@@ -90,6 +93,7 @@ enum class PathTermination {
   NoConvergence,        // max_cuts step cuts (or the minimum step) without convergence
   NoForwardSolution,    // arc length: only solutions behind the start were found
   InitialStateFailed,   // the prescribed values could not be imposed at the start
+  NoAutomaticStep,      // "arc_length": "auto" found no scale (a singular tangent at the start)
 };
 bool is_completed(PathTermination t);
 

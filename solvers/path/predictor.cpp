@@ -26,14 +26,14 @@ Eigen::VectorXd Predictor::direction(const Converged& a, const Converged& b) con
 void Predictor::make_step(const Converged& c, double hh, StepSpec& s, Eigen::VectorXd& u, const Eigen::VectorXd* dir) const {
   const PathEquilibrium& P = eq_;
   const Eigen::VectorXd t = P.tangent(c);
-  if (control_ == PathControl::LoadFactor) {
+  if (control == PathControl::LoadFactor) {
     s.kind = StepKind::Load;
     s.lambda = c.lambda + hh;
     u = P.start_unknowns(c, s);
     if (t.size()) u.head(P.nf + P.nc) += hh * t.head(P.nf + P.nc);
     return;
   }
-  if (control_ == PathControl::Displacement) {
+  if (control == PathControl::Displacement) {
     s.kind = StepKind::Control;
     s.control = P.control_value(c.state) + hh;
     u = P.start_unknowns(c, s);

@@ -18,7 +18,7 @@ namespace beamfea {
 
 class Predictor {
  public:
-  Predictor(PathControl control, const PathEquilibrium& eq) : control_(control), eq_(eq) {}
+  Predictor(PathControl c, const PathEquilibrium& eq) : control(c), eq_(eq) {}
   // The spec and predictor of a step of size hh from c. dir: an imposed arc-length direction
   // [Delta_f (nf), dlambda] (a bisection along the last step, a branch switch); none: the tangent.
   void make_step(const Converged& c, double hh, StepSpec& s, Eigen::VectorXd& u, const Eigen::VectorXd* dir = nullptr) const;
@@ -28,9 +28,9 @@ class Predictor {
   double arc_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const;
 
   Eigen::VectorXd previous_direction;  // [Delta_f, dlambda] of the last accepted step (empty at first)
+  PathControl control;                 // the kind of step made (the step control's current mode)
 
  private:
-  PathControl control_;
   const PathEquilibrium& eq_;
 };
 

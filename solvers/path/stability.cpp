@@ -1,5 +1,6 @@
 #include "solvers/path/stability.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <Eigen/UmfPackSupport>
 
@@ -17,6 +18,14 @@ constexpr double kNullSpacePivotTolerance = 1e-12;
 // Shift of the shift-invert eigen-solver just below a positive definite (Jacobi-scaled, so O(1))
 // spectrum: fast convergence to the lowest eigenvalue.
 constexpr double kEigenShiftMargin = 1e-6;
+// Up to this size the lowest eigenpairs of the stability matrix are computed densely.
+constexpr int kDenseEigenLimit = 400;
+// Below zero, the shift is this factor times the last lowest eigenvalue (a little below it: the
+// eigenvalue nearest the shift is the lowest one while it moves by less than half its value).
+constexpr double kNegativeShiftFactor = 1.5;
+// The shift when the first negative eigenvalue appears (just past a critical point the lowest
+// eigenvalue of the Jacobi-scaled matrix is small).
+constexpr double kFirstNegativeShift = 1e-3;
 // Singular values of the node compliance below this fraction of the largest are zero (motions
 // that cannot reach the node).
 constexpr double kComplianceRankTolerance = 1e-10;
@@ -96,9 +105,7 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_contr
     sc[i] = d > 0.0 ? 1.0 / std::sqrt(d) : 1.0;
   }
   const SparseMatrix A = SparseMatrix(sc.asDiagonal() * S * sc.asDiagonal());
-  double shift = -kEigenShiftMargin;
-  if (out.info.negative != 0) {
-    // Below the Gershgorin lower bound of the spectrum.
+  const auto gershgorin_shift = [&] {  // below the Gershgorin lower bound of the spectrum
     double g = 0.0;
     for (int j = 0; j < A.outerSize(); ++j) {
       double diag = 0.0, off = 0.0;
@@ -108,21 +115,46 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_contr
       }
       g = std::min(g, diag - off);
     }
-    shift = g - kEigenShiftMargin;
-  }
-  const int want = want_mode ? std::max(1, out.info.negative) + 1 : 1;
-  try {
-    const EigenPairs ep = lowest_eigenpairs(A, std::min(want, n), shift);
-    if (ep.values.size() > 0) {
-      out.info.min_eigenvalue = ep.values[0];
-      if (want_mode) {
-        Eigen::Index best = 0;
-        ep.values.cwiseAbs().minCoeff(&best);
-        out.info.mode = out.Z * Eigen::VectorXd(sc.cwiseProduct(ep.vectors.col(best)));
+    return g - kEigenShiftMargin;
+  };
+  // Shift-invert converges fast only with the shift near the wanted eigenvalue. Along a path the
+  // lowest eigenvalue moves continuously: below zero, the shift is a little below the last one found
+  // (kNegativeShiftFactor), which the Gershgorin bound (far below, slow) only backs up.
+  double shift = -kEigenShiftMargin;
+  if (out.info.negative != 0)
+    shift = last_min_ < 0.0 ? kNegativeShiftFactor * last_min_ - kEigenShiftMargin : -kFirstNegativeShift;
+  const int want = out.info.negative != 0 || want_mode ? std::max(1, out.info.negative) + 1 : 1;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    try {
+      EigenPairs ep;
+      if (n <= kDenseEigenLimit) {
+        // Dense: a few milliseconds at this size, and no Lanczos restarts on the clustered lowest
+        // eigenvalues of slender structures (bending next to axial stiffness).
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(A)};
+        ep.values = es.eigenvalues().head(std::min(want, n));
+        ep.vectors = es.eigenvectors().leftCols(std::min(want, n));
+      } else {
+        ep = lowest_eigenpairs(A, std::min(want, n), shift);
       }
+      const int found_negative = static_cast<int>((ep.values.array() < 0.0).count());
+      if (attempt == 0 && out.info.negative > 0 && found_negative == 0) {
+        shift = gershgorin_shift();  // the continuation shift missed the negative eigenvalue
+        continue;
+      }
+      if (ep.values.size() > 0) {
+        out.info.min_eigenvalue = ep.values[0];
+        last_min_ = ep.values[0];
+        if (want_mode) {
+          Eigen::Index best = 0;
+          ep.values.cwiseAbs().minCoeff(&best);
+          out.info.mode = out.Z * Eigen::VectorXd(sc.cwiseProduct(ep.vectors.col(best)));
+        }
+      }
+      break;
+    } catch (const Error&) {
+      out.info.min_eigenvalue = NAN;
+      if (attempt == 0) shift = gershgorin_shift();
     }
-  } catch (const Error&) {
-    out.info.min_eigenvalue = NAN;
   }
   return out;
 }

@@ -45,6 +45,7 @@ class StabilityAnalyzer {
  private:
   const PathEquilibrium& eq_;
   LdltFactor inertia_ldlt_;         // inertia count: symbolic analysis kept along the path
+  double last_min_ = 0.0;           // the last lowest eigenvalue found (the next shift's guess)
 };
 
 }  // namespace beamfea

@@ -5,17 +5,12 @@
 
 namespace beamfea {
 
-double arc_length_scaling(const PathEquilibrium& eq, const Converged& start) {
-  const Eigen::VectorXd t = eq.tangent(start);
-  const double tw = t.size() ? eq.weighted_dot(t, t) : 0.0;
-  return std::max(tw, eq.L * eq.L);
-}
-
-StepControl::StepControl(const PathOptions& o, const PathEquilibrium& eq, const Converged& start) : o_(o), eq_(eq) {
+StepControl::StepControl(const PathOptions& o, const PathEquilibrium& eq, const Converged& start, double ds0)
+    : mode(o.control), o_(o), eq_(eq) {
   switch (o.control) {
     case PathControl::LoadFactor: h = (o.target - start.lambda) / o.increments; break;
     case PathControl::Displacement: h = (o.target - value(start)) / o.increments; break;
-    case PathControl::ArcLength: h = o.arc_length; break;
+    case PathControl::ArcLength: h = ds0; break;
   }
   h0 = std::abs(h);
   if (o.control == PathControl::ArcLength) {
@@ -37,7 +32,7 @@ double StepControl::value(const Converged& c) const {
 }
 
 bool StepControl::target_reached(const Converged& cur) {
-  if (o_.control == PathControl::ArcLength) return false;
+  if (mode == PathControl::ArcLength) return false;
   const double remaining = o_.target - value(cur);
   const double tol = kTargetTolerance * std::max(1.0, std::abs(o_.target)) + kTargetTolerance * h0;
   if (std::abs(remaining) <= tol) return true;
@@ -48,6 +43,32 @@ bool StepControl::target_reached(const Converged& cur) {
 bool StepControl::cut() {
   h *= kCutFactor;
   return std::abs(h) >= hmin;
+}
+
+bool StepControl::fall_back_to_arc_length(const Converged& cur, double ds) {
+  if (o_.control != PathControl::Displacement || mode != PathControl::Displacement || !(ds > 0.0)) return false;
+  h_disp_ = h0;
+  hmin_disp_ = hmin;
+  hmax_disp_ = hmax;
+  toward_ = o_.target >= value(cur) ? 1.0 : -1.0;
+  moved_back_ = false;
+  mode = PathControl::ArcLength;
+  h = ds;
+  hmin = ds * kDefaultMinStepRatio;
+  hmax = ds * kDefaultMaxArcRatio;
+  return true;
+}
+
+bool StepControl::resume_displacement(const Converged& prev, const Converged& next) {
+  if (o_.control != PathControl::Displacement || mode != PathControl::ArcLength) return false;
+  const double du = (value(next) - value(prev)) * toward_;
+  if (du < 0.0) moved_back_ = true;
+  if (!moved_back_ || du <= 0.0) return false;
+  mode = PathControl::Displacement;
+  h = toward_ * std::abs(h_disp_);
+  hmin = hmin_disp_;
+  hmax = hmax_disp_;
+  return true;
 }
 
 void StepControl::adapt(long iterations) {

@@ -4,7 +4,7 @@
 //
 //   load factor    h = (target - lambda_0) / increments, bounded by h0 * kMaxIncrementGrowth;
 //   displacement   h = (target - u_0) / increments, idem;
-//   arc length     h = ds, within [min_arc_length, max_arc_length] (defaults relative to ds).
+//   arc length     h = ds, within [min_arc_length, max_arc_length] (defaults relative to the first ds).
 // After a converged step h <- h * clamp(sqrt(desired / iterations), 1/2, 2) (Crisfield 1991, vol. 1,
 // eq. 9.40 with the exponent 1/2); after a failure h <- h / 2.
 #include <Eigen/Core>
@@ -23,18 +23,18 @@ inline constexpr double kMaxIncrementGrowth = 4.0;     // load/displacement: hma
 inline constexpr double kMinStepGrowth = 0.5;
 inline constexpr double kMaxStepGrowth = 2.0;
 inline constexpr double kCutFactor = 0.5;              // a failed step is halved
+// Arc length: a converged point farther than this fraction of the step from its predictor (in the
+// arc-length metric) is rejected and the step cut: on a smooth path the corrector moves by
+// O(ds^2 x curvature); a Newton iteration that jumped to another branch moves by the jump.
+inline constexpr double kMaxCorrectorRatio = 0.5;
 // The target of load/displacement control is reached within this fraction of max(1, |target|)
 // (plus the same fraction of the first step).
 inline constexpr double kTargetTolerance = 1e-12;
 
-// The arc-length weight psi^2 of the load factor (equilibrium.hpp): a unit load-factor increment
-// weighs like a displacement of one model length, or like the initial tangent displacement where
-// that is larger (stiff primary paths, e.g. a column).
-double arc_length_scaling(const PathEquilibrium& eq, const Converged& start);
-
 class StepControl {
  public:
-  StepControl(const PathOptions& o, const PathEquilibrium& eq, const Converged& start);
+  // ds0: the first arc length (the user's, or the automatic one of solvers/path/path_scales.hpp).
+  StepControl(const PathOptions& o, const PathEquilibrium& eq, const Converged& start, double ds0);
 
   // The path's control value at a state: lambda, the controlled DOF, or the path length so far.
   double value(const Converged& c) const;
@@ -48,6 +48,15 @@ class StepControl {
   // Adapts h to the iteration count of the last converged step, within [hmin, hmax].
   void adapt(long iterations);
 
+  // Displacement control through a snap-back of the controlled DOF (where it turns back, no step
+  // toward the target converges): the steps go on under arc length (first step ds, bounds relative
+  // to it) until the controlled DOF, having moved back, moves toward its target again; then
+  // displacement control resumes with its last step. False when not under displacement control.
+  bool fall_back_to_arc_length(const Converged& cur, double ds);
+  // After an accepted step from prev to next: true when displacement control resumes.
+  bool resume_displacement(const Converged& prev, const Converged& next);
+
+  PathControl mode;        // the control of the next step (o.control, or ArcLength in a fall-back)
   double h = 0.0;          // signed step (load factor, control value or arc length)
   double h0 = 0.0, hmin = 0.0, hmax = 0.0;
   double path_length = 0.0;  // arc length: sum of the accepted |h|
@@ -55,6 +64,11 @@ class StepControl {
  private:
   const PathOptions& o_;
   const PathEquilibrium& eq_;
+  // Fall-back state: the displacement step and bounds to restore, the direction of the target,
+  // whether the controlled DOF has moved away from it yet.
+  double h_disp_ = 0.0, hmin_disp_ = 0.0, hmax_disp_ = 0.0;
+  double toward_ = 1.0;
+  bool moved_back_ = false;
 };
 
 }  // namespace beamfea
