@@ -15,12 +15,17 @@
 //              stability), the average over `steps` steps of a run; "no stab." the same without the
 //              stability analysis (inertia, lowest eigenvalue) at each step
 // Usage: bench_path_step [--sizes 2,4,8,12] [--stories S] [--steps K]
+//        bench_path_step --classic [--arc auto|DS] [--max-steps N]
+//   --classic [--arch-elements N]: the deep arch (80 elements, unit load) to its first limit point and Lee's frame (P = 1)
+//   to its second limit point, under arc length ("auto" or a given first step DS), the stop one step
+//   after the critical point; prints steps, critical load, CPU time, free DOFs.
 // Output: a Markdown table on stdout.
 #include <fmt/format.h>
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/UmfPackSupport>
 #include <chrono>
+#include <ctime>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
@@ -30,8 +35,13 @@
 #include "solvers/eigen_lowest.hpp"
 #include "solvers/nonlinear_structure.hpp"
 #include "solvers/path_following.hpp"
+// The benchmark models of the path tests (JSON written as users write them).
+#include "../tests/solvers/path_models.hpp"
 
 using namespace beamfea;
+#ifndef BEAMFEA_ARC_AUTO
+#define BEAMFEA_ARC_AUTO(o) ((o).arc_length_auto = true)
+#endif
 
 namespace {
 
@@ -77,9 +87,67 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// One classic benchmark: steps to the `nth` critical point, its load, CPU seconds. The run is ended
+// (by an exception from the progress sink) at the step after that critical point.
+struct Reached {};
+void classic(const char* name, const Model& m, const char* track, double P, int nth, bool autostep, double ds,
+             int max_steps) {
+  PathOptions o;
+  o.control = PathControl::ArcLength;
+  o.track = {m.find_node(track)};
+  o.max_steps = max_steps;
+  if (autostep) {
+    BEAMFEA_ARC_AUTO(o);
+  } else {
+    o.arc_length = ds;
+  }
+  int found = 0, steps = 0, at = -1;
+  double load = 0.0;
+  o.progress = [&](const std::string& line) {
+    if (line.rfind("critical point", 0) == 0 && ++found == nth) {
+      const auto p = line.find("load factor ");
+      load = std::atof(line.c_str() + p + 12) * P;
+      at = steps;
+    } else if (line.rfind("step ", 0) == 0 && line.find("load factor") != std::string::npos) {
+      steps = std::atoi(line.c_str() + 5);
+      if (at >= 0 && steps > at) throw Reached{};
+    }
+  };
+  const auto t0 = std::clock();
+  std::string end = "reached";
+  try {
+    const PathResult r = follow_path(m, o);
+    end = r.brief_report();
+  } catch (const Reached&) {
+  }
+  const double cpu = static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC;
+  fmt::print("| {} | {} | {} | {} | {:.2f} |\n", name, autostep ? std::string("auto") : fmt::format("{}", ds),
+             at >= 0 ? fmt::format("{}", at) : fmt::format("not reached: {} steps, {}", steps, end),
+             at >= 0 ? fmt::format("{:.6g}", load) : std::string("-"), cpu);
+  std::fflush(stdout);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (!std::strcmp(argv[i], "--classic")) {
+      bool autostep = true;
+      double ds = 0.0;
+      int max_steps = 500, arch_elements = 80;
+      for (int k = 1; k < argc; ++k) {
+        if (!std::strcmp(argv[k], "--arc") && k + 1 < argc) {
+          autostep = !std::strcmp(argv[k + 1], "auto");
+          if (!autostep) ds = std::atof(argv[k + 1]);
+        }
+        if (!std::strcmp(argv[k], "--max-steps") && k + 1 < argc) max_steps = std::atoi(argv[k + 1]);
+        if (!std::strcmp(argv[k], "--arch-elements") && k + 1 < argc) arch_elements = std::atoi(argv[k + 1]);
+      }
+      fmt::print("| benchmark | arc_length | step of the critical point | P there | CPU [s] |\n|---|---|---|---|---|\n");
+      classic("deep arch, 1st limit", read_model(test::deep_arch(arch_elements, 1.0)), "apex", 1.0, 1, autostep, ds, max_steps);
+      classic("Lee's frame, 2nd limit", read_model(test::lees_frame(1.0)), "P", 1.0, 2, autostep, ds, max_steps);
+      return 0;
+    }
   std::vector<int> sizes{2, 4, 8, 12};
   int storeys = 3, steps = 3;
   for (int i = 1; i < argc; ++i) {
