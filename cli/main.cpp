@@ -1,15 +1,16 @@
 // beamfea: the command-line program.
 //   beamfea run model.json --out DIR     run every analysis, write DIR/results.json and VTK files
-//   beamfea check model.json             validate only
+//   beamfea check model.json             validate only (the same validation as run)
 //   beamfea sweep sweep.json --out DIR   many cases, one table DIR/cases.csv (cli/sweep_command.cpp)
-// Exit codes: 0 success, 1 an analysis failed, 2 bad input.
+// Exit codes: 0 success, 1 an analysis failed, 2 bad input (DIR left as it was).
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "cli/sweep_command.hpp"
 #include "core/errors.hpp"
+#include "core/version.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
-#include "cli/sweep_command.hpp"
 
 namespace {
 
@@ -23,7 +24,7 @@ int report_error(const std::exception& e, int code) {
 int main(int argc, char** argv) {
   CLI::App app{"beamfea: matrix structural analysis of 3-D frames of Euler-Bernoulli beams"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "beamfea 0.1.0");
+  app.set_version_flag("--version", std::string("beamfea ") + beamfea::kVersion);
 
   std::string model_path, out_dir = "out";
   bool no_vtk = false, quiet = false;
@@ -49,6 +50,8 @@ int main(int argc, char** argv) {
   }
 
   if (*sweep->app) return beamfea::cli::run_sweep_command(*sweep);
+  // Bad input (InputError, ModelError from validation) is exit 2 and writes nothing; anything
+  // that escapes a run after validation is exit 1.
   try {
     if (*check) {
       const auto doc = beamfea::read_json_file(check_path);
@@ -58,17 +61,13 @@ int main(int argc, char** argv) {
       return 0;
     }
     const auto doc = beamfea::read_json_file(model_path);
-    beamfea::Model model;
-    try {
-      model = beamfea::load_and_check(doc);
-    } catch (const beamfea::Error& e) {
-      return report_error(e, 2);
-    }
+    const beamfea::Model model = beamfea::load_and_check(doc);
     beamfea::RunOptions opt;
     opt.out_dir = out_dir;
     opt.write_vtk = !no_vtk;
-    opt.verbose = !quiet;
     opt.only = only;
+    if (!quiet) opt.progress = [](const std::string& s) { std::cerr << s << "\n"; };
+    opt.warning = [](const std::string& s) { std::cerr << "beamfea: warning: " << s << "\n"; };
     const auto report = beamfea::run_document(model, doc, opt);
     if (!quiet) std::cerr << "beamfea: wrote " << (opt.out_dir / "results.json").string() << "\n";
     return report.failed ? 1 : 0;

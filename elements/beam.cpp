@@ -9,12 +9,12 @@ namespace beamfea {
 Mat3 beam_local_axes(const Vec3& x1, const Vec3& x2, const Vec3& orientation) {
   const Vec3 d = x2 - x1;
   const double L = d.norm();
-  if (!(L > 0.0)) throw ModelError("", "zero-length member");
+  if (!(L > 0.0)) throw Error("zero-length member");
   const Vec3 ex = d / L;
   const double on = orientation.norm();
-  if (!(on > 0.0)) throw ModelError("", "orientation vector is zero");
+  if (!(on > 0.0)) throw Error("orientation vector is zero");
   Vec3 ey = (orientation / on).cross(ex);
-  if (ey.norm() < 1e-8) throw ModelError("", "orientation vector is parallel to the member");
+  if (ey.norm() < 1e-8) throw Error("orientation vector is parallel to the member");
   ey.normalize();
   const Vec3 ez = ex.cross(ey);
   Mat3 R;

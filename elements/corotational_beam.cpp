@@ -73,7 +73,7 @@ Frame corotated_frame(const Mat3& E0, const Vec3& x1, const Mat3& R1, const Vec3
   Frame F;
   const Vec3 d = x2 - x1;
   F.ln = d.norm();
-  if (!(F.ln > 0.0)) throw ModelError("", "co-rotational beam: the current chord length is zero");
+  if (!(F.ln > 0.0)) throw Error("co-rotational beam: the current chord length is zero");
   F.r1 = d / F.ln;
   // The co-rotated frame of Battini & Pacoste (2002).
   F.q1 = R1 * E0.col(1);
@@ -82,7 +82,7 @@ Frame corotated_frame(const Mat3& E0, const Vec3& x1, const Mat3& R1, const Vec3
   const Vec3 n = F.r1.cross(F.q);
   const double nn = n.norm();
   if (!(nn > 1e-8 * F.q.norm()) || !(F.q.norm() > 1e-8))
-    throw ModelError("", "co-rotational beam: the nodal y axes are parallel to the chord (local rotation ~90 deg); "
+    throw Error("co-rotational beam: the nodal y axes are parallel to the chord (local rotation ~90 deg); "
                          "the co-rotated frame is undefined");
   F.r3 = n / nn;
   F.r2 = F.r3.cross(F.r1);

@@ -17,25 +17,47 @@ namespace beamfea {
 
 using ojson = nlohmann::ordered_json;
 
+// Where messages go: progress lines and warnings reach the caller through sinks it chooses (the
+// program prints them on stderr; a library caller may collect or drop them). Empty: dropped.
+using MessageSink = std::function<void(const std::string&)>;
+
 struct AnalysisContext {
   const Model& model;
   const nlohmann::json& document;   // the whole input document
   const nlohmann::json& spec;       // this analysis's object
   std::string pointer;              // "/analyses/<i>"
-  std::string id;
-  std::filesystem::path out_dir;    // empty: write no files (sweeps, tests)
+  std::string id;                   // a safe file-name stem (check_analyses: analysis_id)
+  std::filesystem::path out_dir;    // empty: write no files (sweeps, tests); a staging folder
+                                    // under a run (run_document moves the files into place)
   bool write_vtk = true;
-  std::function<void(const std::string&)> progress;  // may be empty
+  MessageSink progress;             // may be empty
+  MessageSink warning;              // may be empty
 };
+
+// How an analysis ended. results.json keeps its own "status" strings (a contract); this is the
+// program's vocabulary for the exit code and the one-line reports.
+enum class AnalysisTermination {
+  Succeeded,        // an answer (including "no buckling", "no free DOF")
+  Mechanism,        // the structure (or the condensation) is a mechanism: modes listed
+  NotConverged,     // an iterative solution or a path stopped short
+  NonFiniteResult,  // a result overflowed (inf/NaN): reported as a failure, never as null
+  Failed,           // any other failure; the message says why
+};
+const char* to_string(AnalysisTermination t);
 
 struct AnalysisOutcome {
   ojson result;          // analyses.<id>
-  bool failed = false;   // the analysis ran but did not succeed (mechanism, no convergence)
+  AnalysisTermination termination = AnalysisTermination::Succeeded;
   std::string message;
+  bool failed() const { return termination != AnalysisTermination::Succeeded; }
+  // One line: "succeeded: <message>" or "<termination>: <message>".
+  std::string brief_report() const;
 };
 
 struct AnalysisType {
   std::string name;
+  // Validates the spec against the model, covering everything the run needs that input can
+  // decide without solving (InputError with the JSON pointer). `check` and `run` share it.
   std::function<void(const Model&, const nlohmann::json& spec, const std::string& pointer)> check;
   std::function<AnalysisOutcome(const AnalysisContext&)> run;
 };
@@ -43,8 +65,22 @@ struct AnalysisType {
 const std::vector<AnalysisType>& analysis_types();
 const AnalysisType* find_analysis_type(const std::string& name);
 
-// Validates every analysis spec (ids unique, types known, fields valid).
+// Validates every analysis spec (at least one; ids unique and safe as file names, types known,
+// each type's check).
 void check_analyses(const Model& model, const nlohmann::json& document);
+
+// Analysis ids become file names (DIR/<id>.vtu, DIR/<id>_mode1.vtu ...): letters, digits and
+// _ - . + = only, not "." or "..", at most kMaxAnalysisIdLength characters. Returns the id of
+// `v` or throws InputError at `pointer`.
+inline constexpr std::size_t kMaxAnalysisIdLength = 64;
+std::string analysis_id(const nlohmann::json& v, const std::string& pointer);
+
+// The model restrictions of the nonlinear analyses (buckling, path), as the nonlinear structure
+// states them, as an InputError at the analysis's pointer `p`.
+void check_nonlinear_model(const Model& model, const std::string& p);
+
+// The first non-finite number in a result ("" when all are finite), as a path "a.b[2]".
+std::string first_non_finite(const ojson& v, const std::string& path = "");
 
 // Helpers shared by the analyses' JSON output.
 ojson to_json(const Vec3& v);

@@ -23,6 +23,7 @@
 #include "io/analysis.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json_util.hpp"
+#include "elements/beam.hpp"
 #include "io/model_reader.hpp"
 #include "solvers/actuator_allocation.hpp"
 
@@ -161,6 +162,15 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
         apply_node_positions(moved, pose.nodes);
       } catch (const ModelError& e) {
         throw InputError(pi, "pose '" + pose.id + "': " + e.what());
+      }
+      // Every beam keeps a local frame: the pose must not turn a beam parallel to its orientation.
+      for (const auto& el : moved.elements) {
+        if (el.type != MemberType::Beam) continue;
+        try {
+          beam_local_axes(moved.nodes[el.nodes[0]].x, moved.nodes[el.nodes[1]].x, el.orientation);
+        } catch (const Error& e) {
+          throw InputError(pi, "pose '" + pose.id + "': element '" + el.id + "': " + e.what());
+        }
       }
       s.poses.push_back(std::move(pose));
     }
@@ -477,7 +487,7 @@ AnalysisOutcome run_actuator_allocation(const AnalysisContext& ctx) {
                             ranks.empty() || ranks.front().status != "ok" ? std::string("none") : ranks.front().name);
   res["status"] = n_valid > 0 ? "ok" : "no_valid_scheme";
   res["message"] = out.message;
-  out.failed = n_valid == 0;
+  if (n_valid == 0) out.termination = AnalysisTermination::Failed;
   return out;
 }
 

@@ -15,12 +15,12 @@ namespace beamfea {
 
 namespace {
 
-void check_buckling(const Model&, const nlohmann::json& spec, const std::string& p) {
+constexpr int kMaxModes = 1000;  // documented bound of "modes" (docs/analyses/buckling.md)
+
+void check_buckling(const Model& model, const nlohmann::json& spec, const std::string& p) {
   json_in::expect_keys(spec, p, {"id", "type", "description", "modes"});
-  if (spec.contains("modes")) {
-    const int m = json_in::integer(spec["modes"], json_in::child(p, "modes"), "buckling modes");
-    if (m < 1 || m > 1000) throw InputError(json_in::child(p, "modes"), "buckling: modes must be between 1 and 1000");
-  }
+  if (spec.contains("modes")) json_in::integer_in(spec["modes"], json_in::child(p, "modes"), "buckling modes", 1, kMaxModes);
+  check_nonlinear_model(model, p);
 }
 
 AnalysisOutcome run_buckling(const AnalysisContext& ctx) {
@@ -35,7 +35,8 @@ AnalysisOutcome run_buckling(const AnalysisContext& ctx) {
   out.result["free_dofs"] = r.free_dofs;
   out.message = r.message;
   if (r.status != BucklingStatus::Ok) {
-    out.failed = r.status != BucklingStatus::NoCompression;
+    if (r.status == BucklingStatus::Mechanism) out.termination = AnalysisTermination::Mechanism;
+    else if (r.status != BucklingStatus::NoCompression) out.termination = AnalysisTermination::Failed;
     out.result["load_factors"] = ojson::array();
     return out;
   }

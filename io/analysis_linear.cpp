@@ -4,6 +4,7 @@
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
 #include "io/json_util.hpp"
+#include "io/model_check.hpp"
 #include "io/model_reader.hpp"
 #include "io/vtk_writer.hpp"
 #include "solvers/condensed_stiffness.hpp"
@@ -73,7 +74,7 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   out.result["free_dofs"] = r.free_dofs;
   out.message = r.message;
   if (r.status != SolveStatus::Converged) {
-    out.failed = true;
+    out.termination = r.status == SolveStatus::Mechanism ? AnalysisTermination::Mechanism : AnalysisTermination::Failed;
     out.result["mechanism"] = mechanism_json(model, r.modes);
     return out;
   }
@@ -111,7 +112,13 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
 
 void check_stiffness(const Model& model, const nlohmann::json& spec, const std::string& p) {
   json_in::expect_keys(spec, p, {"id", "type", "description", "node"});
-  node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
+  const int node = node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
+  // The stiffness at a node is finite only where the node can move in all six directions.
+  const DofMap map(model);
+  for (int k = 0; k < 6; ++k)
+    if (const std::string why = why_held(model, map, node, k); !why.empty())
+      throw InputError(json_in::child(p, "node"), "stiffness at node '" + model.nodes[node].id + "': dof " +
+                                                      kDofNames[k] + " " + why + ", so the stiffness there is unbounded");
 }
 
 AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
@@ -125,7 +132,7 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
   out.result["message"] = k.message;
   out.message = k.message;
   if (!k.ok) {
-    out.failed = true;
+    out.termination = AnalysisTermination::Mechanism;
     out.result["mechanism"] = mechanism_json(model, k.modes);
     return out;
   }

@@ -26,7 +26,9 @@
 #include "io/analysis.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json_util.hpp"
+#include "io/model_check.hpp"
 #include "io/model_reader.hpp"
+#include "solvers/structure.hpp"
 #include "io/vtk_writer.hpp"
 #include "solvers/path_following.hpp"
 
@@ -35,6 +37,13 @@ namespace beamfea {
 namespace {
 
 using json_in::child;
+
+// Documented upper bounds (docs/analyses/path.md): beyond them a path would exhaust memory or
+// time long before it told anything more.
+constexpr int kMaxSteps = 100000;            // max_steps, stop steps, increments
+constexpr int kMaxDesiredIterations = 100;
+constexpr int kMaxCuts = 100;
+constexpr int kMaxImperfectionMode = 1000;   // as buckling's "modes"
 
 int dof_of(const nlohmann::json& v, const std::string& p) {
   const std::string name = json_in::string(v, p, "dof");
@@ -75,7 +84,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
     if (c.contains("max")) o.max_arc_length = json_in::positive(c["max"], child(pc, "max"), "arc_length max");
   }
   if (c.contains("increments")) {
-    o.increments = json_in::integer_at_least(c["increments"], child(pc, "increments"), "increments", 1);
+    o.increments = json_in::integer_in(c["increments"], child(pc, "increments"), "increments", 1, kMaxSteps);
   }
   if (spec.contains("stop")) {
     const std::string ps = child(p, "stop");
@@ -88,11 +97,11 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
       o.stop_dof = dof_of(json_in::require(s, ps, "dof", "stop"), child(ps, "dof"));
     }
     if (s.contains("steps")) {
-      o.stop_steps = json_in::integer_at_least(s["steps"], child(ps, "steps"), "stop steps", 1);
+      o.stop_steps = json_in::integer_in(s["steps"], child(ps, "steps"), "stop steps", 1, kMaxSteps);
     }
   }
   if (spec.contains("max_steps")) {
-    o.max_steps = json_in::integer_at_least(spec["max_steps"], child(p, "max_steps"), "max_steps", 1);
+    o.max_steps = json_in::integer_in(spec["max_steps"], child(p, "max_steps"), "max_steps", 1, kMaxSteps);
   }
   if (spec.contains("track")) {
     const auto& t = json_in::array(spec["track"], child(p, "track"), "track");
@@ -102,17 +111,19 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
   if (spec.contains("branch_switch")) o.branch_switch = json_in::boolean(spec["branch_switch"], child(p, "branch_switch"), "branch_switch");
   if (spec.contains("stability")) o.stability = json_in::boolean(spec["stability"], child(p, "stability"), "stability");
   if (spec.contains("desired_iterations")) {
-    o.desired_iterations = json_in::integer_at_least(spec["desired_iterations"], child(p, "desired_iterations"), "desired_iterations", 1);
+    o.desired_iterations =
+        json_in::integer_in(spec["desired_iterations"], child(p, "desired_iterations"), "desired_iterations", 1, kMaxDesiredIterations);
   }
   if (spec.contains("max_cuts")) {
-    o.max_cuts = json_in::integer_at_least(spec["max_cuts"], child(p, "max_cuts"), "max_cuts", 0);
+    o.max_cuts = json_in::integer_in(spec["max_cuts"], child(p, "max_cuts"), "max_cuts", 0, kMaxCuts);
   }
   if (spec.contains("imperfection")) {
     const std::string pi = child(p, "imperfection");
     const auto& im = json_in::object(spec["imperfection"], pi, "imperfection");
     json_in::expect_keys(im, pi, {"mode", "amplitude"});
     o.imperfection_mode =
-        json_in::integer_at_least(json_in::require(im, pi, "mode", "imperfection"), child(pi, "mode"), "imperfection mode", 1);
+        json_in::integer_in(json_in::require(im, pi, "mode", "imperfection"), child(pi, "mode"), "imperfection mode", 1,
+                            kMaxImperfectionMode);
     o.imperfection_amplitude = json_in::number(json_in::require(im, pi, "amplitude", "imperfection"), child(pi, "amplitude"), "imperfection amplitude");
   }
   if (o.branch_switch && o.control != PathControl::ArcLength)
@@ -121,8 +132,27 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
 }
 
 void check_path(const Model& model, const nlohmann::json& spec, const std::string& p) {
-  parse(model, spec, p);
+  const PathOptions o = parse(model, spec, p);
   if (spec.contains("save_every")) json_in::integer_at_least(spec["save_every"], child(p, "save_every"), "save_every", 1);
+  // What the path needs of the model, decided before anything runs.
+  check_nonlinear_model(model, p);
+  const DofMap map(model);
+  if (o.control == PathControl::Displacement) {
+    const std::string why = why_held(model, map, o.control_node, o.control_dof);
+    if (!why.empty())
+      throw InputError(child(child(p, "control"), "dof"), "displacement control: " +
+                                                              model.describe({DofRef::Owner::Node, o.control_node, o.control_dof}) +
+                                                              " " + why + ": it cannot be the controlled DOF");
+  } else {
+    const Eigen::VectorXd f = external_force(model, map);
+    if (f.size() == 0 || !(f.cwiseAbs().maxCoeff() > 0.0))
+      throw InputError(child(p, "control"), "path: the model has no loads to scale; add \"loads\", or use displacement "
+                                            "control ({\"node\", \"dof\", \"to\"}) to impose a motion");
+  }
+  if (o.imperfection_mode > 0 && o.imperfection_mode > map.free_size())
+    throw InputError(child(child(p, "imperfection"), "mode"),
+                     fmt::format("imperfection: buckling mode {} does not exist: the model has {} free DOF(s)",
+                                 o.imperfection_mode, map.free_size()));
 }
 
 ojson node_map(const Model& model, const Eigen::VectorXd& raw) {
@@ -158,7 +188,7 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
   out.result["completed"] = r.completed;
   out.result["control"] = control_name(o.control);
   out.result["free_dofs"] = r.free_dofs;
-  out.failed = !r.completed;
+  if (!r.completed) out.termination = AnalysisTermination::NotConverged;
   out.message = fmt::format("path: {} steps, {}", r.steps.empty() ? 0 : r.steps.size() - 1, r.brief_report());
   ojson steps = ojson::array();
   for (const auto& s : r.steps) {

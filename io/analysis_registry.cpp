@@ -1,8 +1,10 @@
-#include <set>
+#include <cmath>
+#include <map>
 
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
 #include "io/json_util.hpp"
+#include "solvers/nonlinear_structure.hpp"
 
 namespace beamfea {
 
@@ -23,16 +25,30 @@ const AnalysisType* find_analysis_type(const std::string& name) {
   return nullptr;
 }
 
+std::string analysis_id(const nlohmann::json& v, const std::string& pointer) {
+  const std::string id = json_in::id(v, pointer, "analysis");
+  if (id.size() > kMaxAnalysisIdLength)
+    throw InputError(pointer, "analysis id of " + std::to_string(id.size()) + " characters: at most " +
+                                  std::to_string(kMaxAnalysisIdLength) + " (it names the analysis's files)");
+  if (id == "." || id == ".." ||
+      id.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-.+=") != std::string::npos)
+    throw InputError(pointer, "analysis id '" + id + "': use letters, digits and _ - . + = only (it names the analysis's files)");
+  return id;
+}
+
 void check_analyses(const Model& model, const nlohmann::json& document) {
   auto it = document.find("analyses");
-  if (it == document.end()) return;
+  if (it == document.end()) throw InputError("/analyses", "no analyses: nothing to run (add \"analyses\": [{\"id\": ..., \"type\": ...}])");
   json_in::array(*it, "/analyses", "analyses");
-  std::set<std::string> ids;
+  if (it->empty()) throw InputError("/analyses", "no analyses: nothing to run");
+  std::map<std::string, std::size_t> ids;
   for (std::size_t i = 0; i < it->size(); ++i) {
     const std::string p = json_in::child("/analyses", i);
     const auto& a = json_in::object((*it)[i], p, "analysis");
-    const std::string id = json_in::id(json_in::require(a, p, "id", "analysis"), json_in::child(p, "id"), "analysis");
-    if (!ids.insert(id).second) throw InputError(json_in::child(p, "id"), "duplicate analysis id '" + id + "'");
+    const std::string id = analysis_id(json_in::require(a, p, "id", "analysis"), json_in::child(p, "id"));
+    if (auto [first, fresh] = ids.emplace(id, i); !fresh)
+      throw InputError(json_in::child(p, "id"), "duplicate analysis id '" + id + "' (first at " +
+                                                    json_in::child("/analyses", first->second) + ")");
     const std::string type = json_in::string(json_in::require(a, p, "type", "analysis '" + id + "'"),
                                              json_in::child(p, "type"), "analysis '" + id + "'");
     const AnalysisType* t = find_analysis_type(type);
@@ -43,6 +59,39 @@ void check_analyses(const Model& model, const nlohmann::json& document) {
     }
     t->check(model, a, p);
   }
+}
+
+void check_nonlinear_model(const Model& model, const std::string& p) {
+  try {
+    const NonlinearStructure ns(model);
+  } catch (const ModelError& e) {
+    throw InputError(p, std::string("this analysis cannot run on this model: ") + e.what());
+  }
+}
+
+const char* to_string(AnalysisTermination t) {
+  switch (t) {
+    case AnalysisTermination::Succeeded: return "succeeded";
+    case AnalysisTermination::Mechanism: return "mechanism";
+    case AnalysisTermination::NotConverged: return "not converged";
+    case AnalysisTermination::NonFiniteResult: return "non-finite result";
+    case AnalysisTermination::Failed: return "failed";
+  }
+  return "?";
+}
+
+std::string AnalysisOutcome::brief_report() const { return std::string(to_string(termination)) + ": " + message; }
+
+std::string first_non_finite(const ojson& v, const std::string& path) {
+  if (v.is_number_float()) return std::isfinite(v.get<double>()) ? "" : (path.empty() ? "(value)" : path);
+  if (v.is_array()) {
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (auto r = first_non_finite(v[i], path + "[" + std::to_string(i) + "]"); !r.empty()) return r;
+  } else if (v.is_object()) {
+    for (const auto& [k, x] : v.items())
+      if (auto r = first_non_finite(x, path.empty() ? k : path + "." + k); !r.empty()) return r;
+  }
+  return "";
 }
 
 ojson to_json(const Vec3& v) { return ojson::array({v[0], v[1], v[2]}); }

@@ -96,6 +96,9 @@ double number(const json& v, const std::string& pointer, const std::string& what
   if (!v.is_number()) throw InputError(pointer, what + ": expected a number");
   const double x = v.get<double>();
   if (!std::isfinite(x)) throw InputError(pointer, what + ": must be finite");
+  if (std::abs(x) > kMaxMagnitude)
+    throw InputError(pointer, what + ": " + v.dump() + " is beyond the largest magnitude accepted, 1e100 (products of "
+                                         "such values overflow double precision in the analysis)");
   return x;
 }
 

@@ -27,7 +27,12 @@ void expect_keys(const json& obj, const std::string& pointer, std::initializer_l
 // The known key nearest to `key` by edit distance, or "" when none is close enough to suggest.
 std::string nearest_key(std::string_view key, std::initializer_list<std::string_view> known);
 
+// Largest magnitude of an input number: squares and products of a few such values (lengths
+// squared, E I / L^3, ...) stay far inside double range (1.8e308). docs/input-format.md.
+inline constexpr double kMaxMagnitude = 1e100;
+
 const json& require(const json& obj, const std::string& pointer, const std::string& key, const std::string& what);
+// A finite number of magnitude at most kMaxMagnitude.
 double number(const json& v, const std::string& pointer, const std::string& what);
 double positive(const json& v, const std::string& pointer, const std::string& what);
 // An integer that fits an int (values beyond it are an error, never wrapped).

@@ -12,9 +12,19 @@ namespace beamfea {
 using json = nlohmann::json;
 using namespace json_in;
 
+namespace {
+// Deepest nesting of arrays and objects accepted: a model needs 4 (a joint's stiffness matrix);
+// copying or printing a value nested without bound would overflow the stack.
+constexpr int kMaxNesting = 64;
+}  // namespace
+
 json parse_json_text(const std::string& text, const std::string& source) {
   try {
-    return json::parse(text);
+    return json::parse(text, [&](int depth, json::parse_event_t event, json&) {
+      if (depth > kMaxNesting && (event == json::parse_event_t::object_start || event == json::parse_event_t::array_start))
+        throw InputError("", source + ": malformed JSON: nested deeper than " + std::to_string(kMaxNesting) + " levels");
+      return true;
+    });
   } catch (const json::parse_error& e) {
     throw InputError("", source + ": malformed JSON at byte " + std::to_string(e.byte) + ": " + e.what());
   } catch (const json::exception& e) {

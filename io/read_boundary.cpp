@@ -1,5 +1,5 @@
 // Model reader, part 4: supports, loads, prescribed values.
-#include <set>
+#include <map>
 
 #include "core/errors.hpp"
 #include "io/json_util.hpp"
@@ -66,7 +66,7 @@ void read_loads(ReadState& s) {
 void read_prescribed(ReadState& s) {
   Model& m = s.model;
   const auto& arr = collection(s.doc, "prescribed", false);
-  std::set<std::pair<int, int>> seen;
+  std::map<std::pair<int, int>, std::size_t> seen;  // (owner-coded index, component) -> entry
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const std::string p = child("/prescribed", i);
     const auto& o = object(arr[i], p, "prescribed value");
@@ -74,8 +74,9 @@ void read_prescribed(ReadState& s) {
     Prescribed pr;
     pr.dof = read_dof_target(m, o, p, "prescribed value");
     pr.value = number(require(o, p, "value", "prescribed " + m.describe(pr.dof)), child(p, "value"), "prescribed value");
-    if (!seen.insert({pr.dof.owner == DofRef::Owner::Node ? pr.dof.index : -1 - pr.dof.index, pr.dof.comp}).second)
-      throw InputError(p, m.describe(pr.dof) + " is prescribed twice");
+    const std::pair<int, int> key{pr.dof.owner == DofRef::Owner::Node ? pr.dof.index : -1 - pr.dof.index, pr.dof.comp};
+    if (auto [first, fresh] = seen.emplace(key, i); !fresh)
+      throw InputError(p, m.describe(pr.dof) + " is prescribed twice (first at " + child("/prescribed", first->second) + ")");
     m.prescribed.push_back(pr);
   }
 }

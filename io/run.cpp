@@ -1,51 +1,97 @@
 #include "io/run.hpp"
 
+#include <algorithm>
 #include <chrono>
-#include <iostream>
+#include <optional>
 
 #include "core/errors.hpp"
+#include "core/version.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json_util.hpp"
+#include "io/model_check.hpp"
 #include "io/model_reader.hpp"
 
 namespace beamfea {
 
 Model load_and_check(const nlohmann::json& document) {
   Model m = read_model(document);
+  check_model(m, document);
   check_analyses(m, document);
   return m;
 }
 
+namespace {
+
+// Runs one analysis; a ModelError or solver error raised while running (after validation) is
+// that analysis's failure, reported in results.json, not a crash of the run.
+AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx) {
+  AnalysisOutcome o;
+  try {
+    o = type.run(ctx);
+  } catch (const InputError&) {
+    throw;  // bad input found late is still bad input
+  } catch (const std::exception& e) {
+    o = AnalysisOutcome{};
+    o.result["type"] = type.name;
+    o.result["status"] = "failed";
+    o.result["message"] = e.what();
+    o.termination = AnalysisTermination::Failed;
+    o.message = e.what();
+    return o;
+  }
+  if (const std::string where = first_non_finite(o.result); !where.empty()) {
+    o.termination = AnalysisTermination::NonFiniteResult;
+    o.message = "the result is not finite at '" + where +
+                "' (an overflow: values or stiffnesses too far apart for double precision)";
+    o.result["status"] = "failed";
+    o.result["message"] = o.message;
+  }
+  return o;
+}
+
+}  // namespace
+
 RunReport run_document(const Model& model, const nlohmann::json& document, const RunOptions& options) {
   RunReport report;
-  report.results["beamfea"] = "0.1.0";
+  report.results["beamfea"] = kVersion;
   report.results["model"] = {{"nodes", model.nodes.size()},
                              {"elements", model.elements.size()},
                              {"members", model.members.size()},
                              {"joints", model.joints.size()}};
+  const auto& specs = document.at("analyses");
+  for (std::size_t k = 0; k < options.only.size(); ++k) {
+    const bool known = std::any_of(specs.begin(), specs.end(), [&](const auto& s) {
+      return json_in::id(s.at("id"), "", "analysis") == options.only[k];
+    });
+    if (!known) throw InputError("", "--analysis '" + options.only[k] + "': no analysis of that id in the model");
+  }
+  std::optional<StagingDir> staging;
+  if (!options.out_dir.empty()) staging.emplace(options.out_dir);
   ojson analyses = ojson::object();
-  if (!options.out_dir.empty()) std::filesystem::create_directories(options.out_dir);
-  if (auto it = document.find("analyses"); it != document.end()) {
-    for (std::size_t i = 0; i < it->size(); ++i) {
-      const auto& spec = (*it)[i];
-      const std::string id = json_in::id(spec.at("id"), "", "analysis");
-      if (!options.only.empty() && std::find(options.only.begin(), options.only.end(), id) == options.only.end())
-        continue;
-      const AnalysisType* type = find_analysis_type(spec.at("type").get<std::string>());
-      AnalysisContext ctx{model, document, spec, json_in::child("/analyses", i), id, options.out_dir, options.write_vtk, {}};
-      if (options.verbose) ctx.progress = [&](const std::string& s) { std::cerr << "[" << id << "] " << s << "\n"; };
-      const auto t0 = std::chrono::steady_clock::now();
-      AnalysisOutcome o = type->run(ctx);
-      const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      o.result["wall_time_s"] = dt;
-      if (options.verbose) std::cerr << "[" << id << "] " << o.message << " (" << dt << " s)\n";
-      report.failed = report.failed || o.failed;
-      analyses[id] = std::move(o.result);
-    }
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const auto& spec = specs[i];
+    const std::string id = json_in::id(spec.at("id"), "", "analysis");
+    if (!options.only.empty() && std::find(options.only.begin(), options.only.end(), id) == options.only.end())
+      continue;
+    const AnalysisType* type = find_analysis_type(spec.at("type").get<std::string>());
+    AnalysisContext ctx{model,   document, spec, json_in::child("/analyses", i), id, staging ? staging->path() : std::filesystem::path(),
+                        options.write_vtk, {}, options.warning};
+    if (options.progress) ctx.progress = [&](const std::string& s) { options.progress("[" + id + "] " + s); };
+    const auto t0 = std::chrono::steady_clock::now();
+    AnalysisOutcome o = run_one(*type, ctx);
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    o.result["wall_time_s"] = dt;
+    if (options.progress) options.progress("[" + id + "] " + o.brief_report() + " (" + std::to_string(dt) + " s)");
+    report.failed = report.failed || o.failed();
+    analyses[id] = std::move(o.result);
+    o.result = ojson();
+    report.outcomes.emplace_back(id, std::move(o));
   }
   report.results["analyses"] = std::move(analyses);
-  if (!options.out_dir.empty())
-    write_text_atomic(options.out_dir / "results.json", report.results.dump(2) + "\n");
+  if (staging) {
+    write_text_atomic(staging->path() / "results.json", report.results.dump(2) + "\n");
+    staging->commit("results.json");
+  }
   return report;
 }
 

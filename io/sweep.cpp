@@ -33,6 +33,10 @@ using json_in::child;
 
 namespace {
 
+// Array indices in output paths have at most this many digits (no array is that long; more would
+// overflow the conversion).
+constexpr std::size_t kMaxIndexDigits = 9;
+
 // ---------------------------------------------------------------------------------------------
 // Reading the sweep file
 
@@ -168,6 +172,8 @@ SweepOutput read_output(const json& v, const std::string& where) {
       const std::string digits = close == std::string::npos ? "" : path.substr(i + 1, close - i - 1);
       if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos)
         throw InputError(where, "output path '" + path + "': expected [index] at character " + std::to_string(i));
+      if (digits.size() > kMaxIndexDigits)
+        throw InputError(where, "output path '" + path + "': index " + digits + " is out of range");
       o.path.push_back({"", std::stol(digits)});
       i = close + 1;
     } else {
@@ -216,6 +222,7 @@ const ojson* find_path(const ojson& root, const SweepOutput& o) {
   for (const auto& t : o.path) {
     if (t.index >= 0 || (v->is_array() && !t.key.empty() &&
                          t.key.find_first_not_of("0123456789") == std::string::npos)) {
+      if (t.index < 0 && t.key.size() > kMaxIndexDigits) return nullptr;  // beyond any array
       const std::size_t i = t.index >= 0 ? static_cast<std::size_t>(t.index) : std::stoul(t.key);
       if (!v->is_array() || i >= v->size()) return nullptr;
       v = &(*v)[i];

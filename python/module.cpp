@@ -95,7 +95,6 @@ py::object run(const py::object& model, const std::vector<std::string>& only, co
     if (out) options.out_dir = *out;
     options.write_vtk = vtk;
     options.only = only;
-    options.verbose = false;
     report = run_document(m, doc, options);
   } catch (const InputError& e) {
     raise_input_error(e, &doc);

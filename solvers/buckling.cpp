@@ -109,6 +109,12 @@ BucklingResult solve_buckling(const Model& model, const BucklingOptions& options
   Kg = SparseMatrix(0.5 * (SparseMatrix(Kg.transpose()) + Kg));
   res.free_dofs = map.free_size();
   const int n = map.free_size();
+  if (n == 0) {
+    // Every DOF is held: nothing can move, so nothing can buckle (an answer, not a failure).
+    res.status = BucklingStatus::NoCompression;
+    res.message = "buckling: no free DOF (every DOF is supported, prescribed or held): nothing can buckle";
+    return res;
+  }
   const int want = std::min(options.modes, n);
 
   // Solve K phi = lambda (-Kg) phi.

@@ -28,7 +28,7 @@ LinearStaticResult solve_linear_static(const Model& model, const LinearStaticOpt
   LinearStaticResult res;
   const DofMap map(model);
   const Eigen::VectorXd up = map.prescribed_values();
-  if (auto conflict = map.check_consistency(up); !conflict.empty()) throw ModelError("", conflict);
+  if (auto conflict = map.check_consistency(up); !conflict.empty()) throw ModelError("supports and prescribed values", conflict);
   const LinearStructure structure(model);
   SystemAssembler assembler(map);
   assembler.begin();

@@ -121,7 +121,7 @@ NonlinearStructure::NonlinearStructure(const Model& model) : model_(&model), map
     if (el.type != MemberType::Beam) continue;
     try {
       beams_[e].emplace(beam_section(model, el), model.nodes[el.nodes[0]].x, model.nodes[el.nodes[1]].x, el.orientation);
-    } catch (const ModelError& err) {
+    } catch (const Error& err) {  // the element's own error, named here
       throw ModelError("element '" + el.id + "'", err.what());
     }
   }
@@ -325,7 +325,7 @@ NonlinearStructure::Evaluation NonlinearStructure::evaluate(const NonlinearState
     CorotationalResponse r;
     try {
       r = beams_[e]->evaluate(s.x[a], s.R[a], s.x[b], s.R[b]);
-    } catch (const ModelError& err) {
+    } catch (const Error& err) {  // the element's own error, named here
       throw ModelError("element '" + el.id + "'", err.what());
     }
     ev.end_forces[e] = r.local_end_forces;

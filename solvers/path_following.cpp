@@ -94,6 +94,11 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
                                               : original;
   PathEquilibrium P(model, o);
   res.free_dofs = P.nf;
+  if (P.nf == 0) {  // every DOF held: no path to follow (and KINSOL cannot take an empty system)
+    res.finish(PathTermination::InitialStateFailed, 0.0, 0,
+               "no free DOF (every DOF is supported, prescribed or held): there is no path to follow");
+    return res;
+  }
   KinsolSolver kin(o.newton);
   StabilityAnalyzer stab(P);
   Predictor predictor(o.control, P);

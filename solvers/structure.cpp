@@ -17,7 +17,7 @@ LinearStructure::LinearStructure(const Model& model) : model_(&model), beams_(mo
     try {
       beams_[e].emplace(beam_section(model, el), model.nodes[el.nodes[0]].x, model.nodes[el.nodes[1]].x,
                         el.orientation);
-    } catch (const ModelError& err) {
+    } catch (const Error& err) {  // the element's own error, named here
       throw ModelError("element '" + el.id + "'", err.what());
     }
   }

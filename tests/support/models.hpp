@@ -18,10 +18,11 @@ struct CliResult {
   std::string output;  // stdout and stderr together
 };
 
-// Runs the beamfea executable with `args` and returns its exit code and output.
-inline CliResult run_cli(const std::string& args) {
+// Runs the beamfea executable with `args` and returns its exit code and output; `prefix` is a
+// command put before it ("timeout 60 "). A death by a signal gives exit_code -1.
+inline CliResult run_cli_with_prefix(const std::string& prefix, const std::string& args) {
   CliResult r;
-  const std::string cmd = std::string(BEAMFEA_EXE) + " " + args + " 2>&1";
+  const std::string cmd = prefix + std::string(BEAMFEA_EXE) + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
   char buf[4096];
@@ -30,6 +31,9 @@ inline CliResult run_cli(const std::string& args) {
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
+
+// Runs the beamfea executable with `args` and returns its exit code and output.
+inline CliResult run_cli(const std::string& args) { return run_cli_with_prefix("", args); }
 
 // A fresh temporary folder for one test.
 inline std::filesystem::path temp_dir(const std::string& name) {

@@ -1,0 +1,66 @@
+#include "io/model_check.hpp"
+
+#include "core/errors.hpp"
+#include "io/json_util.hpp"
+
+namespace beamfea {
+
+using json_in::child;
+
+namespace {
+
+// The index of the first support entry that fixes `comp` of `node`, or -1.
+int support_fixing(const Model& m, int node, int comp) {
+  for (std::size_t s = 0; s < m.supports.size(); ++s)
+    if (m.supports[s].node == node && m.supports[s].fixed[comp]) return static_cast<int>(s);
+  return -1;
+}
+
+}  // namespace
+
+void check_model(const Model& m, const nlohmann::json&) {
+  if (m.members.empty()) throw InputError("/elements", "the model has no elements: nothing carries a load");
+  // A support fixes a DOF at 0; a prescribed value on the same DOF must agree.
+  for (std::size_t i = 0; i < m.prescribed.size(); ++i) {
+    const auto& p = m.prescribed[i];
+    if (p.dof.owner != DofRef::Owner::Node) continue;
+    const int s = support_fixing(m, p.dof.index, p.dof.comp);
+    if (s >= 0 && p.value != 0.0)
+      throw InputError(child("/prescribed", i), m.describe(p.dof) + ": prescribed " + json_in::json(p.value).dump() +
+                                                    " but the support at " + child("/supports", s) +
+                                                    " fixes it at 0; give one of them");
+  }
+  // Supports and prescribed values on one rigid body must agree (DofMap finds the redundant ones).
+  const DofMap map(m);
+  if (std::string conflict = map.check_consistency(map.prescribed_values()); !conflict.empty())
+    throw InputError("/prescribed", conflict);
+}
+
+std::string why_held(const Model& m, const DofMap& map, int node, int comp) {
+  const int raw = map.raw_node(node, comp);
+  if (const int p = map.prescribed_index(raw); p >= 0) {
+    if (map.prescribed()[p].support) {
+      const int s = support_fixing(m, node, comp);
+      return "is supported" + (s >= 0 ? " (" + child("/supports", s) + ")" : std::string());
+    }
+    for (std::size_t i = 0; i < m.prescribed.size(); ++i)
+      if (m.prescribed[i].dof == DofRef{DofRef::Owner::Node, node, comp})
+        return "is prescribed (" + child("/prescribed", i) + ")";
+    return "is prescribed";
+  }
+  bool moves = false;
+  for (SparseRowMatrix::InnerIterator it(map.T_free(), raw); it; ++it) moves = moves || it.value() != 0.0;
+  if (moves) return "";
+  if (map.is_slave(node)) {
+    // Name the link or joint that carries this node's motion over from its parent.
+    for (const auto& e : map.tree_edges()) {
+      if (e.child != node) continue;
+      const std::string what = e.kind == ConstraintEdge::Kind::Rigid ? "rigid link '" + m.elements[e.index].id + "'"
+                                                                     : "joint '" + m.joints[e.index].id + "'";
+      return "is held by " + what + " to node '" + m.nodes[e.parent].id + "', which cannot move this way";
+    }
+  }
+  return "is held by constraints (rigid links or joints to supported nodes)";
+}
+
+}  // namespace beamfea

@@ -1,0 +1,61 @@
+#pragma once
+// One fuzz case: parse, check, and (for small models) a bounded run without files. Shared by the
+// libFuzzer target (fuzz_model.cpp). Returns the exit code the program would give (0, 1, 2) and
+// aborts when a rule is broken (see fuzz_model.cpp).
+#include <cstdlib>
+#include <iostream>
+#include <string>
+
+#include "core/errors.hpp"
+#include "io/model_reader.hpp"
+#include "io/run.hpp"
+
+namespace beamfea::fuzz {
+
+// Bounds of the run part: bigger models are only parsed and checked.
+inline constexpr std::size_t kMaxRunNodes = 60;
+inline constexpr int kMaxRunPathSteps = 20;
+inline constexpr int kMaxRunModes = 4;
+
+[[noreturn]] inline void broken_rule(const std::string& what) {
+  std::cerr << "fuzz rule broken: " << what << "\n";
+  std::abort();
+}
+
+// Caps the costly options so that one case runs in milliseconds.
+inline void bound(nlohmann::json& doc) {
+  auto it = doc.find("analyses");
+  if (it == doc.end() || !it->is_array()) return;
+  for (auto& a : *it) {
+    if (!a.is_object()) continue;
+    if (a.contains("max_steps")) a["max_steps"] = kMaxRunPathSteps;
+    else if (a.value("type", "") == "path") a["max_steps"] = kMaxRunPathSteps;
+    if (a.contains("modes")) a["modes"] = kMaxRunModes;
+  }
+}
+
+inline int run_one_case(const std::string& text) {
+  nlohmann::json doc;
+  Model model;
+  try {
+    doc = parse_json_text(text, "fuzz");
+    bound(doc);
+    model = load_and_check(doc);
+  } catch (const InputError&) {
+    return 2;
+  } catch (const ModelError&) {
+    return 2;
+  } catch (const std::exception& e) {
+    broken_rule(std::string("reading or checking threw a non-beamfea exception: ") + e.what());
+  }
+  if (model.nodes.size() > kMaxRunNodes) return 0;
+  try {
+    RunOptions opt;  // no files, no messages
+    const RunReport r = run_document(model, doc, opt);
+    return r.failed ? 1 : 0;
+  } catch (const std::exception& e) {
+    broken_rule(std::string("a run after a successful check threw: ") + e.what());
+  }
+}
+
+}  // namespace beamfea::fuzz
