@@ -64,10 +64,12 @@ void SystemAssembler::add(std::span<const int> raw, const Eigen::Ref<const Eigen
     }
 }
 
-void SystemAssembler::build(SparseMatrix& A, int rows, int cols, const std::vector<Triplet>& trip, std::vector<int>& pos) {
+void SystemAssembler::build(SparseMatrix& A, int rows, int cols, const std::vector<Triplet>& trip, std::vector<int>* pos_out) {
   A.resize(rows, cols);
   A.setFromTriplets(trip.begin(), trip.end());
   A.makeCompressed();
+  if (!pos_out) return;
+  std::vector<int>& pos = *pos_out;
   pos.resize(trip.size());
   const int* outer = A.outerIndexPtr();
   const int* inner = A.innerIndexPtr();
@@ -83,13 +85,13 @@ void SystemAssembler::end() {
     if (kff_ != pos_ff_.size() || kfp_ != pos_fp_.size()) throw Error("assembly: call sequence differs from the first pass");
     return;
   }
-  build(Kff_, map_->free_size(), map_->free_size(), tff_, pos_ff_);
-  build(Kfp_, map_->free_size(), map_->prescribed_size(), tfp_, pos_fp_);
+  build(Kff_, map_->free_size(), map_->free_size(), tff_, one_pass_ ? nullptr : &pos_ff_);
+  build(Kfp_, map_->free_size(), map_->prescribed_size(), tfp_, one_pass_ ? nullptr : &pos_fp_);
   tff_.clear();
   tff_.shrink_to_fit();
   tfp_.clear();
   tfp_.shrink_to_fit();
-  built_ = true;
+  built_ = !one_pass_;  // one pass: no positions, so a later pass collects triplets again
 }
 
 }  // namespace beamfea

@@ -18,6 +18,11 @@ namespace beamfea {
 class SystemAssembler {
  public:
   explicit SystemAssembler(const DofMap& map) : map_(&map) {}
+  // A single assembly (linear static): end() builds the matrices from the triplets without the
+  // value positions a later pass would reuse (they cost as much again as setFromTriplets at 2e4
+  // DOFs). A later pass then starts from triplets again: slower, still correct.
+  enum class Passes { Many, One };
+  SystemAssembler(const DofMap& map, Passes passes) : map_(&map), one_pass_(passes == Passes::One) {}
 
   // Starts an assembly pass; zeroes the values once the pattern is known.
   void begin();
@@ -42,9 +47,10 @@ class SystemAssembler {
     double value() const { return v; }
   };
   void put(std::vector<Triplet>& trip, std::vector<int>& pos, std::size_t& k, SparseMatrix& A, int r, int c, double v);
-  static void build(SparseMatrix& A, int rows, int cols, const std::vector<Triplet>& trip, std::vector<int>& pos);
+  static void build(SparseMatrix& A, int rows, int cols, const std::vector<Triplet>& trip, std::vector<int>* pos);
 
   const DofMap* map_;
+  bool one_pass_ = false;
   bool built_ = false;
   SparseMatrix Kff_, Kfp_;
   std::vector<Triplet> tff_, tfp_;

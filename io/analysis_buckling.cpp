@@ -45,7 +45,7 @@ AnalysisOutcome run_buckling(const AnalysisContext& ctx) {
   for (std::size_t k = 0; k < r.modes.size(); ++k) {
     ojson nodes = ojson::object();
     for (std::size_t n = 0; n < model.nodes.size(); ++n)
-      nodes[model.nodes[n].id] = ojson{{"displacement", to_json(Vec6(r.modes[k].segment<6>(6 * n)))}};
+      append_new_key(nodes, model.nodes[n].id, ojson{{"displacement", to_json(Vec6(r.modes[k].segment<6>(6 * n)))}});
     modes.push_back(ojson{{"mode", k + 1}, {"load_factor", r.load_factors[static_cast<Eigen::Index>(k)]}, {"nodes", nodes}});
   }
   out.result["modes"] = modes;

@@ -55,7 +55,7 @@ ojson element_json(const Model& model, const std::vector<Vec12>& end_forces) {
       }
       o["segments"] = segs;
     }
-    out[mem.id] = o;
+    append_new_key(out, mem.id, std::move(o));
   }
   return out;
 }
@@ -83,7 +83,7 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
     ojson o;
     o["displacement"] = to_json(Vec6(r.u.segment<6>(6 * n)));
     if (r.supported[n]) o["reaction"] = to_json(r.reactions[n]);
-    nodes[model.nodes[n].id] = o;
+    append_new_key(nodes, model.nodes[n].id, std::move(o));
   }
   out.result["nodes"] = nodes;
   out.result["elements"] = element_json(model, r.end_forces);
@@ -91,8 +91,9 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   int offset = 6 * static_cast<int>(model.nodes.size());
   for (std::size_t j = 0; j < model.joints.size(); ++j) {
     const int nc = model.joints[j].coordinates();
-    joints[model.joints[j].id] = ojson{{"coordinates", to_json(Eigen::VectorXd(r.u.segment(offset, nc)))},
-                                       {"reaction", to_json(r.joint_forces[j])}};
+    append_new_key(joints, model.joints[j].id,
+                   ojson{{"coordinates", to_json(Eigen::VectorXd(r.u.segment(offset, nc)))},
+                         {"reaction", to_json(r.joint_forces[j])}});
     offset += nc;
   }
   out.result["joints"] = joints;

@@ -158,7 +158,7 @@ void check_path(const Model& model, const nlohmann::json& spec, const std::strin
 ojson node_map(const Model& model, const Eigen::VectorXd& raw) {
   ojson nodes = ojson::object();
   for (std::size_t n = 0; n < model.nodes.size(); ++n)
-    nodes[model.nodes[n].id] = ojson{{"displacement", to_json(Vec6(raw.segment<6>(6 * n)))}};
+    append_new_key(nodes, model.nodes[n].id, ojson{{"displacement", to_json(Vec6(raw.segment<6>(6 * n)))}});
   return nodes;
 }
 

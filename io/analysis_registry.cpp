@@ -94,6 +94,11 @@ std::string first_non_finite(const ojson& v, const std::string& path) {
   return "";
 }
 
+void append_new_key(ojson& object, const std::string& key, ojson value) {
+  auto& map = object.get_ref<ojson::object_t&>();
+  static_cast<ojson::object_t::Container&>(map).emplace_back(key, std::move(value));
+}
+
 ojson to_json(const Vec3& v) { return ojson::array({v[0], v[1], v[2]}); }
 ojson to_json(const Vec6& v) {
   ojson a = ojson::array();

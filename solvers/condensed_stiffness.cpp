@@ -6,6 +6,7 @@
 
 #include "core/assembly.hpp"
 #include "core/errors.hpp"
+#include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
 
 namespace beamfea {
@@ -57,6 +58,17 @@ RawCondensation condense_to_raw_dofs(const DofMap& map, const SparseMatrix& K, c
     if (!any) {
       out.outcome = RawCondensation::Outcome::HeldDof;
       out.held = k;
+      return out;
+    }
+  }
+  if (n <= kDenseMaxDofs) {  // small model: dense Schur complement (solvers/sparse_factor.hpp)
+    Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(nd, n);
+    for (int k = 0; k < nd; ++k)
+      for (SparseRowMatrix::InnerIterator it(map.T_free(), raw[k]); it; ++it) rows(k, it.col()) += it.value();
+    Eigen::MatrixXd Kz;
+    if (condense_dense(K, rows, Kz)) {
+      out.K = Kz;
+      out.outcome = RawCondensation::Outcome::Ok;
       return out;
     }
   }

@@ -30,7 +30,7 @@ LinearStaticResult solve_linear_static(const Model& model, const LinearStaticOpt
   const Eigen::VectorXd up = map.prescribed_values();
   if (auto conflict = map.check_consistency(up); !conflict.empty()) throw ModelError("supports and prescribed values", conflict);
   const LinearStructure structure(model);
-  SystemAssembler assembler(map);
+  SystemAssembler assembler(map, SystemAssembler::Passes::One);
   assembler.begin();
   structure.assemble(map, assembler);
   assembler.end();

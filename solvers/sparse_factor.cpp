@@ -1,5 +1,6 @@
 #include "solvers/sparse_factor.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/CholmodSupport>
 #include <Eigen/UmfPackSupport>
 #include <cmath>
@@ -20,6 +21,7 @@ const char* to_string(FactorStatus s) {
 
 void FactorOptions::validate() const {
   if (!(singular_rcond > 0.0 && singular_rcond < 1.0)) throw Error("FactorOptions: singular_rcond must be in (0, 1)");
+  if (dense_max_dofs < 0) throw Error("FactorOptions: dense_max_dofs must not be negative");
 }
 
 namespace {
@@ -28,9 +30,19 @@ class Cholesky : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> 
  public:
   double rcond() { return m_cholmodFactor ? cholmod_rcond(m_cholmodFactor, &this->cholmod()) : 0.0; }
 };
+
+// CHOLMOD's estimate for L L^T (cholmod_rcond): (min |L_ii| / max |L_ii|)^2.
+double rcond_of(const Eigen::LLT<Eigen::MatrixXd>& llt) {
+  const auto d = llt.matrixLLT().diagonal().cwiseAbs();
+  if (d.size() == 0) return 1.0;
+  const double lo = d.minCoeff(), hi = d.maxCoeff();
+  return hi > 0.0 ? (lo / hi) * (lo / hi) : 0.0;
+}
 }  // namespace
 
 struct SparseFactor::Impl {
+  Eigen::LLT<Eigen::MatrixXd> dense;
+  Eigen::MatrixXd dense_a;  // kept between factorisations: no allocation while the size stays
   Cholesky llt;
   Eigen::UmfPackLU<SparseMatrix> lu;
   Eigen::Index rows = -1, nnz = -1;
@@ -63,11 +75,26 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
       unrestrained_.push_back(static_cast<int>(i));
     }
   }
-  cholesky_ok_ = lu_ok_ = false;
+  cholesky_ok_ = dense_ok_ = lu_ok_ = false;
   rcond_ = 0.0;
   // A DOF with no stiffness at all (zero diagonal): singular, whatever a factorisation would say;
   // the caller diagnoses it (and CHOLMOD is never handed an empty column).
   if (!unrestrained_.empty()) return FactorStatus::NotPositiveDefinite;
+  if (n > 0 && n <= options.dense_max_dofs) {
+    // Small system: dense Cholesky of S K S (lower triangle, as CHOLMOD reads it). A failure
+    // falls through to the sparse path below, which decides as before (CHOLMOD, then LU).
+    Eigen::MatrixXd& D = impl_->dense_a;
+    D.setZero(n, n);
+    for (int j = 0; j < K.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(K, j); it; ++it)
+        if (it.row() >= j) D(it.row(), j) = it.value() * s_[it.row()] * s_[j];
+    impl_->dense.compute(D);
+    if (impl_->dense.info() == Eigen::Success) {
+      rcond_ = rcond_of(impl_->dense);
+      cholesky_ok_ = dense_ok_ = true;
+      return rcond_ >= options.singular_rcond ? FactorStatus::Ok : FactorStatus::NotPositiveDefinite;
+    }
+  }
   const SparseMatrix A = scaled(K, s_);
   if (!impl_->analysed || impl_->rows != n || impl_->nnz != A.nonZeros()) {
     impl_->llt.analyzePattern(A);
@@ -106,6 +133,7 @@ Eigen::VectorXd SparseFactor::solve(const Eigen::VectorXd& b) const {
   if (s_.size() == 0) return Eigen::VectorXd(0);
   if (!cholesky_ok_ && !lu_ok_) throw Error("SparseFactor::solve: no valid factorisation");
   const Eigen::VectorXd sb = s_.cwiseProduct(b);
+  if (dense_ok_) return s_.cwiseProduct(impl_->dense.solve(sb));
   const Eigen::VectorXd y = cholesky_ok_ ? Eigen::VectorXd(impl_->llt.solve(sb)) : Eigen::VectorXd(impl_->lu.solve(sb));
   return s_.cwiseProduct(y);
 }
@@ -114,8 +142,37 @@ Eigen::MatrixXd SparseFactor::solve(const Eigen::MatrixXd& B) const {
   if (s_.size() == 0) return Eigen::MatrixXd(0, B.cols());
   if (!cholesky_ok_ && !lu_ok_) throw Error("SparseFactor::solve: no valid factorisation");
   const Eigen::MatrixXd SB = s_.asDiagonal() * B;
+  if (dense_ok_) return s_.asDiagonal() * impl_->dense.solve(SB);
   const Eigen::MatrixXd Y = cholesky_ok_ ? Eigen::MatrixXd(impl_->llt.solve(SB)) : Eigen::MatrixXd(impl_->lu.solve(SB));
   return s_.asDiagonal() * Y;
+}
+
+bool condense_dense(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz, const FactorOptions& options) {
+  const Eigen::Index n = K.rows();
+  if (n == 0 || n > options.dense_max_dofs || A.cols() != n || A.rows() == 0) return false;
+  // Jacobi scaling as in SparseFactor::factorize: S K S, so that the condition estimate does not
+  // depend on units; A K^-1 A^T = (A S) (S K S)^-1 (A S)^T.
+  Eigen::VectorXd s(n);
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
+  for (int j = 0; j < K.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(K, j); it; ++it)
+      if (it.row() >= j) D(it.row(), j) = it.value();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!(D(i, i) > 0.0)) return false;
+    s[i] = 1.0 / std::sqrt(D(i, i));
+  }
+  D = s.asDiagonal() * D * s.asDiagonal();  // lower triangle only, as LLT reads it
+  const Eigen::LLT<Eigen::MatrixXd> llt(D);
+  if (llt.info() != Eigen::Success || rcond_of(llt) < options.singular_rcond) return false;
+  // C = (A S) L^-T L^-1 (A S)^T = W^T W with W = L^-1 (A S)^T.
+  Eigen::MatrixXd W = (A * s.asDiagonal()).transpose();
+  llt.matrixL().solveInPlace(W);
+  const Eigen::MatrixXd C = W.transpose() * W;
+  const Eigen::LLT<Eigen::MatrixXd> lc(C);
+  if (lc.info() != Eigen::Success || rcond_of(lc) < options.singular_rcond) return false;
+  Kz = lc.solve(Eigen::MatrixXd::Identity(C.rows(), C.cols()));
+  Kz = 0.5 * (Kz + Kz.transpose()).eval();
+  return Kz.allFinite();
 }
 
 }  // namespace beamfea

@@ -23,9 +23,15 @@ enum class FactorStatus {
 };
 const char* to_string(FactorStatus s);
 
+// Up to this many DOFs a dense Cholesky replaces CHOLMOD (same scaling, same reciprocal
+// condition estimate): below it CHOLMOD's analysis and supernodal bookkeeping cost more than the
+// n^3/3 flops. Chosen by measurement (bench_small_factor, docs/performance.md "Small models").
+inline constexpr int kDenseMaxDofs = 160;
+
 struct FactorOptions {
   double singular_rcond = 1e-13;  // below this (scaled) the matrix is treated as singular
   bool allow_lu = true;           // fall back to LU for indefinite matrices
+  int dense_max_dofs = kDenseMaxDofs;  // dense Cholesky up to this size (0: always sparse)
   void validate() const;
 };
 
@@ -42,6 +48,7 @@ class SparseFactor {
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
 
   bool cholesky() const { return cholesky_ok_; }
+  bool dense() const { return dense_ok_; }  // the last factorisation was the dense one
   bool usable() const { return cholesky_ok_ || lu_ok_; }  // solve() may be called
   double rcond() const { return rcond_; }             // of the scaled matrix (Cholesky only)
   const Eigen::VectorXd& scaling() const { return s_; }  // S
@@ -53,6 +60,7 @@ class SparseFactor {
   std::unique_ptr<Impl> impl_;
   Eigen::VectorXd s_;
   bool cholesky_ok_ = false;
+  bool dense_ok_ = false;
   bool lu_ok_ = false;
   double rcond_ = 0.0;
   std::vector<int> unrestrained_;
@@ -85,5 +93,14 @@ class PatternMemory {
 
 // S K S for S = scaling.
 SparseMatrix scaled(const SparseMatrix& K, const Eigen::VectorXd& s);
+
+// Condensation onto constraint rows: for K (n x n, symmetric positive definite) and dense rows A
+// (r x n), Kz = (A K^-1 A^T)^-1, which is minus the multiplier block M of the saddle point
+// [K A^T; A 0][X; M] = [0; I] (Schur complement). Dense (Cholesky of K, then of the r x r
+// complement) up to `dense_max_dofs`; returns false, leaving the caller to its general saddle-point
+// LU, when K is larger, not positive definite, or either factor's reciprocal condition estimate is
+// below `singular_rcond` (a mechanism held only by the constraint rows, an ill-posed condensation).
+bool condense_dense(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz,
+                    const FactorOptions& options = {});
 
 }  // namespace beamfea

@@ -1,0 +1,226 @@
+// Small models: where a dense factorisation beats CHOLMOD (the threshold kDenseMaxDofs in
+// solvers/sparse_factor.hpp), and stiffness analyses per second of the three-link chain (the
+// chain of bench_sweep_rate: 63 DOFs) on one core.
+//
+// Usage: taskset -c 0 bench_small_models [seconds_per_point]
+// Prints Markdown tables (docs/performance.md, "Small models"). Every time is the thread's CPU
+// time per call, median of 5 batches of repeated calls, the variants interleaved batch by batch
+// (paired). OpenBLAS is held to one thread.
+#include <dlfcn.h>
+#include <fmt/format.h>
+
+#include <Eigen/UmfPackSupport>
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <cstdlib>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "core/assembly.hpp"
+#include "io/model_reader.hpp"
+#include "io/run.hpp"
+#include "solvers/condensed_stiffness.hpp"
+#include "solvers/sparse_factor.hpp"
+#include "solvers/structure.hpp"
+
+using json = nlohmann::json;
+using namespace beamfea;
+
+namespace {
+
+json material_and_section() {
+  return {{"materials", {json{{"id", "al"}, {"E", 70e9}, {"nu", 0.33}}}},
+          {"sections", {json{{"id", "link"}, {"shape", "rectangle"}, {"b", 0.02}, {"h", 0.04}}}}};
+}
+
+// The chain of bench_sweep_rate: three links of 0.3 m, 2 elements each, revolute actuator joints.
+json chain() {
+  json m = material_and_section();
+  m["nodes"] = json::array();
+  m["elements"] = json::array();
+  m["joints"] = json::array();
+  m["nodes"].push_back({{"id", "G"}, {"xyz", {0, 0, 0}}});
+  std::string prev = "G";
+  for (int l = 1; l <= 3; ++l) {
+    const double x0 = 0.3 * (l - 1), x1 = 0.3 * l;
+    const std::string s = fmt::format("L{}s", l), e = l == 3 ? "T" : fmt::format("L{}e", l);
+    m["nodes"].push_back({{"id", s}, {"xyz", {x0, 0, 0}}});
+    m["nodes"].push_back({{"id", e}, {"xyz", {x1, 0, 0}}});
+    m["joints"].push_back({{"id", fmt::format("q{}", l)}, {"type", "revolute"}, {"nodes", {prev, s}},
+                           {"axes", {{0, 0, 1}}}, {"stiffness", {2000.0}}});
+    m["elements"].push_back({{"id", fmt::format("link{}", l)}, {"type", "beam"}, {"nodes", {s, e}},
+                             {"material", "al"}, {"section", "link"}, {"divisions", 2}});
+    prev = e;
+  }
+  m["supports"] = {json{{"node", "G"}, {"fix", "all"}}};
+  m["loads"] = {json{{"node", "T"}, {"force", {0, -10.0, 0}}}};
+  m["analyses"] = {json{{"id", "K"}, {"type", "stiffness"}, {"node", "T"}}};
+  return m;
+}
+
+// A cantilever of `m` elements (banded K, 6 m DOFs).
+json cantilever(int m) {
+  json d = material_and_section();
+  d["nodes"] = json::array();
+  d["elements"] = json::array();
+  for (int i = 0; i <= m; ++i) d["nodes"].push_back({{"id", fmt::format("n{}", i)}, {"xyz", {0.1 * i, 0, 0}}});
+  for (int i = 0; i < m; ++i)
+    d["elements"].push_back({{"id", fmt::format("e{}", i)}, {"type", "beam"},
+                             {"nodes", {fmt::format("n{}", i), fmt::format("n{}", i + 1)}}, {"material", "al"}, {"section", "link"}});
+  d["supports"] = {json{{"node", "n0"}, {"fix", "all"}}};
+  return d;
+}
+
+// An n x n x n lattice clamped at z = 0 (6 n^2 (n - 1) free DOFs, 3-D fill).
+json lattice(int n) {
+  json m = material_and_section();
+  m["nodes"] = json::array();
+  m["elements"] = json::array();
+  auto id = [](int i, int j, int k) { return fmt::format("n{}_{}_{}", i, j, k); };
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) m["nodes"].push_back({{"id", id(i, j, k)}, {"xyz", {i, j, k}}});
+  int e = 0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        auto beam = [&](int i2, int j2, int k2) {
+          if (i2 >= n || j2 >= n || k2 >= n) return;
+          m["elements"].push_back({{"id", fmt::format("e{}", e++)}, {"type", "beam"}, {"nodes", {id(i, j, k), id(i2, j2, k2)}},
+                                   {"material", "al"}, {"section", "link"}});
+        };
+        beam(i + 1, j, k);
+        beam(i, j + 1, k);
+        beam(i, j, k + 1);
+      }
+  m["supports"] = json::array();
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) m["supports"].push_back({{"node", id(i, j, 0)}, {"fix", "all"}});
+  return m;
+}
+
+SparseMatrix stiffness(const Model& model, const DofMap& map) {
+  const LinearStructure structure(model);
+  SystemAssembler a(map);
+  a.begin();
+  structure.assemble(map, a);
+  a.end();
+  return a.K_ff();
+}
+
+// The calling thread's CPU time: on a loaded machine wall clock measures the scheduler.
+struct thread_clock {
+  using duration = std::chrono::nanoseconds;
+  using time_point = std::chrono::time_point<thread_clock>;
+  static time_point now() {
+    timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return time_point(duration(ts.tv_sec * 1000000000LL + ts.tv_nsec));
+  }
+};
+
+// CPU seconds per call of each function: batches of calls sized to about `budget` seconds, the
+// functions interleaved batch by batch, median over 5 batches.
+std::vector<double> paired(const std::vector<std::function<void()>>& fs, double budget) {
+  using clock = thread_clock;
+  std::vector<long> reps(fs.size(), 1);
+  for (std::size_t i = 0; i < fs.size(); ++i) {
+    const auto t0 = clock::now();
+    fs[i]();
+    const double dt = std::max(1e-7, std::chrono::duration<double>(clock::now() - t0).count());
+    reps[i] = std::max<long>(1, static_cast<long>(budget / 5 / dt));
+  }
+  std::vector<std::vector<double>> t(fs.size());
+  for (int b = 0; b < 5; ++b)
+    for (std::size_t i = 0; i < fs.size(); ++i) {
+      const auto t0 = clock::now();
+      for (long r = 0; r < reps[i]; ++r) fs[i]();
+      t[i].push_back(std::chrono::duration<double>(clock::now() - t0).count() / reps[i]);
+    }
+  std::vector<double> med;
+  for (auto& v : t) {
+    std::sort(v.begin(), v.end());
+    med.push_back(v[2]);
+  }
+  return med;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using SetThreads = void (*)(int);
+  if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
+  const double budget = argc > 1 ? std::atof(argv[1]) : 0.5;
+
+  fmt::print("### SparseFactor::factorize + solve: dense Cholesky against CHOLMOD\n\n");
+  fmt::print("| model | free DOFs | CHOLMOD us | dense us | CHOLMOD / dense |\n|---|---:|---:|---:|---:|\n");
+  std::vector<std::pair<std::string, json>> models;
+  for (int m : {2, 5, 10, 15, 20, 30, 40, 60}) models.emplace_back(fmt::format("cantilever {}", m), cantilever(m));
+  for (int n : {2, 3, 4}) models.emplace_back(fmt::format("lattice {}^3", n), lattice(n));
+  models.emplace_back("three-link chain", chain());
+  for (const auto& [name, doc] : models) {
+    const Model model = read_model(doc);
+    const DofMap map(model);
+    const SparseMatrix K = stiffness(model, map);
+    const int n = static_cast<int>(K.rows());
+    const Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
+    FactorOptions dense, sparse;
+    dense.dense_max_dofs = n;
+    sparse.dense_max_dofs = 0;
+    volatile double sink = 0;
+    const auto t = paired({[&] { SparseFactor f; f.factorize(K, sparse); sink = sink + f.solve(b)[0]; },
+                           [&] { SparseFactor f; f.factorize(K, dense); sink = sink + f.solve(b)[0]; }},
+                          budget);
+    fmt::print("| {} | {} | {:.1f} | {:.1f} | {:.2f} |\n", name, n, 1e6 * t[0], 1e6 * t[1], t[0] / t[1]);
+  }
+
+  const json doc = chain();
+  const Model model = read_model(doc);
+  const int tip = model.find_node("T");
+  const DofMap map(model);
+  const SparseMatrix K = stiffness(model, map);
+  const int n = static_cast<int>(K.rows());
+  Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(6, n);
+  for (int k = 0; k < 6; ++k)
+    for (SparseRowMatrix::InnerIterator it(map.T_free(), map.raw_node(tip, k)); it; ++it) rows(k, it.col()) += it.value();
+  // The saddle point [K A^T; A 0] by UMFPACK, as condensed_stiffness did before the dense path.
+  auto saddle_lu = [&] {
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(K.nonZeros() + 12 * 6);
+    for (int j = 0; j < K.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(K, j); it; ++it) t.emplace_back(static_cast<int>(it.row()), j, it.value());
+    for (int k = 0; k < 6; ++k)
+      for (int j = 0; j < n; ++j)
+        if (rows(k, j) != 0.0) {
+          t.emplace_back(n + k, j, rows(k, j));
+          t.emplace_back(j, n + k, rows(k, j));
+        }
+    SparseMatrix S(n + 6, n + 6);
+    S.setFromTriplets(t.begin(), t.end());
+    S.makeCompressed();
+    Eigen::UmfPackLU<SparseMatrix> lu(S);
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n + 6, 6);
+    rhs.bottomRows(6).setIdentity();
+    const Eigen::MatrixXd X = lu.solve(rhs);
+    return Eigen::MatrixXd(X.bottomRows(6));
+  };
+  volatile double sink = 0;
+  const auto tc = paired({[&] { sink = sink + saddle_lu()(0, 0); },
+                          [&] { Eigen::MatrixXd Kz; condense_dense(K, rows, Kz); sink = sink + Kz(0, 0); }},
+                         budget);
+  const auto ta = paired({[&] { sink = sink + linear_node_stiffness(model, tip).K(0, 0); },
+                          [&] {
+                            const Model m = load_and_check(doc);
+                            sink = sink + static_cast<double>(run_document(m, doc, {}).failed);
+                          }},
+                         budget);
+  fmt::print("\n### Three-link chain (stiffness at the tip, {} free DOFs), one core\n\n", n);
+  fmt::print("| stage | us per call | calls per second |\n|---|---:|---:|\n");
+  fmt::print("| condensation: saddle point by UMFPACK (before) | {:.1f} | {:.0f} |\n", 1e6 * tc[0], 1 / tc[0]);
+  fmt::print("| condensation: dense Schur complement (now) | {:.1f} | {:.0f} |\n", 1e6 * tc[1], 1 / tc[1]);
+  fmt::print("| linear_node_stiffness (DOF map, assembly, condensation, rank) | {:.1f} | {:.0f} |\n", 1e6 * ta[0], 1 / ta[0]);
+  fmt::print("| load_and_check + run_document (the model from parsed JSON, results object) | {:.1f} | {:.0f} |\n",
+             1e6 * ta[1], 1 / ta[1]);
+}
