@@ -27,6 +27,8 @@
 #include "io/atomic_file.hpp"
 #include "io/json_util.hpp"
 #include "io/model_check.hpp"
+#include "io/load_reader.hpp"
+#include "solvers/member_loading.hpp"
 #include "io/model_reader.hpp"
 #include "solvers/structure.hpp"
 #include "io/vtk_writer.hpp"
@@ -56,7 +58,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
   PathOptions o;
   json_in::expect_keys(spec, p, {"id", "type", "description", "control", "stop", "max_steps", "track", "stiffness_node",
                                  "branch_switch", "stability", "desired_iterations", "max_cuts", "imperfection",
-                                 "save_every"});
+                                 "save_every", "load_case"});
   const auto& c = json_in::object(json_in::require(spec, p, "control", "path analysis"), child(p, "control"), "path control");
   const std::string pc = child(p, "control");
   json_in::expect_keys(c, pc, {"load_factor", "to", "node", "dof", "arc_length", "min", "max", "increments"});
@@ -144,7 +146,8 @@ void check_path(const Model& model, const nlohmann::json& spec, const std::strin
                                                               model.describe({DofRef::Owner::Node, o.control_node, o.control_dof}) +
                                                               " " + why + ": it cannot be the controlled DOF");
   } else {
-    const Eigen::VectorXd f = external_force(model, map);
+    // The reference load: the analysis's load case (already checked), or the default loads.
+    const Eigen::VectorXd f = external_force(model, map, spec.contains("load_case") ? model.loads_of(json_in::id(spec["load_case"], "", "load_case")) : model.default_loads());
     if (f.size() == 0 || !(f.cwiseAbs().maxCoeff() > 0.0))
       throw InputError(child(p, "control"), "path: the model has no loads to scale; add \"loads\", or use displacement "
                                             "control ({\"node\", \"dof\", \"to\"}) to impose a motion");
@@ -172,7 +175,8 @@ const char* control_name(PathControl c) {
 }
 
 AnalysisOutcome run_path(const AnalysisContext& ctx) {
-  const Model& model = ctx.model;
+  // The reference load: the analysis's load case, or the default loads.
+  const Model model = model_for_load_case(ctx.model, ctx.spec);
   PathOptions o = parse(model, ctx.spec, ctx.pointer);
   const int save_every = ctx.spec.contains("save_every") ? ctx.spec["save_every"].get<int>() : 1;
   // One line per step on stderr through the run's progress sink (silent with --quiet).

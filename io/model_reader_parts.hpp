@@ -4,7 +4,8 @@
 //   io/read_properties.cpp  nodes, materials, sections
 //   io/read_members.cpp     elements (members), meshed by core/meshing
 //   io/read_joints.cpp      joints
-//   io/read_boundary.cpp    supports, loads, prescribed values
+//   io/read_boundary.cpp    supports, loads (io/load_reader.cpp: nodal, joint and member loads,
+//                           gravity, masses, load cases, combinations), prescribed values
 // Internal to io/: not installed as an API.
 #include <map>
 #include <nlohmann/json.hpp>

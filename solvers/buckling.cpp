@@ -60,35 +60,23 @@ static SparseMatrix independent_from_free(const NonlinearStructure& ns, const Do
   return Z;
 }
 
-BucklingResult solve_buckling(const Model& model, const BucklingOptions& options) {
-  options.validate();
-  BucklingResult res;
-  const LinearStaticResult lin = solve_linear_static(model);
-  if (lin.status != SolveStatus::Converged) {
-    res.status = lin.status == SolveStatus::Mechanism ? BucklingStatus::Mechanism : BucklingStatus::Failed;
-    res.message = "buckling: the linear static solution failed: " + lin.message;
-    return res;
-  }
-  res.linear_u = lin.u;
+SparseMatrix geometric_stiffness(const Model& model, const DofMap& map, const LinearStructure& structure,
+                                 const LinearStaticResult& lin) {
   const NonlinearStructure ns(model);  // refuses closed loops
-  const DofMap map(model);
-  const LinearStructure structure(model);
-  SystemAssembler ka(map), ga(map);
-  ka.begin();
-  structure.assemble(map, ka);
-  ka.end();
+  SystemAssembler ga(map);
   ga.begin();
   for (std::size_t e = 0; e < model.elements.size(); ++e) {
     const auto& beam = structure.beam(static_cast<int>(e));
     if (!beam) continue;
     const auto& s = model.sections[model.elements[e].section];
+    // End forces include the member loads' fixed-end forces: kg takes the element's mean axial
+    // force, so a load along the member (a column's own weight) converges with the mesh.
     const Mat12 kg = beam_local_geometric_stiffness(beam->length(), s.A, s.Iy, s.Iz, lin.end_forces[e]);
     const Mat12 Kg = beam->transformation().transpose() * kg * beam->transformation();
     const auto dofs = structure.element_dofs(map, static_cast<int>(e));
     ga.add(dofs, Kg);
   }
   ga.end();
-  const SparseMatrix& K = ka.K_ff();
   SparseMatrix Kg = ga.K_ff();
 
   // Rigid links and joints: constraint curvature for the forces they transmit.
@@ -106,6 +94,27 @@ BucklingResult solve_buckling(const Model& model, const BucklingOptions& options
     const SparseMatrix Z = independent_from_free(ns, map);
     Kg += SparseMatrix(Z.transpose() * G * Z);
   }
+  return Kg;
+}
+
+BucklingResult solve_buckling(const Model& model, const BucklingOptions& options) {
+  options.validate();
+  BucklingResult res;
+  const LinearStaticResult lin = solve_linear_static(model);
+  if (lin.status != SolveStatus::Converged) {
+    res.status = lin.status == SolveStatus::Mechanism ? BucklingStatus::Mechanism : BucklingStatus::Failed;
+    res.message = "buckling: the linear static solution failed: " + lin.message;
+    return res;
+  }
+  res.linear_u = lin.u;
+  const DofMap map(model);
+  const LinearStructure structure(model);
+  SystemAssembler ka(map);
+  ka.begin();
+  structure.assemble(map, ka);
+  ka.end();
+  const SparseMatrix& K = ka.K_ff();
+  SparseMatrix Kg = geometric_stiffness(model, map, structure, lin);
   Kg = SparseMatrix(0.5 * (SparseMatrix(Kg.transpose()) + Kg));
   res.free_dofs = map.free_size();
   const int n = map.free_size();

@@ -19,10 +19,13 @@
 // are reported, ascending.
 //
 // Not supported: closed loops of rigid links/joints (ModelError), prebuckling displacements
-// (linearised theory), member loads.
+// (linearised theory). Member loads and self-weight enter through the elements' mean axial forces
+// (a column under its own weight converges to Greenhill's load with the mesh); the change of their
+// consistent moments with the chord (a load stiffness) is left out of K_g.
 #include <string>
 #include <vector>
 
+#include "core/dof_map.hpp"
 #include "core/model.hpp"
 
 namespace beamfea {
@@ -45,6 +48,14 @@ struct BucklingResult {
 };
 
 BucklingResult solve_buckling(const Model& model, const BucklingOptions& options = {});
+
+class LinearStructure;
+struct LinearStaticResult;
+// K_g (free x free, not symmetrised) of the linear solution `lin` of the model's default loads:
+// beams' initial-stress matrices from their end forces (member loads included) and the
+// constraint curvature of rigid links and joints. Throws ModelError for closed kinematic loops.
+SparseMatrix geometric_stiffness(const Model& model, const DofMap& map, const LinearStructure& structure,
+                                 const LinearStaticResult& lin);
 
 // Normalises a raw mode: largest node translation 1 (or largest rotation 1 when nothing
 // translates), with that component positive.

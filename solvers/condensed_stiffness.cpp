@@ -6,6 +6,8 @@
 
 #include "core/assembly.hpp"
 #include "core/errors.hpp"
+#include "solvers/buckling.hpp"
+#include "solvers/linear_static.hpp"
 #include "solvers/structure.hpp"
 
 namespace beamfea {
@@ -115,6 +117,26 @@ CondensedStiffness linear_node_stiffness(const Model& model, int node, const Con
   structure.assemble(map, assembler);
   assembler.end();
   return condense_to_node(model, map, assembler.K_ff(), node, options);
+}
+
+CondensedStiffness loaded_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options) {
+  const LinearStaticResult lin = solve_linear_static(model);
+  if (lin.status != SolveStatus::Converged) {
+    CondensedStiffness out;
+    out.message = "loaded stiffness: the linear static solution of the preload failed: " + lin.message;
+    out.modes = lin.modes;
+    return out;
+  }
+  const DofMap map(model);
+  const LinearStructure structure(model);
+  SystemAssembler assembler(map);
+  assembler.begin();
+  structure.assemble(map, assembler);
+  assembler.end();
+  SparseMatrix Kg = geometric_stiffness(model, map, structure, lin);
+  // Symmetric part: the skew part from applied moments is dropped, as in buckling.
+  const SparseMatrix Kt = assembler.K_ff() + SparseMatrix(0.5 * (Kg + SparseMatrix(Kg.transpose())));
+  return condense_to_node(model, map, Kt, node, options);
 }
 
 }  // namespace beamfea

@@ -52,4 +52,10 @@ void analyse_rank(const Mat6& K, double L, double tolerance, CondensedStiffness&
 // Linear (unloaded) condensed stiffness of a node of the model.
 CondensedStiffness linear_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options = {});
 
+// Loaded-mode stiffness of a node (Klimchik, Pashkevich & Chablat's "loaded mode"): condensation
+// of K + K_g, K_g the geometric stiffness (solvers/buckling.hpp) of the linear solution of the
+// model's default loads (the preload: own weight, payload), linearised about the reference
+// configuration.
+CondensedStiffness loaded_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options = {});
+
 }  // namespace beamfea

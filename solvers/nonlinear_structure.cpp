@@ -1,10 +1,12 @@
 #include "solvers/nonlinear_structure.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <map>
 #include <set>
 
 #include "core/errors.hpp"
+#include "solvers/member_loading.hpp"
 #include "solvers/structure.hpp"
 
 namespace beamfea {
@@ -125,6 +127,25 @@ NonlinearStructure::NonlinearStructure(const Model& model) : model_(&model), map
       throw ModelError("element '" + el.id + "'", err.what());
     }
   }
+  dead_ = element_dead_loads(model, model.default_loads());
+  dead_ref_.assign(model.elements.size(), Vec12::Zero());
+  for (std::size_t e = 0; e < dead_.size(); ++e)
+    if (!dead_[e].empty()) {
+      const auto& el = model.elements[e];
+      dead_ref_[e] = dead_load_vector(dead_[e], (model.nodes[el.nodes[1]].x - model.nodes[el.nodes[0]].x).normalized());
+    }
+}
+
+Eigen::VectorXd NonlinearStructure::dead_load_change(const NonlinearState& s) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(map_.raw_size());
+  for (std::size_t e = 0; e < dead_.size(); ++e) {
+    if (dead_[e].empty()) continue;
+    const int a = model_->elements[e].nodes[0], b = model_->elements[e].nodes[1];
+    const Vec12 d = dead_load_vector(dead_[e], (s.x[b] - s.x[a]).normalized()) - dead_ref_[e];
+    f.segment<6>(6 * a) += d.head<6>();
+    f.segment<6>(6 * b) += d.tail<6>();
+  }
+  return f;
 }
 
 void NonlinearStructure::add_gen(Gen g) {
@@ -298,8 +319,10 @@ SparseMatrix NonlinearStructure::constraint_curvature(const NonlinearState& s, c
   return G;
 }
 
-NonlinearStructure::Evaluation NonlinearStructure::evaluate(const NonlinearState& s, const Eigen::VectorXd& f_app,
-                                                            bool with_tangent) const {
+NonlinearStructure::Evaluation NonlinearStructure::evaluate(const NonlinearState& s, const Eigen::VectorXd& f_app_in,
+                                                            bool with_tangent, double dead_load_factor) const {
+  const bool dead = dead_load_factor != 0.0 && std::any_of(dead_.begin(), dead_.end(), [](const auto& d) { return !d.empty(); });
+  const Eigen::VectorXd f_app = dead ? Eigen::VectorXd(f_app_in + dead_load_factor * dead_load_change(s)) : f_app_in;
   Evaluation ev;
   const int nraw = map_.raw_size();
   ev.f_int_raw = Eigen::VectorXd::Zero(nraw);
@@ -346,7 +369,16 @@ NonlinearStructure::Evaluation NonlinearStructure::evaluate(const NonlinearState
     const auto Ta = node_T(a), Tb = node_T(b);
     for (std::size_t k = 0; k < chain_[a].size(); ++k) Te.block<6, 1>(0, pos[chain_[a][k]]) += Ta.col(k);
     for (std::size_t k = 0; k < chain_[b].size(); ++k) Te.block<6, 1>(6, pos[chain_[b][k]]) += Tb.col(k);
-    const Eigen::MatrixXd Ke = Te.transpose() * r.tangent * Te;
+    Eigen::MatrixXd Ke = Te.transpose() * r.tangent * Te;
+    if (dead && !dead_[e].empty()) {
+      // Load stiffness of the dead loads: -d(f_app)/dx, f depending on the chord x_b - x_a.
+      const Vec3 d = s.x[b] - s.x[a];
+      const auto D = dead_load_derivative(dead_[e], d.normalized(), d.norm());
+      Mat12 KL = Mat12::Zero();
+      KL.block<12, 3>(0, 0) = dead_load_factor * D;
+      KL.block<12, 3>(0, 6) = -dead_load_factor * D;
+      Ke += Te.transpose() * KL * Te;
+    }
     for (std::size_t i = 0; i < cols.size(); ++i)
       for (std::size_t k = 0; k < cols.size(); ++k) trip.emplace_back(cols[i], cols[k], Ke(i, k));
   }

@@ -44,6 +44,7 @@
 #include "core/dof_map.hpp"
 #include "core/model.hpp"
 #include "elements/corotational_beam.hpp"
+#include "elements/member_loads.hpp"
 
 namespace beamfea {
 
@@ -114,7 +115,15 @@ class NonlinearStructure {
     double energy = 0.0;
   };
   // f_app: applied raw forces (external loads times the load factor, reactions on slaves).
-  Evaluation evaluate(const NonlinearState& s, const Eigen::VectorXd& f_app, bool with_tangent) const;
+  // dead_load_factor: the load factor of the default case's loads between the nodes of beams
+  // (member loads, self-weight): f_app holds them at the reference configuration (external_force);
+  // their consistent vector follows the chords (elements/member_loads.hpp, DeadLoadTerm), so
+  // evaluate adds dead_load_factor x (vector at s - vector at the reference) and its derivative
+  // (an unsymmetric load stiffness) to the tangent.
+  Evaluation evaluate(const NonlinearState& s, const Eigen::VectorXd& f_app, bool with_tangent,
+                      double dead_load_factor = 0.0) const;
+  // The change of the dead loads' raw vector from the reference to s, per unit load factor.
+  Eigen::VectorXd dead_load_change(const NonlinearState& s) const;
   // T^T f_raw over gens (virtual work of raw forces).
   Eigen::VectorXd reduce(const NonlinearState& s, const std::vector<Twist>& tw, const Eigen::VectorXd& f_raw) const;
   // The constraint-curvature matrix G alone, for raw forces f (over gens).
@@ -135,6 +144,8 @@ class NonlinearStructure {
   std::vector<int> raw_to_gen_;
   std::vector<std::vector<int>> chain_;
   std::vector<std::optional<CorotationalBeam>> beams_;
+  std::vector<std::vector<DeadLoadTerm>> dead_;  // per element: dead loads between its nodes
+  std::vector<Vec12> dead_ref_;                   // their vector at the reference configuration
 };
 
 }  // namespace beamfea

@@ -1,6 +1,7 @@
 #include "solvers/structure.hpp"
 
 #include "core/errors.hpp"
+#include "solvers/member_loading.hpp"
 
 namespace beamfea {
 
@@ -75,14 +76,6 @@ Vec12 LinearStructure::end_forces(const DofMap& map, int element, const Eigen::V
   return beams_[element]->local_end_forces(ue);
 }
 
-Eigen::VectorXd external_force(const Model& m, const DofMap& map) {
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(map.raw_size());
-  for (const auto& l : m.loads) {
-    f.segment<3>(map.raw_node(l.node, 0)) += l.force;
-    f.segment<3>(map.raw_node(l.node, 3)) += l.moment;
-  }
-  for (const auto& l : m.joint_loads) f[map.raw_joint(l.joint, l.coordinate)] += l.value;
-  return f;
-}
+Eigen::VectorXd external_force(const Model& m, const DofMap& map) { return external_force(m, map, m.default_loads()); }
 
 }  // namespace beamfea

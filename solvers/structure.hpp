@@ -34,7 +34,8 @@ class LinearStructure {
   std::vector<std::optional<LinearBeam>> beams_;
 };
 
-// External nodal and joint loads over raw DOFs.
+// External loads of the default load case over raw DOFs: nodal and joint loads, member loads
+// and self-weight as equivalent nodal loads, point masses' weight (solvers/member_loading.hpp).
 Eigen::VectorXd external_force(const Model& m, const DofMap& map);
 
 }  // namespace beamfea

@@ -101,7 +101,7 @@ PathEquilibrium::Eval PathEquilibrium::state_of(const Converged& start, const St
 
 void PathEquilibrium::residual(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, Eigen::VectorXd& F) const {
   const Eval e = state_of(start, s, u);
-  const auto ev = ns.evaluate(e.st, e.f_app, false);
+  const auto ev = ns.evaluate(e.st, e.f_app, false, e.lambda);
   F.resize(unknowns(s));
   for (int k = 0; k < nf; ++k) F[k] = ev.residual[free[k]];
   for (int c = 0; c < nc; ++c) F[nf + c] = cvalue(e.st, cons[c]) - cons[c].target;
@@ -131,7 +131,7 @@ std::vector<std::pair<int, double>> PathEquilibrium::crow(const NonlinearState& 
 
 void PathEquilibrium::jacobian(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, SparseMatrix& J) const {
   const Eval e = state_of(start, s, u);
-  const auto ev = ns.evaluate(e.st, e.f_app, true);
+  const auto ev = ns.evaluate(e.st, e.f_app, true, e.lambda);
   const Eigen::VectorXd dg = delta_gens(u);
   const SparseMatrix D = ns.retraction_jacobian(dg);
   const SparseMatrix KD = ev.tangent * D;
@@ -150,7 +150,7 @@ void PathEquilibrium::jacobian(const Converged& start, const StepSpec& s, const 
   const int x = nf + nc;
   if (s.kind != StepKind::Load) {
     if (extra_is_lambda(s)) {
-      const Eigen::VectorXd p = ns.reduce(e.st, tw, f_ext);
+      const Eigen::VectorXd p = ns.reduce(e.st, tw, load_at(e.st));
       for (int k = 0; k < nf; ++k)
         if (p[free[k]] != 0.0) t.emplace_back(k, x, -p[free[k]]);
     } else {
@@ -201,8 +201,10 @@ bool PathEquilibrium::solve(KinsolSolver& kin, const Converged& start, const Ste
   return true;
 }
 
+Eigen::VectorXd PathEquilibrium::load_at(const NonlinearState& st) const { return f_ext + ns.dead_load_change(st); }
+
 Eigen::VectorXd PathEquilibrium::load_pattern(const NonlinearState& st) const {
-  const Eigen::VectorXd p = ns.reduce(st, ns.twists(st), f_ext);
+  const Eigen::VectorXd p = ns.reduce(st, ns.twists(st), load_at(st));
   Eigen::VectorXd pf(nf);
   for (int k = 0; k < nf; ++k) pf[k] = p[free[k]];
   return pf;

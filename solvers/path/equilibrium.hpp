@@ -108,6 +108,9 @@ class PathEquilibrium {
   // Sparse row of a constraint over free gens at a state (D applied when given).
   std::vector<std::pair<int, double>> crow(const NonlinearState& st, const std::vector<Twist>& tw,
                                            const ConstraintDef& c, const SparseMatrix* D) const;
+  // The reference load at a state over raw DOFs: f_ext with the dead member loads' consistent
+  // vector following the chords (NonlinearStructure::dead_load_change).
+  Eigen::VectorXd load_at(const NonlinearState& st) const;
   // Constraint rows (nc [+ control]) over the free gens at a state, dense.
   Eigen::MatrixXd constraint_matrix(const NonlinearState& st, bool with_control) const;
   // The state at the start of the path: the reference with the prescribed independent values

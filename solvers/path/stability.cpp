@@ -77,7 +77,7 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_contr
   const PathEquilibrium::Eval e = P.state_of(c, s, P.start_unknowns(c, s));
   Eigen::VectorXd f_app = e.f_app;
   if (P.ctrl.node >= 0 && !P.has_loads) f_app[P.ns.reference_map().raw_node(P.ctrl.node, P.ctrl.comp)] += c.extra_mu;
-  const auto ev = P.ns.evaluate(c.state, f_app, true);
+  const auto ev = P.ns.evaluate(c.state, f_app, true, c.lambda);
   std::vector<Eigen::Triplet<double>> t;
   for (int j = 0; j < ev.tangent.outerSize(); ++j) {
     if (P.gen_to_free[j] < 0) continue;
