@@ -21,8 +21,10 @@ MOMENT_SCALE = 2.0e-3  # metres per N m for the diagram
 def view_setup(title):
     v = CreateView("RenderView")
     v.ViewSize = [1400, 700]
+    v.UseColorPaletteForBackground = 0
     v.Background = [1, 1, 1]
     v.OrientationAxesVisibility = 1
+    v.OrientationAxesLabelColor = [0, 0, 0]
     t = Text(Text=title)
     td = Show(t, v)
     td.FontSize = 14
@@ -32,18 +34,19 @@ def view_setup(title):
 
 
 def tube(src, radius):
-    t = Tube(Input=src)
+    t = Tube(Input=ExtractSurface(Input=src))
     t.Radius = radius
     t.NumberofSides = 16
     return t
 
 
-def finish(v, path):
-    v.CameraPosition = [0.62, -3.5, 0.45]
-    v.CameraFocalPoint = [0.62, 0.0, 0.45]
+def finish(v, path, focal, scale):
+    Render(v)
+    v.CameraPosition = [focal[0], -3.5, focal[1]]
+    v.CameraFocalPoint = [focal[0], 0.0, focal[1]]
     v.CameraViewUp = [0, 0, 1]
     v.CameraParallelProjection = 1
-    v.CameraParallelScale = 0.55
+    v.CameraParallelScale = scale
     Render(v)
     SaveScreenshot(path, v, ImageResolution=[1400, 700])
 
@@ -53,7 +56,7 @@ v = view_setup("Robot arm, service load (own weight + cable + payload): sag x %g
 d0 = Show(tube(arm, 0.012), v)
 d0.DiffuseColor = [0.75, 0.75, 0.75]
 d0.Opacity = 0.5
-ColorBy(d0, None)
+d0.ColorArrayName = ['POINTS', '']
 warp = WarpByVector(Input=arm)
 warp.Vectors = ["POINTS", "displacement"]
 warp.ScaleFactor = SCALE
@@ -67,13 +70,13 @@ bar.ComponentTitle = ""
 bar.TitleColor = [0, 0, 0]
 bar.LabelColor = [0, 0, 0]
 d1.SetScalarBarVisibility(v, True)
-finish(v, os.path.join(here, "sag.png"))
+finish(v, os.path.join(here, "sag.png"), (0.62, 0.3), 0.4)
 
 # 2. Bending moment My drawn across each member (diagram_My: My times the local z axis).
 v2 = view_setup("Bending moment My along the members, service load (%g m per N m)" % MOMENT_SCALE)
 b0 = Show(tube(arm, 0.008), v2)
 b0.DiffuseColor = [0.3, 0.3, 0.3]
-ColorBy(b0, None)
+b0.ColorArrayName = ['POINTS', '']
 dia = WarpByVector(Input=arm)
 dia.Vectors = ["POINTS", "diagram_My"]
 dia.ScaleFactor = MOMENT_SCALE
@@ -90,5 +93,5 @@ bar2.ComponentTitle = ""
 bar2.TitleColor = [0, 0, 0]
 bar2.LabelColor = [0, 0, 0]
 b1.SetScalarBarVisibility(v2, True)
-finish(v2, os.path.join(here, "moment.png"))
+finish(v2, os.path.join(here, "moment.png"), (0.45, 0.55), 0.6)
 print("wrote", os.path.join(here, "sag.png"), "and", os.path.join(here, "moment.png"))
