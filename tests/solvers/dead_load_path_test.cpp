@@ -68,7 +68,7 @@ TEST(DeadLoadPath, CantileverUnderLargeUniformDeadLoadFollowsTheElastica) {
     o.stability = false;
     o.track = {m.find_node("B")};
     const PathResult r = follow_path(m, o);
-    ASSERT_TRUE(r.completed) << r.termination;
+    ASSERT_TRUE(r.completed) << r.brief_report();
     const Vec6 d = r.steps.back().track[0];
     const double ex = std::abs(L + d[0] - want.x), ez = std::abs(d[2] - want.z);
     const double err = std::max(ex, ez) / L;
