@@ -1,13 +1,13 @@
 # Renders the arm's sag under the service load case and its bending-moment diagram with ParaView.
-#   beamfea run model.json --out ../../out/08_robot_arm_self_weight
-#   xvfb-run -a pvbatch render.py ../../out/08_robot_arm_self_weight
+#   beamfea run model.json --out ../../out/09_robot_arm_self_weight
+#   xvfb-run -a pvbatch render.py ../../out/09_robot_arm_self_weight
 # writes sag.png and moment.png next to this script.
 import os
 import sys
 
 from paraview.simple import *  # noqa: F401,F403
 
-out = sys.argv[1] if len(sys.argv) > 1 else "../../out/08_robot_arm_self_weight"
+out = sys.argv[1] if len(sys.argv) > 1 else "../../out/09_robot_arm_self_weight"
 here = os.path.dirname(os.path.abspath(__file__))
 vtu = os.path.join(out, "sag_service.vtu")
 arm = XMLUnstructuredGridReader(FileName=[vtu])
