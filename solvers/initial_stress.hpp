@@ -15,7 +15,8 @@
 // deformation correction; with mesh refinement a Timoshenko column buckles at Engesser's load
 // P_E/(1 + P_E/(G As)), which this matrix converges to (its rotation terms vanish with h).
 //
-// Not supported: closed loops of rigid links/joints carrying force (ModelError from
+// solve_buckling assembles the same matrix in its own body (to be shared once the load-case work
+// lands). Not supported: closed loops of rigid links/joints carrying force (ModelError from
 // NonlinearStructure).
 #include "core/dof_map.hpp"
 #include "core/model.hpp"
