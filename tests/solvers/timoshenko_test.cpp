@@ -44,7 +44,7 @@ TEST(Timoshenko, CantileverTipStiffnessIsTheInverseOfTheExactCompliance) {
   EXPECT_NEAR(C(1, 1), cyy, 1e-9 * cyy);
   EXPECT_NEAR(C(2, 4), -L * L / (2 * E * Iy), 1e-9 * L * L / (2 * E * Iy));
   EXPECT_NEAR(C(4, 4), L / (E * Iy), 1e-9 * L / (E * Iy));
-  EXPECT_GT(k * L / (G * A) / czz, 0.05);  // the shear part is not negligible
+  EXPECT_GT(k * L / (G * A) / czz, 0.02);  // the shear part is not negligible (3 %)
 }
 
 // The co-rotational path uses the Timoshenko local element: under a small tip load (deflection
@@ -68,15 +68,15 @@ TEST(Timoshenko, PathFollowingAtSmallLoadGivesTheTimoshenkoDeflection) {
   EXPECT_NEAR(w, P * czz, 1e-5 * P * czz);
 }
 
-// A stubby pinned column buckles at Engesser's load P_E / (1 + P_E k/(G A)) (Timoshenko & Gere,
-// Theory of Elastic Stability, 1961, eq. 2.44). The geometric stiffness is the Euler-Bernoulli one
-// (elements/geometric_stiffness.hpp) on the Timoshenko elastic stiffness; its rotation terms vanish
-// with the mesh, so the load converges to Engesser's: < 1e-3 at 32 elements, while the
-// Euler-Bernoulli column is > 8 % higher.
+// A stubby pinned column buckles (about its weak axis, Iz) at Engesser's load P_E/(1 + P_E k/(G A))
+// (Timoshenko & Gere, Theory of Elastic Stability, 1961, eq. 2.44). The geometric stiffness is the
+// Euler-Bernoulli one (elements/geometric_stiffness.hpp) on the Timoshenko elastic stiffness: its
+// nodal rotations are section rotations, not w', which leaves a difference of second order in the
+// shear parameter (here P_E k/(G A) = 0.026): the load converges to 1.1e-4 below Engesser's. Must be
+// within 3e-4 of it at 16 and 32 elements, while the Euler-Bernoulli load is 2.6 % higher.
 TEST(Timoshenko, StubbyPinnedColumnBucklesAtEngessersLoad) {
-  const double PE = pi * pi * E * Iy / (L * L);
+  const double PE = pi * pi * E * Iz / (L * L);
   const double engesser = PE / (1 + PE * k / (G * A));
-  double previous = 1.0;
   for (int n : {8, 16, 32}) {
     json d = straight_member(L, n, E, G, A, Iy, Iz, J);
     d["supports"].push_back(fix("A", {"ux", "uy", "uz", "rx"}));
@@ -85,12 +85,10 @@ TEST(Timoshenko, StubbyPinnedColumnBucklesAtEngessersLoad) {
     const Model m = timoshenko(d);
     const BucklingResult r = solve_buckling(m);
     ASSERT_EQ(r.status, BucklingStatus::Ok) << r.message;
-    const double err = std::abs(r.load_factors[0] / engesser - 1.0);
+    const double err = r.load_factors[0] / engesser - 1.0;
     std::cout << n << " elements: P_cr = " << r.load_factors[0] << ", Engesser " << engesser << ", Euler " << PE
-              << ", error " << err << "\n";
-    EXPECT_LT(err, previous);
-    previous = err;
+              << ", relative " << err << "\n";
+    if (n >= 16) EXPECT_LT(std::abs(err), 3e-4) << n << " elements";
   }
-  EXPECT_LT(previous, 1e-3);
-  EXPECT_GT(PE / engesser - 1.0, 0.08);
+  EXPECT_GT(PE / engesser - 1.0, 0.02);
 }
