@@ -5,8 +5,6 @@
 // mode}, effective_mass_sum {ux..rz}, modes[] {mode, frequency, kind, participation[6],
 // effective_mass[6], nodes.<id>.displacement (6, mass-normalised)}, vtk, vtk_scale; files
 // DIR/<id>_mode<k>.vtu and DIR/<id>.pvd (time = mode number).
-#include <algorithm>
-
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
 #include "io/json_util.hpp"
@@ -29,16 +27,10 @@ ModalOptions read_options(const nlohmann::json& spec) {
 }
 
 void check_modal(const Model& model, const nlohmann::json& spec, const std::string& p) {
-  static const std::vector<std::string> known = {"id", "type", "modes", "mass", "load_case"};
-  for (const auto& [k, v] : spec.items()) {
-    if (k.empty() || k[0] == '_' || k == "comment" || k == "description") continue;
-    if (std::find(known.begin(), known.end(), k) == known.end())
-      throw InputError(json_in::child(p, k), "modal: unknown key '" + k + "' (known: id, type, modes, mass, load_case)");
-  }
+  json_in::expect_keys(spec, p, {"id", "type", "description", "modes", "mass", "load_case"});
   if (spec.contains("modes")) {
     const std::string mp = json_in::child(p, "modes");
-    const int m = json_in::integer_at_least(spec["modes"], mp, "modal modes", 1);
-    if (m > kMaxModes) throw InputError(mp, "modal: modes must be at most " + std::to_string(kMaxModes));
+    const int m = json_in::integer_in(spec["modes"], mp, "modal modes", 1, kMaxModes);
     const int n = modal_dof_count(model);
     if (m > n)
       throw InputError(mp, "modal: " + std::to_string(m) + " modes asked for, but the model has only " +
