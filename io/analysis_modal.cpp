@@ -47,6 +47,7 @@ void check_modal(const Model& model, const nlohmann::json& spec, const std::stri
     const std::string lp = json_in::child(p, "load_case");
     const std::string c = json_in::id(spec["load_case"], lp, "modal load_case");
     if (c != "default") throw InputError(lp, "modal: unknown load case '" + c + "' (known: default)");
+    check_nonlinear_model(model, p);  // the preload's geometric stiffness refuses closed loops
   }
 }
 
@@ -69,7 +70,9 @@ AnalysisOutcome run_modal(const AnalysisContext& ctx) {
   if (ctx.spec.contains("load_case")) out.result["load_case"] = ctx.spec["load_case"];
   out.message = r.message;
   if (r.status != ModalStatus::Ok) {
-    out.failed = true;
+    out.termination = r.status == ModalStatus::MasslessMechanism ? AnalysisTermination::Mechanism
+                      : r.status == ModalStatus::Failed          ? AnalysisTermination::NotConverged
+                                                                 : AnalysisTermination::Failed;
     out.result["frequencies"] = ojson::array();
     return out;
   }
