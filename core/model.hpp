@@ -43,11 +43,13 @@ struct Section {
   double Iy = 0.0;   // second moment about local y: bending in the local x-z plane
   double Iz = 0.0;   // second moment about local z: bending in the local x-y plane
   double J = 0.0;    // torsion constant
-  double ky = 0.0;   // shear correction factors (virtual-force shear term only; beams are Euler-Bernoulli)
-  double kz = 0.0;
+  double ky = 0.0;   // shear correction factors: shear areas A/ky (along local y), A/kz (along z)
+  double kz = 0.0;   // of Timoshenko beams; 0 = not given (a Timoshenko beam then needs them)
 };
 
 enum class MemberType { Beam, Rigid };
+// Beam theory of a beam member: Euler-Bernoulli (the default) or shear-deformable Timoshenko.
+enum class BeamTheory { EulerBernoulli, Timoshenko };
 
 // A member as the user wrote it.
 struct Member {
@@ -57,6 +59,7 @@ struct Member {
   int material = -1;              // beams only
   int section = -1;               // beams only
   Vec3 orientation = Vec3::Zero();  // a vector in the local x-z plane (OpenSees' vecxz)
+  BeamTheory theory = BeamTheory::EulerBernoulli;
   int divisions = 1;
   std::vector<int> elements;      // the elements meshed from it, in order from nodes[0] to nodes[1]
 };
@@ -69,6 +72,7 @@ struct Element {
   int material = -1;
   int section = -1;
   Vec3 orientation = Vec3::Zero();
+  BeamTheory theory = BeamTheory::EulerBernoulli;
   int member = -1;
 };
 

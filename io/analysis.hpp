@@ -104,5 +104,6 @@ AnalysisType stiffness_analysis();
 AnalysisType actuator_allocation_analysis();
 AnalysisType buckling_analysis();
 AnalysisType path_analysis();
+AnalysisType modal_analysis();
 
 }  // namespace beamfea

@@ -16,6 +16,7 @@ const std::vector<AnalysisType>& analysis_types() {
       actuator_allocation_analysis(),
       buckling_analysis(),
       path_analysis(),
+      modal_analysis(),
   };
   return types;
 }

@@ -27,6 +27,9 @@ struct ReadState {
   double length_scale = 1.0;                       // of the user's nodes, computed once
 };
 
+// A beam theory by name ("euler_bernoulli", "timoshenko"); InputError at `pointer` otherwise.
+BeamTheory beam_theory(const std::string& name, const std::string& pointer, const std::string& what);
+
 // The array at doc[key] (pointer "/key"); an empty array when absent and not required.
 const json& collection(const json& doc, const char* key, bool required);
 

@@ -8,7 +8,14 @@ namespace beamfea {
 BeamSection beam_section(const Model& m, const Element& e) {
   const auto& mat = m.materials.at(e.material);
   const auto& sec = m.sections.at(e.section);
-  return {mat.E, mat.G, sec.A, sec.Iy, sec.Iz, sec.J};
+  BeamSection s{mat.E, mat.G, sec.A, sec.Iy, sec.Iz, sec.J};
+  if (e.theory == BeamTheory::Timoshenko) {
+    if (!(sec.ky > 0.0 && sec.kz > 0.0))
+      throw ModelError("element '" + e.id + "'", "a Timoshenko beam needs the shear factors ky, kz of section '" + sec.id + "'");
+    s.Asy = sec.A / sec.ky;
+    s.Asz = sec.A / sec.kz;
+  }
+  return s;
 }
 
 LinearStructure::LinearStructure(const Model& model) : model_(&model), beams_(model.elements.size()) {

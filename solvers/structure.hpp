@@ -11,6 +11,7 @@
 
 namespace beamfea {
 
+// The section of a beam element, with the shear areas A/ky, A/kz when it is a Timoshenko beam.
 BeamSection beam_section(const Model& m, const Element& e);
 
 class LinearStructure {

@@ -1,0 +1,32 @@
+#pragma once
+// The geometric (initial-stress) stiffness of a linear static state on the free DOFs: what the
+// buckling analysis multiplies by lambda and what the modal analysis about a loaded equilibrium
+// adds to K.
+//
+//   K_g = sum_beams T^T kg(end forces) T                    (elements/geometric_stiffness.hpp)
+//       + Z^T G Z                                            (rigid links and joints)
+// G is the constraint-curvature matrix of solvers/nonlinear_structure.hpp for the raw forces
+// f_int - f_ext - reactions at slave nodes that rigid links and joints transmit, Z the DofMap's
+// T_f rows at the independent DOFs. K_g is symmetrised (it is symmetric at equilibrium under
+// forces; applied fixed-axis moments add a small skew part that is dropped).
+//
+// Timoshenko beams: kg is the Euler-Bernoulli matrix (cubic Hermite shapes, end rotations read
+// as w'): it keeps the axial-force (P-Delta) and moment/torque coupling terms but no shear-
+// deformation correction; with mesh refinement a Timoshenko column buckles at Engesser's load
+// P_E/(1 + P_E/(G As)), which this matrix converges to (its rotation terms vanish with h).
+//
+// solve_buckling assembles the same matrix in its own body (to be shared once the load-case work
+// lands). Not supported: closed loops of rigid links/joints carrying force (ModelError from
+// NonlinearStructure).
+#include "core/dof_map.hpp"
+#include "core/model.hpp"
+#include "solvers/linear_static.hpp"
+#include "solvers/structure.hpp"
+
+namespace beamfea {
+
+// K_g (free x free) of the linear state `lin` under the raw external forces `f_ext_raw`.
+SparseMatrix initial_stress_stiffness(const Model& model, const DofMap& map, const LinearStructure& structure,
+                                      const LinearStaticResult& lin, const Eigen::VectorXd& f_ext_raw);
+
+}  // namespace beamfea
