@@ -96,6 +96,7 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
     offset += nc;
   }
   out.result["joints"] = joints;
+  out.result["statically_indeterminate"] = r.statically_indeterminate;
   if (!ctx.out_dir.empty() && ctx.write_vtk) {
     VtkFrame f;
     for (std::size_t n = 0; n < model.nodes.size(); ++n) {
@@ -141,6 +142,11 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
   ojson ns = ojson::array();
   for (const auto& v : k.null_space) ns.push_back(to_json(v));
   out.result["null_space"] = ns;
+  out.result["compliance"] = to_json(k.compliance);
+  ojson rd = ojson::array();
+  for (const auto& v : k.rigid_directions) rd.push_back(to_json(v));
+  out.result["rigid_directions"] = rd;
+  out.result["statically_indeterminate"] = k.statically_indeterminate;
   out.result["length_scale"] = model.length_scale();
   out.result["scaled_eigenvalues"] = to_json(k.eigenvalues);
   return out;

@@ -70,7 +70,7 @@ BucklingResult solve_buckling(const Model& model, const BucklingOptions& options
     return res;
   }
   res.linear_u = lin.u;
-  const NonlinearStructure ns(model);  // refuses closed loops
+  const NonlinearStructure ns(model);
   const DofMap map(model);
   const LinearStructure structure(model);
   SystemAssembler ka(map), ga(map);
@@ -101,7 +101,15 @@ BucklingResult solve_buckling(const Model& model, const BucklingOptions& options
     if (d.owner == DofRef::Owner::Node && map.is_slave(d.index)) f[raw] -= cf.prescribed[p];
   }
   const NonlinearState s0 = ns.reference_state();
-  const SparseMatrix G = ns.constraint_curvature(s0, ns.twists(s0), f);
+  const auto tw0 = ns.twists(s0);
+  SparseMatrix G = ns.constraint_curvature(s0, tw0, f);
+  // Closed loops: the curvature of each closure contracted with its multipliers, the forces it
+  // transmits (mu = -lambda: DofMap's lambda balance f_int - f_ext, ours join the residual).
+  if (!ns.closures().empty()) {
+    Eigen::VectorXd mu(ns.closure_rows());
+    for (int k = 0; k < static_cast<int>(ns.closures().size()); ++k) mu.segment<6>(6 * k) = -cf.loop[k];
+    G += ns.closure_curvature(s0, tw0, mu);
+  }
   if (G.nonZeros() > 0) {
     const SparseMatrix Z = independent_from_free(ns, map);
     Kg += SparseMatrix(Z.transpose() * G * Z);

@@ -10,6 +10,10 @@
 //       for the raw forces f_int - f_ext - reactions transmitted at the slave nodes, mapped to the
 //       free DOFs by Z (the DofMap's T_f rows at the independent DOFs). A chain of rigid links with
 //       rotational springs under an end load P has G = -P/L per hinge: lambda_cr = K_theta/(P L).
+//     - closed loops (an edge of rigid links/joints outside the forest): the closure curvature of
+//       solvers/nonlinear_structure.hpp contracted with the loop's multipliers from the linear
+//       solution (DofMap::constraint_forces; the minimum-norm split where closure rows are redundant,
+//       whose indeterminate part carries no load in a planar loop under in-plane loads).
 // K_g is symmetrised (it is symmetric at equilibrium under forces; applied moments add a small
 // skew part that is dropped for the eigen-problem).
 //
@@ -18,7 +22,7 @@
 // quotient of the linear solution; small systems are solved densely. Only positive load factors
 // are reported, ascending.
 //
-// Not supported: closed loops of rigid links/joints (ModelError), prebuckling displacements
+// Not supported: prebuckling displacements
 // (linearised theory), member loads.
 #include <string>
 #include <vector>

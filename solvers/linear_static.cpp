@@ -79,6 +79,7 @@ LinearStaticResult solve_linear_static(const Model& model, const LinearStaticOpt
     res.supported[d.index] = 1;
   }
   res.joint_forces = cf.joint;
+  res.statically_indeterminate = map.redundant_constraints();
   res.end_forces.resize(model.elements.size());
   for (std::size_t e = 0; e < model.elements.size(); ++e)
     res.end_forces[e] = structure.end_forces(map, static_cast<int>(e), res.u);

@@ -34,6 +34,9 @@ struct LinearStaticResult {
   std::vector<Vec12> end_forces;       // per element, local, forces on the element at its ends
   std::vector<Vec6> joint_forces;      // per joint: force and moment from body 1 on body 2, global
   std::vector<ZeroEnergyMode> modes;   // when status == Mechanism
+  // Redundant constraint rows (over-constrained loops, supports on one rigid body), e.g. "joint 'jC'
+  // uz": their reactions are statically indeterminate; the reported ones are the minimum-norm split.
+  std::vector<std::string> statically_indeterminate;
 };
 
 LinearStaticResult solve_linear_static(const Model& model, const LinearStaticOptions& options = {});
