@@ -3,7 +3,7 @@
 actuator springs) and the beam model (the same links as steel beams), and the comparison report
 through scripts/compare_models.py.
 
-    /usr/bin/python3 examples/07_five_bar/make_models.py [--beamfea PATH] [--out DIR]
+    /usr/bin/python3 examples/08_five_bar_lumped_vs_beam/make_models.py [--beamfea PATH] [--out DIR]
 
 Geometry (m): actuated pivots A1 = (0, 0) and A2 = (G, 0), proximal links L1 at q1, q2 (actuator
 springs K_ACT N m/rad), distal links L2 joined at the end point E (passive revolute joints at B1, B2, E),
