@@ -77,6 +77,8 @@ struct Run {
   bool ok = false;
 };
 
+bool verbose = false;
+
 Run run(const Model& m, int steps, int reps) {
   Run best;
   best.ms_per_step = 1e300;
@@ -84,6 +86,7 @@ Run run(const Model& m, int steps, int reps) {
     PathOptions o;
     o.target = 1.0;
     o.increments = steps;
+    if (verbose) o.progress = [](const std::string& s) { fmt::print(stderr, "  {}\n", s); };
     const auto t0 = std::chrono::steady_clock::now();
     const PathResult res = follow_path(m, o);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -114,6 +117,8 @@ int main(int argc, char** argv) {
       while (std::getline(ss, t, ',')) sizes.push_back(std::stoi(t));
     } else if (!std::strcmp(argv[i], "--steps")) {
       steps = std::stoi(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--verbose")) {
+      verbose = std::stoi(argv[++i]) != 0;
     } else if (!std::strcmp(argv[i], "--reps")) {
       reps = std::stoi(argv[++i]);
     }

@@ -2,6 +2,7 @@
 
 #include <Eigen/QR>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <map>
@@ -96,7 +97,16 @@ void DofMap::build_forest(const Model& m) {
   for (const auto& p : m.prescribed)
     if (p.dof.owner == DofRef::Owner::Node) support_count[p.dof.index] += 1;
 
-  // Visit candidate roots from the most supported down.
+  // Grounds: nodes whose six DOFs are all supported or prescribed. Every ground is a root, and one
+  // breadth-first search from all grounds at once carries each node from its nearest ground: chains
+  // stay short, and a loop between two grounds closes at an edge in its middle (a closure) rather
+  // than through the supports of a slave (which would make one long chain through the loop). Then the
+  // remaining components, each from its most supported node.
+  std::vector<std::array<char, 6>> held(n_nodes_, std::array<char, 6>{});
+  for (const auto& s : m.supports)
+    for (int k = 0; k < 6; ++k) held[s.node][k] = held[s.node][k] || s.fixed[k];
+  for (const auto& p : m.prescribed)
+    if (p.dof.owner == DofRef::Owner::Node) held[p.dof.index][p.dof.comp] = 1;
   std::vector<int> order(n_nodes_);
   for (int i = 0; i < n_nodes_; ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(),
@@ -105,10 +115,7 @@ void DofMap::build_forest(const Model& m) {
   parent_edge_.assign(n_nodes_, -1);
   std::vector<char> visited(n_nodes_, 0);
   std::vector<char> used_rigid(m.elements.size(), 0), used_joint(m.joints.size(), 0);
-  for (int root : order) {
-    if (visited[root] || adj[root].empty()) continue;
-    visited[root] = 1;
-    std::deque<int> queue{root};
+  auto search = [&](std::deque<int> queue) {
     while (!queue.empty()) {
       const int n = queue.front();
       queue.pop_front();
@@ -139,6 +146,18 @@ void DofMap::build_forest(const Model& m) {
         }
       }
     }
+  };
+  std::deque<int> grounds;
+  for (int n : order)
+    if (!adj[n].empty() && std::all_of(held[n].begin(), held[n].end(), [](char h) { return h != 0; })) {
+      visited[n] = 1;
+      grounds.push_back(n);
+    }
+  search(grounds);
+  for (int root : order) {
+    if (visited[root] || adj[root].empty()) continue;
+    visited[root] = 1;
+    search({root});
   }
 }
 

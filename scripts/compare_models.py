@@ -49,7 +49,8 @@ Quantities (tangents k = dP/d(deflection) of the displacement-controlled curve, 
   unloaded_compliance  compliance (entry dof, dof) of beamfea's "stiffness" at zero load: finite for a
                   node whose motion closed loops restrict (the end point of a parallel manipulator)
   loaded_compliance    the path's loaded compliance (entry dof, dof) at the step nearest to the load
-                  factor "loaded_at" (default 1.0) on the path
+                  factor "loaded_at" (default 1.0) before the first critical point (interpolated
+                  linearly between the two steps around it)
 
 Files are relative to the spec. Run:
   /usr/bin/python3 scripts/compare_models.py SPEC --out OUT [--only ID ...]
@@ -323,10 +324,16 @@ def quantities(c, k0, spec):
     elif c.d and not c.completed:
         q["P_at_L"] = q["large"] = "path failed"
     at = spec.get("loaded_at", 1.0)
-    with_c = [i for i in range(len(c.lf)) if c.comp[i] is not None]
+    # On the primary branch: before the first critical point (the load factor may pass `at` again after it).
+    first = c.critical_step[0] if c.critical_step and c.critical_step[0] is not None else len(c.lf)
+    with_c = [i for i in range(min(first, len(c.lf))) if c.comp[i] is not None]
     if with_c:
-        i = min(with_c, key=lambda j: abs(c.lf[j] - at))
-        q["loaded_compliance"] = c.comp[i]
+        q["loaded_compliance"] = c.comp[min(with_c, key=lambda j: abs(c.lf[j] - at))]
+        for i, j in zip(with_c, with_c[1:]):  # linear interpolation between the steps around `at`
+            if j == i + 1 and (c.lf[i] - at) * (c.lf[j] - at) <= 0 and c.lf[i] != c.lf[j]:
+                t = (at - c.lf[i]) / (c.lf[j] - c.lf[i])
+                q["loaded_compliance"] = c.comp[i] + t * (c.comp[j] - c.comp[i])
+                break
     return q
 
 

@@ -26,6 +26,7 @@ G, L1, L2, Q1, Q2 = 0.2, 0.25, 0.25, math.radians(115.0), math.radians(65.0)
 K_ACT = 2000.0                     # N m / rad at both actuators
 E_STEEL, NU, D_ROD = 2.1e11, 0.3, 0.012   # beam links: solid steel rods of 12 mm
 F_REF = 1000.0                     # N, the tool force (downward at E) at load factor 1
+LOADED_AT = 0.3                    # load factor of the loaded compliance (300 N, below both limit loads)
 
 
 def circle_intersection(P1, r1, P2, r2):
@@ -71,8 +72,8 @@ def equilibrium(F, q=None):
 
 def closed_form(load_factor):
     """Unloaded compliance J K^-1 J^T (uy, uy), the loaded compliance d u_y / d F_y at the load factor
-    (central differences of the exact equilibrium) and the limit load (bisection on the smallest
-    eigenvalue along the downward load), all for the lumped model."""
+    (central differences of the exact equilibrium) and the limit load (the first maximum of the load
+    along the symmetric primary path), all for the lumped model."""
     J = jacobian()
     c0 = (J @ np.diag([1 / K_ACT, 1 / K_ACT]) @ J.T)[1, 1]
     F = np.array([0.0, -load_factor * F_REF])
@@ -81,23 +82,23 @@ def closed_form(load_factor):
     qp, _ = equilibrium(F + [0, h], q)
     qm, _ = equilibrium(F - [0, h], q)
     c1 = (geometry(*qp)["E"][1] - geometry(*qm)["E"][1]) / (2 * h)
-    lo, hi, q = 0.0, None, np.array([Q1, Q2])
-    f = 0.0
-    while hi is None:  # march up to the first load with a negative eigenvalue, then bisect
-        f += 0.05 * F_REF
-        qn, ev = equilibrium(np.array([0.0, -f]), q)
-        if ev <= 0.0:
-            hi = f
+    # Limit load: the model and the load are symmetric about x = G/2, so the primary path is
+    # q1 = Q1 + t, q2 = Q2 - t with f(t) = K_ACT t / (dE_y/dq2) from the second equilibrium equation;
+    # the limit point is the first maximum of f (golden-section search on the first hump).
+    f = lambda t: K_ACT * t / jacobian(Q1 + t, Q2 - t)[1, 1]
+    t, dt = 0.0, 1e-3
+    while f(t + dt) > f(t):
+        t += dt
+    a_, b_ = max(0.0, t - dt), t + dt
+    g = (math.sqrt(5) - 1) / 2
+    for _ in range(80):
+        c_, d_ = b_ - g * (b_ - a_), a_ + g * (b_ - a_)
+        if f(c_) > f(d_):
+            b_ = d_
         else:
-            lo, q = f, qn
-    for _ in range(40):
-        mid = 0.5 * (lo + hi)
-        qn, ev = equilibrium(np.array([0.0, -mid]), q)
-        if ev > 0.0:
-            lo, q = mid, qn
-        else:
-            hi = mid
-    return c0, c1, 0.5 * (lo + hi)
+            a_ = c_
+    fcr = f(0.5 * (a_ + b_))
+    return c0, c1, fcr
 
 
 def xyz(p):
@@ -143,14 +144,14 @@ def main():
     for name, beams in (("lumped", False), ("beam", True)):
         with open(os.path.join(HERE, "models", name + ".json"), "w") as f:
             json.dump(model(beams), f, indent=1)
-    c0, c1, fcr = closed_form(0.5)
+    c0, c1, fcr = closed_form(LOADED_AT)
     spec = {"title": "Planar five-bar: lumped (rigid links, actuator springs) vs beam links (steel rods 12 mm)",
             "path_analysis": "path",
             "force": {"from": "load_factor", "scale": F_REF, "label": "F [N], downward at E"},
             "deflection": {"node": "E", "dof": "uy", "scale": -1, "label": "-u_y(E) [m]"},
             "stiffness_node": "E",
-            "quantities": ["unloaded_compliance", "loaded_compliance", "unloaded", "critical_force", "near_before", "P_at_L"],
-            "large_deflection": 0.1, "loaded_at": 0.5,
+            "quantities": ["unloaded_compliance", "loaded_compliance", "critical_force", "P_at_L"],
+            "large_deflection": 0.1, "loaded_at": LOADED_AT,
             "pairs": [{"id": "five_bar", "name": "five-bar, tool force downward at E",
                        "models": [{"key": "lumped", "file": "models/lumped.json", "label": "lumped (VJM)"},
                                   {"key": "beam", "file": "models/beam.json", "label": "beam links"}],
@@ -159,7 +160,7 @@ def main():
     spec_file = os.path.join(HERE, "comparison_spec.json")
     with open(spec_file, "w") as f:
         json.dump(spec, f, indent=1)
-    print(f"closed form (lumped): J K^-1 J^T (uy, uy) = {c0:.6g} m/N, loaded at 0.5 F_REF {c1:.6g} m/N, "
+    print(f"closed form (lumped): J K^-1 J^T (uy, uy) = {c0:.6g} m/N, loaded at {LOADED_AT} F_REF {c1:.6g} m/N, "
           f"limit load {fcr:.6g} N")
     sys.exit(subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "compare_models.py"), spec_file,
                              "--beamfea", args.beamfea, "--out", args.out]).returncode)
