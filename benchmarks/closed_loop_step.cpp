@@ -10,7 +10,7 @@
 // equal increments with stability (inertia and lowest eigenvalue) at every step. Reported: the free
 // coordinates, closure rows kept, mean time per step of follow_path and Newton iterations per step,
 // the best of `reps` runs, and the ratio closed / opened.
-// Usage: bench_closed_loop_step [--sizes 10,20,40,80] [--steps 5] [--reps 3]
+// Usage: bench_closed_loop_step [--sizes 10,20,40,80] [--steps 5] [--reps 3] [--load 1] (a factor on the load)
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -26,7 +26,7 @@ using namespace beamfea;
 
 namespace {
 
-Model arch(int n, bool closed) {
+Model arch(int n, bool closed, double load) {
   Model m;
   const Vec3 A(0, 0, 0), B(2, 0, 0), C(1, 1, 0);
   auto node = [&](const std::string& id, const Vec3& x) {
@@ -67,7 +67,7 @@ Model arch(int n, bool closed) {
     tips.push_back(prev);
   }
   if (closed) joint("crown", tips[0], tips[1], 0.0);
-  m.loads.push_back({tips[0], Vec3(0.5, -1.0, 0.0), Vec3::Zero()});
+  m.loads.push_back({tips[0], load * Vec3(0.5, -1.0, 0.0), Vec3::Zero()});
   return m;
 }
 
@@ -109,6 +109,7 @@ Run run(const Model& m, int steps, int reps) {
 int main(int argc, char** argv) {
   std::vector<int> sizes{10, 20, 40, 80};
   int steps = 5, reps = 3;
+  double load = 1.0;
   for (int i = 1; i + 1 < argc; ++i) {
     if (!std::strcmp(argv[i], "--sizes")) {
       sizes.clear();
@@ -117,6 +118,8 @@ int main(int argc, char** argv) {
       while (std::getline(ss, t, ',')) sizes.push_back(std::stoi(t));
     } else if (!std::strcmp(argv[i], "--steps")) {
       steps = std::stoi(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--load")) {
+      load = std::stod(argv[++i]);
     } else if (!std::strcmp(argv[i], "--verbose")) {
       verbose = std::stoi(argv[++i]) != 0;
     } else if (!std::strcmp(argv[i], "--reps")) {
@@ -126,7 +129,7 @@ int main(int argc, char** argv) {
   fmt::print("| links per chain | free coordinates | closed [ms/step] | it./step | opened [ms/step] | it./step | closed / opened |\n");
   fmt::print("|---|---|---|---|---|---|---|\n");
   for (int n : sizes) {
-    const Run c = run(arch(n, true), steps, reps), o = run(arch(n, false), steps, reps);
+    const Run c = run(arch(n, true, load), steps, reps), o = run(arch(n, false, load), steps, reps);
     if (!c.ok || !o.ok) {
       fmt::print("| {} | failed: closed {} opened {} | | | | | |\n", n, c.ok, o.ok);
       continue;
