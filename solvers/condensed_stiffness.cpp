@@ -89,6 +89,10 @@ RawCondensation condense_to_raw_dofs(const DofMap& map, const SparseMatrix& K, c
 
 namespace {
 
+// Eigenvalues of the compliance below this fraction of the largest are the zeros of its rigid and
+// free directions (exactly zero up to the rounding of U_r: 1e-16 relative).
+constexpr double kPseudoInverseTolerance = 1e-12;
+
 // A unit vector (in the unscaled components) with its largest component positive: reproducible output.
 Vec6 reproducible_direction(Vec6 v) {
   v.normalize();
@@ -172,7 +176,18 @@ CondensedStiffness node_compliance(const SparseMatrix& K, const Eigen::MatrixXd&
   const Mat6 Sinv = S.cwiseInverse().asDiagonal();
   out.compliance = Sinv * Ur * Cz * Ur.transpose() * Sinv;
   out.compliance = 0.5 * (out.compliance + out.compliance.transpose()).eval();
-  out.K = S.asDiagonal() * Ur * Kz * Ur.transpose() * S.asDiagonal();
+  if (r == 6) {
+    out.K = S.asDiagonal() * Ur * Kz * Ur.transpose() * S.asDiagonal();  // K_c itself
+  } else {
+    // Restricted node: the pseudo-inverse of the compliance in the components [ux .. rz] (as the
+    // loaded stiffness of a chain with fewer than six joints has always been reported).
+    Eigen::SelfAdjointEigenSolver<Mat6> ec(out.compliance);
+    const double cmax = ec.eigenvalues().cwiseAbs().maxCoeff();
+    Vec6 ci = Vec6::Zero();
+    for (int i = 0; i < 6; ++i)
+      if (std::abs(ec.eigenvalues()[i]) > kPseudoInverseTolerance * cmax) ci[i] = 1.0 / ec.eigenvalues()[i];
+    out.K = ec.eigenvectors() * ci.asDiagonal() * ec.eigenvectors().transpose();
+  }
   out.K = 0.5 * (out.K + out.K.transpose()).eval();
   const std::vector<Vec6> free_dirs = out.null_space;
   analyse_rank(out.K, L, options.rank_tolerance, out);  // rank and scaled eigenvalues of the matrix
