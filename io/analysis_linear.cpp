@@ -126,6 +126,7 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
     offset += nc;
   }
   out.result["joints"] = joints;
+  out.result["statically_indeterminate"] = r.statically_indeterminate;
   if (!ctx.out_dir.empty() && ctx.write_vtk) {
     VtkFrame f;
     for (std::size_t n = 0; n < model.nodes.size(); ++n) {
@@ -148,13 +149,9 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
 
 void check_stiffness(const Model& model, const nlohmann::json& spec, const std::string& p) {
   json_in::expect_keys(spec, p, {"id", "type", "description", "node", "load_case"});
-  const int node = node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
-  // The stiffness at a node is finite only where the node can move in all six directions.
-  const DofMap map(model);
-  for (int k = 0; k < 6; ++k)
-    if (const std::string why = why_held(model, map, node, k); !why.empty())
-      throw InputError(json_in::child(p, "node"), "stiffness at node '" + model.nodes[node].id + "': dof " +
-                                                      kDofNames[k] + " " + why + ", so the stiffness there is unbounded");
+  node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
+  // Any node answers (issue 11): where supports, loops or rigid links hold it, its compliance is zero
+  // and rigid_directions names the directions (solvers/condensed_stiffness.hpp, node_compliance).
 }
 
 AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
@@ -181,6 +178,11 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
   ojson ns = ojson::array();
   for (const auto& v : k.null_space) ns.push_back(to_json(v));
   out.result["null_space"] = ns;
+  out.result["compliance"] = to_json(k.compliance);
+  ojson rd = ojson::array();
+  for (const auto& v : k.rigid_directions) rd.push_back(to_json(v));
+  out.result["rigid_directions"] = rd;
+  out.result["statically_indeterminate"] = k.statically_indeterminate;
   out.result["length_scale"] = model.length_scale();
   out.result["scaled_eigenvalues"] = to_json(k.eigenvalues);
   return out;

@@ -8,6 +8,7 @@
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
 #include "io/json_util.hpp"
+#include "io/load_reader.hpp"
 #include "io/mode_shapes_vtk.hpp"
 #include "solvers/modal.hpp"
 
@@ -42,13 +43,7 @@ void check_modal(const Model& model, const nlohmann::json& spec, const std::stri
     if (kind != "consistent" && kind != "lumped")
       throw InputError(mp, "modal: unknown mass '" + kind + "' (expected consistent or lumped)");
   }
-  if (spec.contains("load_case")) {
-    // Until load cases exist, the preload is the model's loads (the default case), named "default".
-    const std::string lp = json_in::child(p, "load_case");
-    const std::string c = json_in::id(spec["load_case"], lp, "modal load_case");
-    if (c != "default") throw InputError(lp, "modal: unknown load case '" + c + "' (known: default)");
-    check_nonlinear_model(model, p);  // the preload's geometric stiffness refuses closed loops
-  }
+  // load_case: checked by the registry (io/load_reader.hpp, check_load_case): a case or a combination.
 }
 
 ojson per_direction(const Eigen::VectorXd& v) {
@@ -60,7 +55,7 @@ ojson per_direction(const Eigen::VectorXd& v) {
 AnalysisOutcome run_modal(const AnalysisContext& ctx) {
   const Model& model = ctx.model;
   const ModalOptions opt = read_options(ctx.spec);
-  const ModalResult r = solve_modal(model, opt);
+  const ModalResult r = solve_modal(model_for_load_case(model, ctx.spec), opt);
   AnalysisOutcome out;
   out.result["type"] = "modal";
   out.result["status"] = to_string(r.status);

@@ -11,7 +11,8 @@
 //
 // Result analyses.<id>: type, status, termination, completed, free_dofs, control,
 // steps[] {step, load_factor, control, arc_length, iterations, nodes.<tracked>.displacement,
-//          negative_eigenvalues, stable, min_eigenvalue, stiffness (when stiffness_node), reaction
+//          negative_eigenvalues, stable, min_eigenvalue, stiffness, compliance, rank, null_space,
+//          rigid_directions (when stiffness_node), reaction
 //          (imposed motion), step_control (displacement control: "displacement", or "arc_length" through
 //          a snap-back of the controlled DOF)}, critical_points[] {type, load_factor, step, control,
 //          negative_before, negative_after, load_work, reaction (imposed motion), branch_switched,
@@ -193,6 +194,7 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
   out.result["control"] = control_name(o.control);
   out.result["free_dofs"] = r.free_dofs;
   if (!r.completed) out.termination = AnalysisTermination::NotConverged;
+  out.result["statically_indeterminate"] = r.statically_indeterminate;
   out.message = fmt::format("path: {} steps, {}", r.steps.empty() ? 0 : r.steps.size() - 1, r.brief_report());
   ojson steps = ojson::array();
   for (const auto& s : r.steps) {
@@ -209,7 +211,19 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
     j["negative_eigenvalues"] = s.negative_eigenvalues;
     j["stable"] = s.stable;
     j["min_eigenvalue"] = s.min_eigenvalue;
-    if (o.stiffness_node >= 0) j["stiffness"] = s.stiffness ? to_json(*s.stiffness) : ojson(nullptr);
+    if (o.stiffness_node >= 0) {
+      j["stiffness"] = s.stiffness ? to_json(*s.stiffness) : ojson(nullptr);
+      const bool ok = s.node_stiffness && s.node_stiffness->ok;
+      j["compliance"] = ok ? to_json(s.node_stiffness->compliance) : ojson(nullptr);
+      j["rank"] = ok ? ojson(s.node_stiffness->rank) : ojson(nullptr);
+      ojson ns = ojson::array(), rd = ojson::array();
+      if (ok) {
+        for (const auto& v : s.node_stiffness->null_space) ns.push_back(to_json(v));
+        for (const auto& v : s.node_stiffness->rigid_directions) rd.push_back(to_json(v));
+      }
+      j["null_space"] = ns;
+      j["rigid_directions"] = rd;
+    }
     if (imposed) j["reaction"] = s.reaction;
     // Displacement control: "arc_length" on the steps taken through a snap-back of the controlled DOF.
     if (o.control == PathControl::Displacement) j["step_control"] = control_name(s.step_control);

@@ -190,16 +190,33 @@ double read_density(const json& o, const std::string& p, const std::string& what
   return rho;
 }
 
+namespace {
+// An analysis's load_case naming the top-level loads and gravity (unless a case or a combination
+// has this id).
+constexpr const char* kDefaultLoadCase = "default";
+
+// "default, dead, tool, uls": the names an analysis's load_case may take.
+std::string known_cases(const Model& m) {
+  std::string s = kDefaultLoadCase;
+  for (const auto& c : m.load_cases) s += ", " + c.id;
+  for (const auto& c : m.combinations) s += ", " + c.id;
+  return s;
+}
+}  // namespace
+
 void check_load_case(const Model& m, const json& spec, const std::string& p) {
   if (!spec.contains("load_case")) return;
   const std::string id = json_in::id(spec["load_case"], child(p, "load_case"), "load_case");
-  if (m.find_load_case(id) < 0 && m.find_combination(id) < 0)
-    throw InputError(child(p, "load_case"), "unknown load case or combination '" + id + "'");
+  if (m.find_load_case(id) < 0 && m.find_combination(id) < 0 && id != kDefaultLoadCase)
+    throw InputError(child(p, "load_case"), "unknown load case or combination '" + id + "' (known: " + known_cases(m) + ")");
 }
 
 Model model_for_load_case(const Model& m, const json& spec) {
   Model out = m;
-  if (spec.contains("load_case")) out.set_default_loads(m.loads_of(json_in::id(spec["load_case"], "", "load_case")));
+  if (!spec.contains("load_case")) return out;
+  const std::string id = json_in::id(spec["load_case"], "", "load_case");
+  if (id == kDefaultLoadCase && m.find_load_case(id) < 0 && m.find_combination(id) < 0) return out;
+  out.set_default_loads(m.loads_of(id));
   return out;
 }
 

@@ -19,7 +19,8 @@ void read_loads_and_cases(const nlohmann::json& doc, Model& m);
 // A material's "density" (absent: 0; negative: InputError).
 double read_density(const nlohmann::json& material, const std::string& pointer, const std::string& what);
 
-// Checks an analysis's "load_case" (a case or a combination of the model), if present.
+// Checks an analysis's "load_case" (a case or a combination of the model, or "default": the
+// top-level loads and gravity), if present.
 void check_load_case(const Model& m, const nlohmann::json& spec, const std::string& pointer);
 // The model with the analysis's load case (its "load_case") as the default loads; the model itself
 // when the spec names none.

@@ -100,6 +100,7 @@ LinearStaticResult LinearSystem::solve(const LoadSet& loads) const {
   }
   res.joint_forces = cf.joint;
   res.element_loads = element_loads(model, loads);
+  res.statically_indeterminate = s.map.redundant_constraints();
   res.end_forces.resize(model.elements.size());
   for (std::size_t e = 0; e < model.elements.size(); ++e) {
     res.end_forces[e] = s.structure.end_forces(s.map, static_cast<int>(e), res.u);

@@ -38,6 +38,9 @@ struct LinearStaticResult {
   std::vector<ElementLoads> element_loads;  // per element: the loads between its nodes (local)
   std::vector<Vec6> joint_forces;      // per joint: force and moment from body 1 on body 2, global
   std::vector<ZeroEnergyMode> modes;   // when status == Mechanism
+  // Redundant constraint rows (over-constrained loops, supports on one rigid body), e.g. "joint 'jC'
+  // uz": their reactions are statically indeterminate; the reported ones are the minimum-norm split.
+  std::vector<std::string> statically_indeterminate;
 };
 
 // The linear system of a model, assembled and factorised once; every load case solves against the

@@ -85,7 +85,8 @@ ModalResult solve_modal(const Model& model, const ModalOptions& options) {
       res.message = "modal: the linear static solution of the preload failed: " + lin.message;
       return res;
     }
-    K += initial_stress_stiffness(model, map, structure, lin, external_force(model, map));
+    const SparseMatrix Kg = geometric_stiffness(model, map, structure, lin);
+    K += SparseMatrix(0.5 * (SparseMatrix(Kg.transpose()) + Kg));
   }
 
   // The shift: just below zero, relative to the smallest diagonal ratio.
