@@ -2,6 +2,7 @@
 
 #include <Eigen/QR>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <map>
@@ -96,7 +97,16 @@ void DofMap::build_forest(const Model& m) {
   for (const auto& p : m.prescribed)
     if (p.dof.owner == DofRef::Owner::Node) support_count[p.dof.index] += 1;
 
-  // Visit candidate roots from the most supported down.
+  // Grounds: nodes whose six DOFs are all supported or prescribed. Every ground is a root, and one
+  // breadth-first search from all grounds at once carries each node from its nearest ground: chains
+  // stay short, and a loop between two grounds closes at an edge in its middle (a closure) rather
+  // than through the supports of a slave (which would make one long chain through the loop). Then the
+  // remaining components, each from its most supported node.
+  std::vector<std::array<char, 6>> held(n_nodes_, std::array<char, 6>{});
+  for (const auto& s : m.supports)
+    for (int k = 0; k < 6; ++k) held[s.node][k] = held[s.node][k] || s.fixed[k];
+  for (const auto& p : m.prescribed)
+    if (p.dof.owner == DofRef::Owner::Node) held[p.dof.index][p.dof.comp] = 1;
   std::vector<int> order(n_nodes_);
   for (int i = 0; i < n_nodes_; ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(),
@@ -105,10 +115,7 @@ void DofMap::build_forest(const Model& m) {
   parent_edge_.assign(n_nodes_, -1);
   std::vector<char> visited(n_nodes_, 0);
   std::vector<char> used_rigid(m.elements.size(), 0), used_joint(m.joints.size(), 0);
-  for (int root : order) {
-    if (visited[root] || adj[root].empty()) continue;
-    visited[root] = 1;
-    std::deque<int> queue{root};
+  auto search = [&](std::deque<int> queue) {
     while (!queue.empty()) {
       const int n = queue.front();
       queue.pop_front();
@@ -139,6 +146,18 @@ void DofMap::build_forest(const Model& m) {
         }
       }
     }
+  };
+  std::deque<int> grounds;
+  for (int n : order)
+    if (!adj[n].empty() && std::all_of(held[n].begin(), held[n].end(), [](char h) { return h != 0; })) {
+      visited[n] = 1;
+      grounds.push_back(n);
+    }
+  search(grounds);
+  for (int root : order) {
+    if (visited[root] || adj[root].empty()) continue;
+    visited[root] = 1;
+    search({root});
   }
 }
 
@@ -275,14 +294,14 @@ void DofMap::build_extra_rows(const Model& m, const Configuration& c) {
       extra_.push_back(std::move(x));
     }
   }
-  for (const auto& e : loop_edges_)
+  for (int li = 0; li < static_cast<int>(loop_edges_.size()); ++li)
     for (int k = 0; k < 6; ++k) {
+      const auto& e = loop_edges_[li];
       ExtraRow x;
       x.raw = edge_row_raw(m, c, e, k);
-      if (e.kind == ConstraintEdge::Kind::Joint) {
-        x.joint = e.index;
-        x.joint_row = k;
-      }
+      x.loop = li;
+      x.joint_row = k;
+      if (e.kind == ConstraintEdge::Kind::Joint) x.joint = e.index;
       extra_.push_back(std::move(x));
     }
 }
@@ -321,10 +340,14 @@ void DofMap::eliminate(const Model& m) {
         pivot = k;
       }
     if (pivot < 0) {
+      redundant_names_.push_back(describe_extra(m, x));
       Row r;
       for (const auto& [k, v] : e)
         if (k < 0 && std::abs(v) > 1e-10 * scale) r.push_back({-1 - k, v});
-      if (!r.empty()) redundant_.push_back(r);
+      if (!r.empty()) {
+        redundant_.push_back(r);
+        redundant_what_.push_back(redundant_names_.back());
+      }
       continue;
     }
     const double cp = e[pivot];
@@ -381,6 +404,22 @@ void DofMap::eliminate(const Model& m) {
   (void)m;
 }
 
+std::string DofMap::describe_extra(const Model& m, const ExtraRow& x) const {
+  auto edge_name = [&](const ConstraintEdge& e) {
+    return e.kind == ConstraintEdge::Kind::Rigid ? "element '" + m.elements[e.index].id + "'"
+                                                 : "joint '" + m.joints[e.index].id + "'";
+  };
+  if (x.prescribed >= 0) {
+    // A support or prescribed value on a slave node: name the link or joint that carries the node.
+    const DofRef& d = prescribed_[x.prescribed].dof;
+    std::string s = m.describe(d);
+    if (d.owner == DofRef::Owner::Node && is_slave(d.index))
+      s += " (carried by " + edge_name(tree_edges_[parent_edge_[d.index]]) + ")";
+    return s;
+  }
+  return edge_name(loop_edges_[x.loop]) + " " + kDofNames[x.joint_row];
+}
+
 Eigen::VectorXd DofMap::expand(const Eigen::VectorXd& u_free, const Eigen::VectorXd& u_prescribed) const {
   Eigen::VectorXd u = Tf_ * u_free;
   if (prescribed_size() > 0) u += Tp_ * u_prescribed;
@@ -388,7 +427,8 @@ Eigen::VectorXd DofMap::expand(const Eigen::VectorXd& u_free, const Eigen::Vecto
 }
 
 std::string DofMap::check_consistency(const Eigen::VectorXd& u_prescribed) const {
-  for (const auto& r : redundant_) {
+  for (std::size_t ri = 0; ri < redundant_.size(); ++ri) {
+    const auto& r = redundant_[ri];
     double s = 0.0, mag = 0.0;
     for (const auto& t : r) {
       s += t.coef * u_prescribed[t.ind];
@@ -397,7 +437,8 @@ std::string DofMap::check_consistency(const Eigen::VectorXd& u_prescribed) const
     if (std::abs(s) > 1e-9 * mag + 1e-300 && std::abs(s) > 0.0) {
       std::string names;
       for (const auto& t : r) names += (names.empty() ? "" : ", ") + model_->describe(prescribed_[t.ind].dof);
-      return "supports or prescribed values on one rigid body disagree: " + names;
+      return redundant_what_[ri] + ": the constraints cannot be satisfied (a loop that cannot close, or supports "
+             "or prescribed values on one rigid body that disagree): " + names;
     }
   }
   return "";
@@ -450,8 +491,11 @@ DofMap::ConstraintForces DofMap::constraint_forces(const Eigen::VectorXd& r_raw)
     acc[e.parent].head<3>() += a.head<3>();
     acc[e.parent].tail<3>() += a.tail<3>() + (x_[e.child] - x_[e.parent]).cross(a.head<3>());
   }
-  for (int c = 0; c < m; ++c)
+  out.loop.assign(loop_edges_.size(), Vec6::Zero());
+  for (int c = 0; c < m; ++c) {
     if (extra_[c].joint >= 0) out.joint[extra_[c].joint][extra_[c].joint_row] = lambda[c];
+    if (extra_[c].loop >= 0) out.loop[extra_[c].loop][extra_[c].joint_row] = lambda[c];
+  }
   return out;
 }
 

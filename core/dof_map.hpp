@@ -93,6 +93,10 @@ class DofMap {
   const std::vector<ConstraintEdge>& tree_edges() const { return tree_edges_; }
   // Tree edges in an order where parents come before children.
   const std::vector<int>& tree_order() const { return tree_order_; }
+  // The edges outside the forest: each closes a loop of rigid links and joints (written from the
+  // edge's nodes[0] (parent) to nodes[1] (child)). Linear analyses eliminate their six rows; the
+  // nonlinear ones keep them as constraints with multipliers (solvers/nonlinear_structure.hpp).
+  const std::vector<ConstraintEdge>& loop_edges() const { return loop_edges_; }
 
   Eigen::VectorXd expand(const Eigen::VectorXd& u_free, const Eigen::VectorXd& u_prescribed) const;
   Eigen::VectorXd reduce(const Eigen::VectorXd& f_raw) const { return Tf_.transpose() * f_raw; }
@@ -102,8 +106,16 @@ class DofMap {
     std::vector<double> prescribed;        // one per prescribed value: reaction (force or moment)
     std::vector<Vec6> joint;               // per joint: force and moment that the body of
                                            // nodes[0] exerts on the body of nodes[1], global axes
+    std::vector<Vec6> loop;                // per loop edge: multipliers of its six rows (force and
+                                           // moment that nodes[0]'s side exerts on nodes[1]); the
+                                           // minimum-norm split where rows are redundant
   };
   ConstraintForces constraint_forces(const Eigen::VectorXd& r_raw) const;
+
+  // The constraint rows found redundant (over-constrained loops, supports on one rigid body): their
+  // reactions are statically indeterminate; e.g. "joint 'jC' uz", "node 'D' dof rx". Linear analyses
+  // report the minimum-norm split of those reactions.
+  const std::vector<std::string>& redundant_constraints() const { return redundant_names_; }
 
   // Prescribed values that must agree (redundant supports on one rigid body): returns the
   // message of the first conflict for these values, or "" when consistent.
@@ -139,14 +151,18 @@ class DofMap {
     std::vector<Term> rhs;                 // over prescribed indices
     int joint = -1, joint_row = -1;        // loop joint rows: which joint and component (0..5)
     int prescribed = -1;                   // slave support rows: which prescribed value
+    int loop = -1;                         // loop edge rows: which loop edge (row = joint_row)
   };
   std::vector<ExtraRow> extra_;
+  std::string describe_extra(const Model& m, const ExtraRow& x) const;
   std::vector<int> ind_prescribed_;         // per independent DOF: prescribed index or -1
   std::vector<PrescribedValue> prescribed_;
   std::vector<int> raw_prescribed_;         // per raw DOF: prescribed index or -1
   std::vector<int> raw_to_free_;
   std::vector<DofRef> free_refs_;
   std::vector<Row> redundant_;              // rows over prescribed indices that must vanish
+  std::vector<std::string> redundant_names_;
+  std::vector<std::string> redundant_what_;  // per redundant_ row: the link, joint or DOF it came from
   std::vector<std::map<int, double>> extra_ind_;  // extra rows over independent DOFs
   std::vector<char> ind_dependent_;
   std::vector<Vec3> x_;                     // node positions of the configuration

@@ -35,6 +35,7 @@ int add_meshed_member(Model& model, Member mem) {
     e.material = mem.material;
     e.section = mem.section;
     e.orientation = mem.orientation;
+    e.theory = mem.theory;
     e.member = mi;
     mem.elements.push_back(static_cast<int>(model.elements.size()));
     model.elements.push_back(std::move(e));

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/errors.hpp"
+
 namespace beamfea {
 
 int dof_index(const std::string& name) {
@@ -68,6 +70,61 @@ int Model::add_joint(Joint j) { return add_indexed(joints, joint_index, std::mov
 int Model::find_node(const std::string& id) const { return node_index.find(nodes, id); }
 int Model::find_member(const std::string& id) const { return member_index.find(members, id); }
 int Model::find_joint(const std::string& id) const { return joint_index.find(joints, id); }
+// Few cases and combinations: a scan.
+template <class V>
+static int scan_for_id(const V& v, const std::string& id) {
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (v[i].id == id) return static_cast<int>(i);
+  return -1;
+}
+
+int Model::find_load_case(const std::string& id) const { return scan_for_id(load_cases, id); }
+int Model::find_combination(const std::string& id) const { return scan_for_id(combinations, id); }
+
+void LoadSet::add_scaled(const LoadSet& o, double k) {
+  for (NodalLoad l : o.nodal) {
+    l.force *= k;
+    l.moment *= k;
+    nodal.push_back(l);
+  }
+  for (JointLoad l : o.joint) {
+    l.value *= k;
+    joint.push_back(l);
+  }
+  for (MemberLoad l : o.member) {
+    l.q_from *= k;
+    l.q_to *= k;
+    l.force *= k;
+    l.moment *= k;
+    member.push_back(l);
+  }
+  gravity += k * o.gravity;
+}
+
+LoadSet Model::default_loads() const {
+  LoadSet s;
+  s.nodal = loads;
+  s.joint = joint_loads;
+  s.member = member_loads;
+  s.gravity = gravity;
+  return s;
+}
+
+LoadSet Model::loads_of(const std::string& id) const {
+  if (const int c = find_load_case(id); c >= 0) return load_cases[c].loads;
+  const int k = find_combination(id);
+  if (k < 0) throw ModelError("load case '" + id + "'", "is neither a load case nor a combination");
+  LoadSet s;
+  for (const auto& [c, f] : combinations[k].factors) s.add_scaled(load_cases.at(c).loads, f);
+  return s;
+}
+
+void Model::set_default_loads(const LoadSet& s) {
+  loads = s.nodal;
+  joint_loads = s.joint;
+  member_loads = s.member;
+  gravity = s.gravity;
+}
 
 std::string Model::describe(const DofRef& d) const {
   if (d.owner == DofRef::Owner::Node)

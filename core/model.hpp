@@ -43,11 +43,13 @@ struct Section {
   double Iy = 0.0;   // second moment about local y: bending in the local x-z plane
   double Iz = 0.0;   // second moment about local z: bending in the local x-y plane
   double J = 0.0;    // torsion constant
-  double ky = 0.0;   // shear correction factors (virtual-force shear term only; beams are Euler-Bernoulli)
-  double kz = 0.0;
+  double ky = 0.0;   // shear correction factors: shear areas A/ky (along local y), A/kz (along z)
+  double kz = 0.0;   // of Timoshenko beams; 0 = not given (a Timoshenko beam then needs them)
 };
 
 enum class MemberType { Beam, Rigid };
+// Beam theory of a beam member: Euler-Bernoulli (the default) or shear-deformable Timoshenko.
+enum class BeamTheory { EulerBernoulli, Timoshenko };
 
 // A member as the user wrote it.
 struct Member {
@@ -57,6 +59,7 @@ struct Member {
   int material = -1;              // beams only
   int section = -1;               // beams only
   Vec3 orientation = Vec3::Zero();  // a vector in the local x-z plane (OpenSees' vecxz)
+  BeamTheory theory = BeamTheory::EulerBernoulli;
   int divisions = 1;
   std::vector<int> elements;      // the elements meshed from it, in order from nodes[0] to nodes[1]
 };
@@ -69,6 +72,7 @@ struct Element {
   int material = -1;
   int section = -1;
   Vec3 orientation = Vec3::Zero();
+  BeamTheory theory = BeamTheory::EulerBernoulli;
   int member = -1;
 };
 
@@ -165,6 +169,45 @@ class IdIndex {
   std::unordered_map<std::string, int> map_;
 };
 
+// A load between the end nodes of a beam member, following the member over its segments.
+// Positions are fractions of the member's length from its first node. Components are global, or
+// in the member's local axes when `local` (docs/conventions.md); in nonlinear analyses both keep
+// the direction they have in the reference configuration (dead loads).
+struct MemberLoad {
+  enum class Kind { Distributed, Point };
+  int member = -1;
+  Kind kind = Kind::Distributed;
+  bool local = false;
+  // Distributed: force per unit length, varying linearly from q_from at `from` to q_to at `to`.
+  Vec3 q_from = Vec3::Zero(), q_to = Vec3::Zero();
+  double from = 0.0, to = 1.0;
+  // Point: a force and a moment at `at`.
+  Vec3 force = Vec3::Zero(), moment = Vec3::Zero();
+  double at = 0.5;
+};
+
+// What one load case applies: nodal, joint and member loads, and gravity (acceleration) acting on
+// the beams' mass (density x A per unit length) and on the point masses.
+struct LoadSet {
+  std::vector<NodalLoad> nodal;
+  std::vector<JointLoad> joint;
+  std::vector<MemberLoad> member;
+  Vec3 gravity = Vec3::Zero();
+  // Every load multiplied by `factor`, appended to this set.
+  void add_scaled(const LoadSet& other, double factor);
+};
+
+struct LoadCase {
+  std::string id;
+  LoadSet loads;
+};
+
+// A factored sum of load cases.
+struct Combination {
+  std::string id;
+  std::vector<std::pair<int, double>> factors;  // (index into Model::load_cases, factor)
+};
+
 struct Model {
   std::vector<Node> nodes;
   std::vector<Material> materials;
@@ -177,6 +220,12 @@ struct Model {
   std::vector<NodalLoad> loads;
   std::vector<JointLoad> joint_loads;
   std::vector<PointMass> masses;
+  // The default load case is `loads`, `joint_loads`, `member_loads` and `gravity`; named cases
+  // and combinations are selected by an analysis's "load_case".
+  std::vector<MemberLoad> member_loads;
+  Vec3 gravity = Vec3::Zero();
+  std::vector<LoadCase> load_cases;
+  std::vector<Combination> combinations;
 
   // Appending with an index kept (ids must be unique: the caller checks; a repeated id is not
   // indexed and a later lookup finds the first). Each returns the new position.
@@ -187,6 +236,15 @@ struct Model {
   int find_node(const std::string& id) const;    // -1 if absent
   int find_member(const std::string& id) const;  // -1 if absent
   int find_joint(const std::string& id) const;   // -1 if absent
+  int find_load_case(const std::string& id) const;    // -1 if absent
+  int find_combination(const std::string& id) const;  // -1 if absent
+  // The default load case (top-level loads and gravity).
+  LoadSet default_loads() const;
+  // The loads of a named case or combination (a combination: its cases' loads, factored);
+  // throws ModelError when the id names neither.
+  LoadSet loads_of(const std::string& case_or_combination) const;
+  // Replaces the default load case by `loads`.
+  void set_default_loads(const LoadSet& loads);
   // "node 'A' dof uz", "joint 'j1' coordinate 0"
   std::string describe(const DofRef& d) const;
   // Length scale of the model (bounding-box diagonal, at least 1e-300); used to make

@@ -39,16 +39,18 @@ Mat12 beam_local_stiffness(const BeamSection& s, double L) {
   k(0, 6) = k(6, 0) = -EA;
   k(3, 3) = k(9, 9) = GJ;
   k(3, 9) = k(9, 3) = -GJ;
-  // bending in x-y: v (1, 7), rz (5, 11), Iz
-  const double a = 12 * s.E * s.Iz / L3, b = 6 * s.E * s.Iz / L2, c = 4 * s.E * s.Iz / L, d = 2 * s.E * s.Iz / L;
+  // bending in x-y: v (1, 7), rz (5, 11), Iz; Przemieniecki (1968) eq. 5.116 with Phi_y
+  const double py = s.phi_y(L), cy = s.E * s.Iz / (1.0 + py);
+  const double a = 12 * cy / L3, b = 6 * cy / L2, c = (4 + py) * cy / L, d = (2 - py) * cy / L;
   k(1, 1) = k(7, 7) = a;
   k(1, 7) = k(7, 1) = -a;
   k(1, 5) = k(5, 1) = k(1, 11) = k(11, 1) = b;
   k(7, 5) = k(5, 7) = k(7, 11) = k(11, 7) = -b;
   k(5, 5) = k(11, 11) = c;
   k(5, 11) = k(11, 5) = d;
-  // bending in x-z: w (2, 8), ry (4, 10), Iy; note the sign change (w' = -ry)
-  const double e = 12 * s.E * s.Iy / L3, f = 6 * s.E * s.Iy / L2, g = 4 * s.E * s.Iy / L, h = 2 * s.E * s.Iy / L;
+  // bending in x-z: w (2, 8), ry (4, 10), Iy, Phi_z; note the sign change (w' = -ry)
+  const double pz = s.phi_z(L), cz = s.E * s.Iy / (1.0 + pz);
+  const double e = 12 * cz / L3, f = 6 * cz / L2, g = (4 + pz) * cz / L, h = (2 - pz) * cz / L;
   k(2, 2) = k(8, 8) = e;
   k(2, 8) = k(8, 2) = -e;
   k(2, 4) = k(4, 2) = k(2, 10) = k(10, 2) = -f;

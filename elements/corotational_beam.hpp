@@ -55,7 +55,9 @@
 // beam_local_geometric_stiffness to it (that matrix is for linearised buckling about the
 // reference state, on LinearBeam).
 //
-// Not supported: shear deformation, warping, offsets, member loads, large local strains; the frame
+// Shear deformation: the local element is beam_local_stiffness of the section, Timoshenko when the
+// section has shear areas (the element's "theory"); the co-rotated frame is unchanged.
+// Not supported: warping, offsets, member loads, large local strains; the frame
 // is undefined when the mean nodal y axis q becomes parallel to the chord (local rotations near
 // 90 deg about the member's z axis), which throws ModelError.
 #include "elements/beam.hpp"

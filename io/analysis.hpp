@@ -7,6 +7,7 @@
 // io/analysis_registry.cpp: one line per analysis type.
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -21,6 +22,14 @@ using ojson = nlohmann::ordered_json;
 // program prints them on stderr; a library caller may collect or drop them). Empty: dropped.
 using MessageSink = std::function<void(const std::string&)>;
 
+class LinearSystem;
+
+// Shared by the analyses of one run: the model's linear system, factorised once for all the load
+// cases of its linear analyses (made by the first analysis that needs it).
+struct RunCache {
+  std::shared_ptr<const LinearSystem> linear;
+};
+
 struct AnalysisContext {
   const Model& model;
   const nlohmann::json& document;   // the whole input document
@@ -32,6 +41,7 @@ struct AnalysisContext {
   bool write_vtk = true;
   MessageSink progress;             // may be empty
   MessageSink warning;              // may be empty
+  RunCache* cache = nullptr;       // may be null: nothing shared
 };
 
 // How an analysis ended. results.json keeps its own "status" strings (a contract); this is the
@@ -98,5 +108,6 @@ AnalysisType stiffness_analysis();
 AnalysisType actuator_allocation_analysis();
 AnalysisType buckling_analysis();
 AnalysisType path_analysis();
+AnalysisType modal_analysis();
 
 }  // namespace beamfea

@@ -8,6 +8,7 @@
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
 #include "io/json_util.hpp"
+#include "io/load_reader.hpp"
 #include "io/vtk_writer.hpp"
 #include "solvers/buckling.hpp"
 
@@ -18,7 +19,7 @@ namespace {
 constexpr int kMaxModes = 1000;  // documented bound of "modes" (docs/analyses/buckling.md)
 
 void check_buckling(const Model& model, const nlohmann::json& spec, const std::string& p) {
-  json_in::expect_keys(spec, p, {"id", "type", "description", "modes"});
+  json_in::expect_keys(spec, p, {"id", "type", "description", "modes", "load_case"});
   if (spec.contains("modes")) json_in::integer_in(spec["modes"], json_in::child(p, "modes"), "buckling modes", 1, kMaxModes);
   check_nonlinear_model(model, p);
 }
@@ -27,9 +28,11 @@ AnalysisOutcome run_buckling(const AnalysisContext& ctx) {
   const Model& model = ctx.model;
   BucklingOptions opt;
   if (ctx.spec.contains("modes")) opt.modes = ctx.spec["modes"].get<int>();
-  const BucklingResult r = solve_buckling(model, opt);
+  // The reference load: the analysis's load case, or the default loads.
+  const BucklingResult r = solve_buckling(model_for_load_case(model, ctx.spec), opt);
   AnalysisOutcome out;
   out.result["type"] = "buckling";
+  if (ctx.spec.contains("load_case")) out.result["load_case"] = json_in::id(ctx.spec["load_case"], "", "load_case");
   out.result["status"] = to_string(r.status);
   out.result["message"] = r.message;
   out.result["free_dofs"] = r.free_dofs;

@@ -5,10 +5,12 @@
 #include "io/analysis.hpp"
 #include "io/json_util.hpp"
 #include "io/model_check.hpp"
+#include "io/load_reader.hpp"
 #include "io/model_reader.hpp"
 #include "io/vtk_writer.hpp"
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/linear_static.hpp"
+#include "solvers/member_loading.hpp"
 
 namespace beamfea {
 
@@ -34,10 +36,12 @@ ojson mechanism_json(const Model& model, const std::vector<ZeroEnergyMode>& mode
 }
 
 // Member-level output: a member meshed into several elements reports the forces at its own
-// ends (first element's end 1, last element's end 2).
-ojson element_json(const Model& model, const std::vector<Vec12>& end_forces) {
+// ends (first element's end 1, last element's end 2), and the section forces at stations along it.
+ojson element_json(const Model& model, const LinearStaticResult& r, int interior_stations) {
+  const std::vector<Vec12>& end_forces = r.end_forces;
   ojson out = ojson::object();
-  for (const auto& mem : model.members) {
+  for (std::size_t mi = 0; mi < model.members.size(); ++mi) {
+    const auto& mem = model.members[mi];
     const Vec12& first = end_forces[mem.elements.front()];
     const Vec12& last = end_forces[mem.elements.back()];
     Vec12 ends;
@@ -46,6 +50,12 @@ ojson element_json(const Model& model, const std::vector<Vec12>& end_forces) {
     ojson o;
     o["end_forces"] = ojson::array({to_json(Vec6(ends.head<6>())), to_json(Vec6(ends.tail<6>()))});
     o["section_forces"] = ojson::array({to_json(Vec6(s.head<6>())), to_json(Vec6(s.tail<6>()))});
+    if (mem.type == MemberType::Beam) {
+      ojson st = ojson::array();
+      for (const auto& x : member_stations(model, static_cast<int>(mi), end_forces, r.element_loads, interior_stations))
+        st.push_back(ojson{{"x", x.x}, {"forces", to_json(x.forces)}});
+      o["stations"] = st;
+    }
     if (mem.elements.size() > 1) {
       ojson segs = ojson::array();
       for (int e : mem.elements) {
@@ -60,18 +70,38 @@ ojson element_json(const Model& model, const std::vector<Vec12>& end_forces) {
   return out;
 }
 
+// Interior stations per member (the spec's "stations"), default 10.
+constexpr int kDefaultStations = 10;
+constexpr int kMaxStations = 10000;
+
 void check_linear_static(const Model&, const nlohmann::json& spec, const std::string& p) {
-  json_in::expect_keys(spec, p, {"id", "type", "description"});
+  json_in::expect_keys(spec, p, {"id", "type", "description", "load_case", "stations"});
+  if (spec.contains("stations")) {
+    const int n = json_in::integer_at_least(spec["stations"], json_in::child(p, "stations"), "linear_static stations", 0);
+    if (n > kMaxStations) throw InputError(json_in::child(p, "stations"), "linear_static: at most 10000 stations");
+  }
 }
 
 AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   const Model& model = ctx.model;
   AnalysisOutcome out;
-  const LinearStaticResult r = solve_linear_static(model);
+  // One factorisation for every linear case of the run.
+  std::shared_ptr<const LinearSystem> system;
+  if (ctx.cache && ctx.cache->linear) system = ctx.cache->linear;
+  if (!system) {
+    system = std::make_shared<const LinearSystem>(model);
+    if (ctx.cache) ctx.cache->linear = system;
+  }
+  std::string case_id;
+  if (ctx.spec.contains("load_case")) case_id = json_in::id(ctx.spec["load_case"], "", "load_case");
+  const LinearStaticResult r = system->solve(case_id.empty() ? model.default_loads() : model.loads_of(case_id));
+  const int stations = ctx.spec.contains("stations") ? ctx.spec["stations"].get<int>() : kDefaultStations;
   out.result["type"] = "linear_static";
+  if (!case_id.empty()) out.result["load_case"] = case_id;
   out.result["status"] = r.status == SolveStatus::Converged ? "ok" : to_string(r.status);
   out.result["message"] = r.message;
   out.result["free_dofs"] = r.free_dofs;
+  out.result["factorizations"] = system->factorizations();
   out.message = r.message;
   if (r.status != SolveStatus::Converged) {
     out.termination = r.status == SolveStatus::Mechanism ? AnalysisTermination::Mechanism : AnalysisTermination::Failed;
@@ -86,7 +116,7 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
     append_new_key(nodes, model.nodes[n].id, std::move(o));
   }
   out.result["nodes"] = nodes;
-  out.result["elements"] = element_json(model, r.end_forces);
+  out.result["elements"] = element_json(model, r, stations);
   ojson joints = ojson::object();
   int offset = 6 * static_cast<int>(model.nodes.size());
   for (std::size_t j = 0; j < model.joints.size(); ++j) {
@@ -97,6 +127,7 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
     offset += nc;
   }
   out.result["joints"] = joints;
+  out.result["statically_indeterminate"] = r.statically_indeterminate;
   if (!ctx.out_dir.empty() && ctx.write_vtk) {
     VtkFrame f;
     for (std::size_t n = 0; n < model.nodes.size(); ++n) {
@@ -104,6 +135,12 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
       f.rotation.push_back(r.u.segment<3>(6 * n + 3));
     }
     f.end_forces = r.end_forces;
+    // Diagrams follow the member loads between the nodes.
+    f.section_forces = [&](int e, double xi) {
+      const auto& el = model.elements[e];
+      const double Le = (model.nodes[el.nodes[1]].x - model.nodes[el.nodes[0]].x).norm();
+      return section_forces_at(xi * Le, r.end_forces[e], r.element_loads[e]);
+    };
     const std::string file = ctx.id + ".vtu";
     write_vtu((ctx.out_dir / file).string(), model, f);
     out.result["vtk"] = file;
@@ -112,23 +149,23 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
 }
 
 void check_stiffness(const Model& model, const nlohmann::json& spec, const std::string& p) {
-  json_in::expect_keys(spec, p, {"id", "type", "description", "node"});
-  const int node = node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
-  // The stiffness at a node is finite only where the node can move in all six directions.
-  const DofMap map(model);
-  for (int k = 0; k < 6; ++k)
-    if (const std::string why = why_held(model, map, node, k); !why.empty())
-      throw InputError(json_in::child(p, "node"), "stiffness at node '" + model.nodes[node].id + "': dof " +
-                                                      kDofNames[k] + " " + why + ", so the stiffness there is unbounded");
+  json_in::expect_keys(spec, p, {"id", "type", "description", "node", "load_case"});
+  node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
+  // Any node answers (issue 11): where supports, loops or rigid links hold it, its compliance is zero
+  // and rigid_directions names the directions (solvers/condensed_stiffness.hpp, node_compliance).
 }
 
 AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
   const Model& model = ctx.model;
   const int node = node_ref(model, ctx.spec.at("node"), json_in::child(ctx.pointer, "node"));
   AnalysisOutcome out;
-  const CondensedStiffness k = linear_node_stiffness(model, node);
+  // With a load case, the loaded-mode stiffness about its preload (K + K_g).
+  const bool loaded = ctx.spec.contains("load_case");
+  const CondensedStiffness k = loaded ? loaded_node_stiffness(model_for_load_case(model, ctx.spec), node)
+                                      : linear_node_stiffness(model, node);
   out.result["type"] = "stiffness";
   out.result["node"] = model.nodes[node].id;
+  if (loaded) out.result["load_case"] = json_in::id(ctx.spec["load_case"], "", "load_case");
   out.result["status"] = k.ok ? "ok" : "mechanism";
   out.result["message"] = k.message;
   out.message = k.message;
@@ -142,6 +179,11 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
   ojson ns = ojson::array();
   for (const auto& v : k.null_space) ns.push_back(to_json(v));
   out.result["null_space"] = ns;
+  out.result["compliance"] = to_json(k.compliance);
+  ojson rd = ojson::array();
+  for (const auto& v : k.rigid_directions) rd.push_back(to_json(v));
+  out.result["rigid_directions"] = rd;
+  out.result["statically_indeterminate"] = k.statically_indeterminate;
   out.result["length_scale"] = model.length_scale();
   out.result["scaled_eigenvalues"] = to_json(k.eigenvalues);
   return out;

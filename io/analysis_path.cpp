@@ -11,7 +11,8 @@
 //
 // Result analyses.<id>: type, status, termination, completed, free_dofs, control,
 // steps[] {step, load_factor, control, arc_length, iterations, nodes.<tracked>.displacement,
-//          negative_eigenvalues, stable, min_eigenvalue, stiffness (when stiffness_node), reaction
+//          negative_eigenvalues, stable, min_eigenvalue, stiffness, compliance, rank, null_space,
+//          rigid_directions (when stiffness_node), reaction
 //          (imposed motion), step_control (displacement control: "displacement", or "arc_length" through
 //          a snap-back of the controlled DOF)}, critical_points[] {type, load_factor, step, control,
 //          negative_before, negative_after, load_work, reaction (imposed motion), branch_switched,
@@ -27,6 +28,8 @@
 #include "io/atomic_file.hpp"
 #include "io/json_util.hpp"
 #include "io/model_check.hpp"
+#include "io/load_reader.hpp"
+#include "solvers/member_loading.hpp"
 #include "io/model_reader.hpp"
 #include "solvers/structure.hpp"
 #include "io/vtk_writer.hpp"
@@ -56,7 +59,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
   PathOptions o;
   json_in::expect_keys(spec, p, {"id", "type", "description", "control", "stop", "max_steps", "track", "stiffness_node",
                                  "branch_switch", "stability", "desired_iterations", "max_cuts", "imperfection",
-                                 "save_every"});
+                                 "save_every", "load_case"});
   const auto& c = json_in::object(json_in::require(spec, p, "control", "path analysis"), child(p, "control"), "path control");
   const std::string pc = child(p, "control");
   json_in::expect_keys(c, pc, {"load_factor", "to", "node", "dof", "arc_length", "min", "max", "increments"});
@@ -144,7 +147,8 @@ void check_path(const Model& model, const nlohmann::json& spec, const std::strin
                                                               model.describe({DofRef::Owner::Node, o.control_node, o.control_dof}) +
                                                               " " + why + ": it cannot be the controlled DOF");
   } else {
-    const Eigen::VectorXd f = external_force(model, map);
+    // The reference load: the analysis's load case (already checked), or the default loads.
+    const Eigen::VectorXd f = external_force(model, map, spec.contains("load_case") ? model.loads_of(json_in::id(spec["load_case"], "", "load_case")) : model.default_loads());
     if (f.size() == 0 || !(f.cwiseAbs().maxCoeff() > 0.0))
       throw InputError(child(p, "control"), "path: the model has no loads to scale; add \"loads\", or use displacement "
                                             "control ({\"node\", \"dof\", \"to\"}) to impose a motion");
@@ -172,7 +176,8 @@ const char* control_name(PathControl c) {
 }
 
 AnalysisOutcome run_path(const AnalysisContext& ctx) {
-  const Model& model = ctx.model;
+  // The reference load: the analysis's load case, or the default loads.
+  const Model model = model_for_load_case(ctx.model, ctx.spec);
   PathOptions o = parse(model, ctx.spec, ctx.pointer);
   const int save_every = ctx.spec.contains("save_every") ? ctx.spec["save_every"].get<int>() : 1;
   // One line per step on stderr through the run's progress sink (silent with --quiet).
@@ -189,6 +194,7 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
   out.result["control"] = control_name(o.control);
   out.result["free_dofs"] = r.free_dofs;
   if (!r.completed) out.termination = AnalysisTermination::NotConverged;
+  out.result["statically_indeterminate"] = r.statically_indeterminate;
   out.message = fmt::format("path: {} steps, {}", r.steps.empty() ? 0 : r.steps.size() - 1, r.brief_report());
   ojson steps = ojson::array();
   for (const auto& s : r.steps) {
@@ -205,7 +211,19 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
     j["negative_eigenvalues"] = s.negative_eigenvalues;
     j["stable"] = s.stable;
     j["min_eigenvalue"] = s.min_eigenvalue;
-    if (o.stiffness_node >= 0) j["stiffness"] = s.stiffness ? to_json(*s.stiffness) : ojson(nullptr);
+    if (o.stiffness_node >= 0) {
+      j["stiffness"] = s.stiffness ? to_json(*s.stiffness) : ojson(nullptr);
+      const bool ok = s.node_stiffness && s.node_stiffness->ok;
+      j["compliance"] = ok ? to_json(s.node_stiffness->compliance) : ojson(nullptr);
+      j["rank"] = ok ? ojson(s.node_stiffness->rank) : ojson(nullptr);
+      ojson ns = ojson::array(), rd = ojson::array();
+      if (ok) {
+        for (const auto& v : s.node_stiffness->null_space) ns.push_back(to_json(v));
+        for (const auto& v : s.node_stiffness->rigid_directions) rd.push_back(to_json(v));
+      }
+      j["null_space"] = ns;
+      j["rigid_directions"] = rd;
+    }
     if (imposed) j["reaction"] = s.reaction;
     // Displacement control: "arc_length" on the steps taken through a snap-back of the controlled DOF.
     if (o.control == PathControl::Displacement) j["step_control"] = control_name(s.step_control);

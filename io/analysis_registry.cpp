@@ -5,6 +5,7 @@
 #include "io/analysis.hpp"
 #include "io/json_util.hpp"
 #include "solvers/nonlinear_structure.hpp"
+#include "io/load_reader.hpp"
 
 namespace beamfea {
 
@@ -15,6 +16,7 @@ const std::vector<AnalysisType>& analysis_types() {
       actuator_allocation_analysis(),
       buckling_analysis(),
       path_analysis(),
+      modal_analysis(),
   };
   return types;
 }
@@ -57,6 +59,7 @@ void check_analyses(const Model& model, const nlohmann::json& document) {
       for (const auto& x : analysis_types()) known += (known.empty() ? "" : ", ") + x.name;
       throw InputError(json_in::child(p, "type"), "analysis '" + id + "': unknown type '" + type + "' (known: " + known + ")");
     }
+    check_load_case(model, a, p);
     t->check(model, a, p);
   }
 }

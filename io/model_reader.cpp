@@ -99,7 +99,8 @@ Model read_model(const json& doc) {
   if (!doc.is_object()) throw InputError("", "the model must be a JSON object");
   // Top-level keys of a model file (docs/input-format.md). Add a new collection here.
   expect_keys(doc, "", {"nodes", "materials", "sections", "elements", "joints", "supports", "loads", "prescribed",
-                        "analyses", "units", "title", "name", "description"});
+                        "analyses", "units", "title", "name", "description", "gravity", "masses", "load_cases",
+                        "combinations"});
   Model m;
   reader::ReadState s{doc, m, {}, {}, 1.0};
   reader::read_nodes(s);

@@ -4,7 +4,8 @@
 //   io/read_properties.cpp  nodes, materials, sections
 //   io/read_members.cpp     elements (members), meshed by core/meshing
 //   io/read_joints.cpp      joints
-//   io/read_boundary.cpp    supports, loads, prescribed values
+//   io/read_boundary.cpp    supports, loads (io/load_reader.cpp: nodal, joint and member loads,
+//                           gravity, masses, load cases, combinations), prescribed values
 // Internal to io/: not installed as an API.
 #include <map>
 #include <nlohmann/json.hpp>
@@ -25,6 +26,9 @@ struct ReadState {
   std::unordered_map<std::string, int> sections;   // id -> index
   double length_scale = 1.0;                       // of the user's nodes, computed once
 };
+
+// A beam theory by name ("euler_bernoulli", "timoshenko"); InputError at `pointer` otherwise.
+BeamTheory beam_theory(const std::string& name, const std::string& pointer, const std::string& what);
 
 // The array at doc[key] (pointer "/key"); an empty array when absent and not required.
 const json& collection(const json& doc, const char* key, bool required);

@@ -3,6 +3,7 @@
 
 #include "core/errors.hpp"
 #include "io/json_util.hpp"
+#include "io/load_reader.hpp"
 #include "io/model_reader.hpp"
 #include "io/model_reader_parts.hpp"
 
@@ -38,29 +39,8 @@ void read_supports(ReadState& s) {
 }
 
 void read_loads(ReadState& s) {
-  Model& m = s.model;
-  const auto& arr = collection(s.doc, "loads", false);
-  for (std::size_t i = 0; i < arr.size(); ++i) {
-    const std::string p = child("/loads", i);
-    const auto& o = object(arr[i], p, "load");
-    if (o.contains("joint")) {
-      expect_keys(o, p, {"joint", "coordinate", "value"});
-      JointLoad l;
-      const DofRef d = read_dof_target(m, o, p, "load");
-      l.joint = d.index;
-      l.coordinate = d.comp;
-      l.value = number(require(o, p, "value", "load on joint '" + m.joints[l.joint].id + "'"), child(p, "value"), "load value");
-      m.joint_loads.push_back(l);
-      continue;
-    }
-    expect_keys(o, p, {"node", "force", "moment"});
-    NodalLoad l;
-    l.node = node_ref(m, require(o, p, "node", "load"), child(p, "node"));
-    const std::string what = "load at node '" + m.nodes[l.node].id + "'";
-    if (o.contains("force")) l.force = vec3(o["force"], child(p, "force"), what + " force");
-    if (o.contains("moment")) l.moment = vec3(o["moment"], child(p, "moment"), what + " moment");
-    m.loads.push_back(l);
-  }
+  // Nodal, joint and member loads, gravity, masses, load cases and combinations: io/load_reader.cpp.
+  read_loads_and_cases(s.doc, s.model);
 }
 
 void read_prescribed(ReadState& s) {

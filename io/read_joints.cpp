@@ -106,7 +106,7 @@ void read_stiffness_from_beam(Joint& j, const ReadState& s, const json& o, const
     throw InputError(child(p, "stiffness_from_beam"), what + ": give \"stiffness\" or \"stiffness_from_beam\", not both");
   const std::string bp = child(p, "stiffness_from_beam");
   const auto& b = object(o["stiffness_from_beam"], bp, what + " stiffness_from_beam");
-  expect_keys(b, bp, {"material", "section", "length"});
+  expect_keys(b, bp, {"material", "section", "length", "theory"});
   const std::string mid = json_in::id(require(b, bp, "material", what), child(bp, "material"), what + " material");
   const std::string sid = json_in::id(require(b, bp, "section", what), child(bp, "section"), what + " section");
   const auto mi = s.materials.find(mid);
@@ -116,7 +116,20 @@ void read_stiffness_from_beam(Joint& j, const ReadState& s, const json& o, const
   const double L = positive(require(b, bp, "length", what), child(bp, "length"), what + " length");
   const auto& mat = m.materials[mi->second];
   const auto& sec = m.sections[si->second];
-  j.stiffness_matrix = cantilever_tip_stiffness(BeamSection{mat.E, mat.G, sec.A, sec.Iy, sec.Iz, sec.J}, L);
+  BeamSection bs{mat.E, mat.G, sec.A, sec.Iy, sec.Iz, sec.J};
+  if (b.contains("theory")) {
+    // A shear-deformable link: the Timoshenko cantilever's tip stiffness (its compliance adds
+    // k L/(G A) to the transverse terms).
+    const std::string tp = child(bp, "theory");
+    if (beam_theory(string(b["theory"], tp, what + " theory"), tp, what) == BeamTheory::Timoshenko) {
+      if (!(sec.ky > 0.0 && sec.kz > 0.0))
+        throw InputError(tp, what + ": a Timoshenko beam needs the shear factors of section '" + sec.id +
+                                 "' (give \"k\" or \"ky\" and \"kz\", or a \"shape\")");
+      bs.Asy = sec.A / sec.ky;
+      bs.Asz = sec.A / sec.kz;
+    }
+  }
+  j.stiffness_matrix = cantilever_tip_stiffness(bs, L);
   for (int c = 0; c < j.coordinates(); ++c) j.stiffness[c] = j.stiffness_matrix(c, c);
 }
 

@@ -28,6 +28,12 @@ int find_property(const std::unordered_map<std::string, int>& index, const std::
 
 }  // namespace
 
+BeamTheory beam_theory(const std::string& name, const std::string& pointer, const std::string& what) {
+  if (name == "euler_bernoulli") return BeamTheory::EulerBernoulli;
+  if (name == "timoshenko") return BeamTheory::Timoshenko;
+  throw InputError(pointer, what + ": unknown theory '" + name + "' (expected euler_bernoulli or timoshenko)");
+}
+
 void read_members(ReadState& s) {
   Model& m = s.model;
   const auto& arr = collection(s.doc, "elements", false);
@@ -36,7 +42,7 @@ void read_members(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const std::string p = child("/elements", i);
     const auto& o = object(arr[i], p, "element");
-    expect_keys(o, p, {"id", "type", "nodes", "material", "section", "orientation", "divisions"});
+    expect_keys(o, p, {"id", "type", "nodes", "material", "section", "orientation", "divisions", "theory"});
     Member mem;
     mem.id = json_in::id(require(o, p, "id", "element"), child(p, "id"), "element");
     check_unique(seen, "element", "/elements", mem.id, i);
@@ -71,10 +77,18 @@ void read_members(ReadState& s) {
       }
       if (o.contains("divisions"))
         mem.divisions = integer_in(o["divisions"], child(p, "divisions"), what + " divisions", 1, kMaxDivisions);
+      if (o.contains("theory")) {
+        const std::string tp = child(p, "theory");
+        mem.theory = beam_theory(string(o["theory"], tp, what + " theory"), tp, what);
+        const Section& sec = m.sections[mem.section];
+        if (mem.theory == BeamTheory::Timoshenko && !(sec.ky > 0.0 && sec.kz > 0.0))
+          throw InputError(tp, what + ": a Timoshenko beam needs the shear factors of section '" + sec.id +
+                                   "' (give \"k\" or \"ky\" and \"kz\", or a \"shape\")");
+      }
     } else {
       if (o.contains("divisions") && o["divisions"] != 1)
         throw InputError(child(p, "divisions"), what + ": a rigid link cannot be divided");
-      for (const char* key : {"material", "section", "orientation"})
+      for (const char* key : {"material", "section", "orientation", "theory"})
         if (o.contains(key)) throw InputError(child(p, key), what + ": a rigid link has no " + std::string(key));
     }
     if (const std::string taken = taken_internal_node_id(m, mem); !taken.empty())

@@ -2,6 +2,7 @@
 #include "core/errors.hpp"
 #include "elements/section_shapes.hpp"
 #include "io/json_util.hpp"
+#include "io/load_reader.hpp"
 #include "io/model_reader_parts.hpp"
 
 namespace beamfea::reader {
@@ -32,7 +33,7 @@ void read_materials(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const std::string p = child("/materials", i);
     const auto& o = object(arr[i], p, "material");
-    expect_keys(o, p, {"id", "E", "G", "nu"});
+    expect_keys(o, p, {"id", "E", "G", "nu", "density"});
     Material mat;
     mat.id = json_in::id(require(o, p, "id", "material"), child(p, "id"), "material");
     check_unique(seen, "material", "/materials", mat.id, i);
@@ -47,6 +48,7 @@ void read_materials(ReadState& s) {
     } else {
       throw InputError(child(p, "G"), what + ": missing field 'G' (or 'nu')");
     }
+    mat.density = read_density(o, p, what);
     s.materials.emplace(mat.id, static_cast<int>(m.materials.size()));
     m.materials.push_back(mat);
   }

@@ -10,6 +10,7 @@
 #include "io/json_util.hpp"
 #include "io/model_check.hpp"
 #include "io/model_reader.hpp"
+#include "solvers/linear_static.hpp"
 
 namespace beamfea {
 
@@ -68,6 +69,7 @@ RunReport run_document(const Model& model, const nlohmann::json& document, const
   std::optional<StagingDir> staging;
   if (!options.out_dir.empty()) staging.emplace(options.out_dir);
   ojson analyses = ojson::object();
+  RunCache cache;
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const auto& spec = specs[i];
     const std::string id = json_in::id(spec.at("id"), "", "analysis");
@@ -75,7 +77,7 @@ RunReport run_document(const Model& model, const nlohmann::json& document, const
       continue;
     const AnalysisType* type = find_analysis_type(spec.at("type").get<std::string>());
     AnalysisContext ctx{model,   document, spec, json_in::child("/analyses", i), id, staging ? staging->path() : std::filesystem::path(),
-                        options.write_vtk, {}, options.warning};
+                        options.write_vtk, {}, options.warning, &cache};
     if (options.progress) ctx.progress = [&](const std::string& s) { options.progress("[" + id + "] " + s); };
     const auto t0 = std::chrono::steady_clock::now();
     AnalysisOutcome o = run_one(*type, ctx);
@@ -88,6 +90,7 @@ RunReport run_document(const Model& model, const nlohmann::json& document, const
     report.outcomes.emplace_back(id, std::move(o));
   }
   report.results["analyses"] = std::move(analyses);
+  if (cache.linear) report.results["factorizations"] = cache.linear->factorizations();
   if (staging) {
     write_text_atomic(staging->path() / "results.json", report.results.dump(2) + "\n");
     staging->commit("results.json");

@@ -50,6 +50,29 @@ void write_vtu(const std::string& path, const Model& model, const VtkFrame& fram
   vtkNew<vtkStringArray> ids;
   ids->SetName("id");
   std::vector<int> cell_types;
+  // Diagrams (point data; only with frame.section_forces).
+  const bool diagrams = static_cast<bool>(frame.section_forces);
+  const char* diagram_names[6] = {"diagram_N", "diagram_Vy", "diagram_Vz", "diagram_T", "diagram_My", "diagram_Mz"};
+  const int diagram_axis[6] = {1, 1, 2, 1, 2, 1};  // local axis across which each is drawn
+  vtkNew<vtkDoubleArray> psecf;
+  psecf->SetName("section_forces");
+  psecf->SetNumberOfComponents(6);
+  for (int k = 0; k < 6; ++k) psecf->SetComponentName(k, comp_names[k]);
+  std::vector<vtkSmartPointer<vtkDoubleArray>> diag;
+  for (int k = 0; k < 6; ++k) {
+    diag.push_back(vtkSmartPointer<vtkDoubleArray>::New());
+    diag.back()->SetName(diagram_names[k]);
+    diag.back()->SetNumberOfComponents(3);
+  }
+  // Point values for points that are not on a beam (rigid links, joints).
+  auto add_point_forces = [&](const Vec6& f, const Mat3* R) {
+    if (!diagrams) return;
+    psecf->InsertNextTuple(f.data());
+    for (int k = 0; k < 6; ++k) {
+      const Vec3 v = R ? Vec3(f[k] * R->row(diagram_axis[k]).transpose()) : Vec3::Zero();
+      diag[k]->InsertNextTuple3(v.x(), v.y(), v.z());
+    }
+  };
   std::map<std::string, vtkSmartPointer<vtkDoubleArray>> extra;
   for (const auto& [name, values] : frame.node_scalars) {
     auto a = vtkSmartPointer<vtkDoubleArray>::New();
@@ -104,12 +127,19 @@ void write_vtu(const std::string& path, const Model& model, const VtkFrame& fram
       else u = (1 - xi) * frame.displacement[a] + xi * frame.displacement[b];
       const Vec3 r = (1 - xi) * frame.rotation[a] + xi * frame.rotation[b];
       const vtkIdType id_pt = add_point(X, u, r, k == 0 ? a : (k == n ? b : -1));
+      const bool beam_forces = diagrams && el.type == MemberType::Beam;
+      if (beam_forces) {
+        const Mat3 Rl = beam_local_axes(Xa, Xb, el.orientation);
+        add_point_forces(frame.section_forces(e, xi), &Rl);
+      } else {
+        add_point_forces(Vec6::Zero(), nullptr);
+      }
       if (k > 0) {
         const vtkIdType line[2] = {prev, id_pt};
         cells->InsertNextCell(2, line);
         cell_types.push_back(3);  // VTK_LINE
         const double xm = (k - 0.5) / n;
-        const Vec6 s = (1 - xm) * sf.head<6>() + xm * sf.tail<6>();
+        const Vec6 s = beam_forces ? frame.section_forces(e, xm) : Vec6((1 - xm) * sf.head<6>() + xm * sf.tail<6>());
         add_cell_data(el.type == MemberType::Beam ? 0 : 1, el.member, e, id, s);
       }
       prev = id_pt;
@@ -118,6 +148,7 @@ void write_vtu(const std::string& path, const Model& model, const VtkFrame& fram
   for (const auto& j : model.joints) {
     const int a = j.nodes[1];
     const vtkIdType id_pt = add_point(model.nodes[a].x, frame.displacement[a], frame.rotation[a], a);
+    add_point_forces(Vec6::Zero(), nullptr);
     cells->InsertNextCell(1, &id_pt);
     cell_types.push_back(1);  // VTK_VERTEX
     add_cell_data(2, -1, -1, j.id, Vec6::Zero());
@@ -130,6 +161,10 @@ void write_vtu(const std::string& path, const Model& model, const VtkFrame& fram
   grid->GetPointData()->SetVectors(disp);
   grid->GetPointData()->AddArray(rot);
   for (auto& [name, a] : extra) grid->GetPointData()->AddArray(a);
+  if (diagrams) {
+    grid->GetPointData()->AddArray(psecf);
+    for (auto& d : diag) grid->GetPointData()->AddArray(d);
+  }
   grid->GetCellData()->AddArray(secf);
   grid->GetCellData()->AddArray(N);
   grid->GetCellData()->AddArray(T);

@@ -8,6 +8,10 @@
 // (N Vy Vz T My Mz at the cell's middle, local axes, N > 0 in tension), "N", "T", "My", "Mz",
 // "kind" (0 beam, 1 rigid, 2 joint), "member_index", "element_index", and "id" (the user's id).
 // Field data: any named scalars (load factor, step, stable flag...).
+// With VtkFrame::section_forces, also point data "section_forces" and the diagrams as vectors
+// across the member, "diagram_N", "diagram_Vy", "diagram_Mz" (along local y: bending in x-y),
+// "diagram_Vz", "diagram_My" (along local z: bending in x-z), "diagram_T" (along local y): Warp By
+// Vector on one of them with a small scale factor draws that diagram along every beam.
 #include <functional>
 #include <map>
 #include <string>
@@ -27,6 +31,10 @@ struct VtkFrame {
   int segments = 8;
   // Optional: displacement of the beam axis of `element` at xi in [0, 1] (overrides the cubic).
   std::function<Vec3(int element, double xi)> shape;
+  // Optional: section forces [N Vy Vz T My Mz] of a beam element at xi (member loads between the
+  // nodes make them vary). When given, cell data is taken at each cell's middle and the point
+  // data "section_forces" and the diagrams are written (see write_vtu).
+  std::function<Vec6(int element, double xi)> section_forces;
 };
 
 // Section forces (internal-force convention) at both ends from the element end forces:

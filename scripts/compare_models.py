@@ -26,6 +26,7 @@ Spec format (every key but "pairs" optional):
   "quantities": ["critical_force", "unloaded", "near_before", "near_after", "large", "P_at_L"],
   "large_deflection": 1.0,   deflection of the "large deformation" quantities
   "near_offset": 1e-3,       how far from the critical point "near buckling" tangents are taken
+  "loaded_at": 1.0,          load factor of the "loaded_compliance" quantity
   "pairs": [{"id": "B_S", "name": "model B, S posture",
              "models": [{"key": "lumped", "file": "models/B_S_lumped.json", "label": "VJM"},
                         {"key": "beam", "file": "models/B_S_beam.json", "label": "beam"}],
@@ -45,6 +46,11 @@ Quantities (tangents k = dP/d(deflection) of the displacement-controlled curve, 
                   beyond it by more than near_offset; at a bifurcation only if the engine switched)
   large           tangent at the large deflection
   P_at_L          force at the large deflection
+  unloaded_compliance  compliance (entry dof, dof) of beamfea's "stiffness" at zero load: finite for a
+                  node whose motion closed loops restrict (the end point of a parallel manipulator)
+  loaded_compliance    the path's loaded compliance (entry dof, dof) at the step nearest to the load
+                  factor "loaded_at" (default 1.0) before the first critical point (interpolated
+                  linearly between the two steps around it)
 
 Files are relative to the spec. Run:
   /usr/bin/python3 scripts/compare_models.py SPEC --out OUT [--only ID ...]
@@ -141,6 +147,9 @@ def _run_program(exe, model_file, out_dir):
     return None, None, (p.stderr.strip() or p.stdout.strip())[-500:]
 
 
+UNLOADED_COMPLIANCE = {}  # out_dir -> compliance entry of the last unloaded_stiffness run there
+
+
 def unloaded_stiffness(exe, doc, node, dof, out_dir, log):
     d = copy.deepcopy(doc)
     d["supports"] = [s for s in d.get("supports", []) if s.get("node") != node]
@@ -154,12 +163,32 @@ def unloaded_stiffness(exe, doc, node, dof, out_dir, log):
     a = res["analyses"]["K"]
     if a.get("status") != "ok":
         return math.inf, a.get("message", "")  # e.g. a rigid straight chain: unbounded
+    if nonempty(a.get("compliance")):
+        UNLOADED_COMPLIANCE[out_dir] = a["compliance"][dof][dof]
+    if in_span(dof, a.get("rigid_directions")):
+        return math.inf, ""  # the node cannot move along dof (e.g. a rigid straight chain): unbounded
     return a["matrix"][dof][dof], ""
+
+
+def in_span(dof, vectors, tol=1e-9):
+    """True when the unit vector of `dof` lies in the span of `vectors` (Gram-Schmidt, pure Python)."""
+    basis = []
+    for v in (vectors if vectors is not None else []):
+        w = [float(x) for x in v]
+        for b in basis:
+            d = sum(x * y for x, y in zip(w, b))
+            w = [x - d * y for x, y in zip(w, b)]
+        n = math.sqrt(sum(x * x for x in w))
+        if n > 1e-12:
+            basis.append([x / n for x in w])
+    proj = sum(b[dof] ** 2 for b in basis)
+    return proj > 1.0 - tol
 
 
 class Curve:
     def __init__(self):
         self.d, self.P, self.stable, self.neg, self.mineig, self.k, self.lf = [], [], [], [], [], [], []
+        self.comp = []       # the path's loaded compliance entry (dof, dof) per step, or None
         self.critical = []   # (deflection, force, type)
         self.termination = ""
         self.buckling = []   # load factors of a "buckling" analysis
@@ -193,6 +222,8 @@ def extract_curve(res, spec):
         # The engine's loaded stiffness entry dF/du of the node; the deflection and the force are
         # assumed measured along the same direction (both scales of the same sign), so dP/dd = dF/du.
         c.k.append(k[dof][dof] if nonempty(k) else None)
+        comp = s.get("compliance")
+        c.comp.append(comp[dof][dof] if nonempty(comp) else None)
     for cp in a.get("critical_points", []):
         # the step at whose end the engine detected it; the critical point lies between that step
         # and the one before, at the critical load factor
@@ -292,6 +323,17 @@ def quantities(c, k0, spec):
         q["large"] = tangent_at(c, large, side=0, stable_only=False)
     elif c.d and not c.completed:
         q["P_at_L"] = q["large"] = "path failed"
+    at = spec.get("loaded_at", 1.0)
+    # On the primary branch: before the first critical point (the load factor may pass `at` again after it).
+    first = c.critical_step[0] if c.critical_step and c.critical_step[0] is not None else len(c.lf)
+    with_c = [i for i in range(min(first, len(c.lf))) if c.comp[i] is not None]
+    if with_c:
+        q["loaded_compliance"] = c.comp[min(with_c, key=lambda j: abs(c.lf[j] - at))]
+        for i, j in zip(with_c, with_c[1:]):  # linear interpolation between the steps around `at`
+            if j == i + 1 and (c.lf[i] - at) * (c.lf[j] - at) <= 0 and c.lf[i] != c.lf[j]:
+                t = (at - c.lf[i]) / (c.lf[j] - c.lf[i])
+                q["loaded_compliance"] = c.comp[i] + t * (c.comp[j] - c.comp[i])
+                break
     return q
 
 
@@ -409,6 +451,7 @@ def main():
             if c is not None and c.d:
                 terminations.append((pair["id"], m["key"], len(c.d), "ok" if c.completed else "FAILED", c.termination))
             qs[m["key"]] = quantities(c, k0, spec)
+            qs[m["key"]]["unloaded_compliance"] = UNLOADED_COMPLIANCE.get(os.path.join(mdir, "unloaded"))
             qs[m["key"]]["_missing"] = missing
             curves.append((m.get("label", m["key"]), c))
         if not args.no_plots and any(c is not None and c.d for _, c in curves):

@@ -135,8 +135,7 @@ enum class ActuatorRole { Spring, Frozen };
 Model scheme_model(const Model& model, const AllocationOptions& o, const std::vector<int>& actuated, Links links,
                    ActuatorRole role) {
   Model m = model;
-  m.loads.clear();
-  m.joint_loads.clear();
+  m.set_default_loads({});
   for (auto& p : m.prescribed) p.value = 0.0;
   if (links == Links::Rigid) {
     for (auto& e : m.elements) e.type = MemberType::Rigid;

@@ -10,6 +10,10 @@
 //       for the raw forces f_int - f_ext - reactions transmitted at the slave nodes, mapped to the
 //       free DOFs by Z (the DofMap's T_f rows at the independent DOFs). A chain of rigid links with
 //       rotational springs under an end load P has G = -P/L per hinge: lambda_cr = K_theta/(P L).
+//     - closed loops (an edge of rigid links/joints outside the forest): the closure curvature of
+//       solvers/nonlinear_structure.hpp contracted with the loop's multipliers from the linear
+//       solution (DofMap::constraint_forces; the minimum-norm split where closure rows are redundant,
+//       whose indeterminate part carries no load in a planar loop under in-plane loads).
 // K_g is symmetrised (it is symmetric at equilibrium under forces; applied moments add a small
 // skew part that is dropped for the eigen-problem).
 //
@@ -18,11 +22,14 @@
 // quotient of the linear solution; small systems are solved densely. Only positive load factors
 // are reported, ascending.
 //
-// Not supported: closed loops of rigid links/joints (ModelError), prebuckling displacements
-// (linearised theory), member loads.
+// Not supported: prebuckling displacements
+// (linearised theory). Member loads and self-weight enter through the elements' mean axial forces
+// (a column under its own weight converges to Greenhill's load with the mesh); the change of their
+// consistent moments with the chord (a load stiffness) is left out of K_g.
 #include <string>
 #include <vector>
 
+#include "core/dof_map.hpp"
 #include "core/model.hpp"
 
 namespace beamfea {

@@ -1,11 +1,14 @@
 #include "solvers/condensed_stiffness.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 #include <Eigen/UmfPackSupport>
 #include <fmt/format.h>
 
 #include "core/assembly.hpp"
 #include "core/errors.hpp"
+#include "solvers/initial_stress.hpp"
+#include "solvers/linear_static.hpp"
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
 
@@ -13,6 +16,8 @@ namespace beamfea {
 
 void CondensedStiffnessOptions::validate() const {
   if (!(rank_tolerance > 0.0 && rank_tolerance < 1.0)) throw Error("CondensedStiffnessOptions: rank_tolerance must be in (0, 1)");
+  if (!(motion_tolerance > 0.0 && motion_tolerance < 1.0))
+    throw Error("CondensedStiffnessOptions: motion_tolerance must be in (0, 1)");
 }
 
 void analyse_rank(const Mat6& K, double L, double tolerance, CondensedStiffness& out) {
@@ -96,26 +101,139 @@ RawCondensation condense_to_raw_dofs(const DofMap& map, const SparseMatrix& K, c
   return out;
 }
 
+namespace {
+
+// Eigenvalues of the compliance below this fraction of the largest are the zeros of its rigid and
+// free directions (exactly zero up to the rounding of U_r: 1e-16 relative).
+constexpr double kPseudoInverseTolerance = 1e-12;
+
+// A unit vector (in the unscaled components) with its largest component positive: reproducible output.
+Vec6 reproducible_direction(Vec6 v) {
+  v.normalize();
+  Eigen::Index k;
+  v.cwiseAbs().maxCoeff(&k);
+  return v[k] < 0 ? Vec6(-v) : v;
+}
+
+// K_z = -M of the saddle point [K A^T; A 0][X; M] = [0; I] for dense rows A (r x n); false when singular.
+bool condense_rows(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz) {
+  // Small model, K positive definite, well-posed rows: dense Schur complement (solvers/sparse_factor.hpp).
+  if (condense_dense(K, A, Kz)) return true;
+  const int n = static_cast<int>(K.rows()), r = static_cast<int>(A.rows());
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(K.nonZeros() + 2 * A.size());
+  for (int j = 0; j < K.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(K, j); it; ++it) t.emplace_back(static_cast<int>(it.row()), j, it.value());
+  for (int k = 0; k < r; ++k)
+    for (int j = 0; j < n; ++j)
+      if (A(k, j) != 0.0) {
+        t.emplace_back(n + k, j, A(k, j));
+        t.emplace_back(j, n + k, A(k, j));
+      }
+  SparseMatrix S(n + r, n + r);
+  S.setFromTriplets(t.begin(), t.end());
+  S.makeCompressed();
+  Eigen::UmfPackLU<SparseMatrix> lu(S);
+  if (lu.info() != Eigen::Success) return false;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n + r, r);
+  rhs.bottomRows(r).setIdentity();
+  const Eigen::MatrixXd X = lu.solve(rhs);
+  if (lu.info() != Eigen::Success || !X.allFinite()) return false;
+  // A nearly singular saddle point shows as a residual far above rounding.
+  if ((S * X - rhs).norm() > 1e-8 * (Eigen::MatrixXd(S.cwiseAbs() * X.cwiseAbs()).norm() + 1.0)) return false;
+  const Eigen::MatrixXd M = X.bottomRows(r);
+  Kz = -0.5 * (M + M.transpose());
+  return true;
+}
+
+}  // namespace
+
+CondensedStiffness node_compliance(const SparseMatrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
+                                   double L, const CondensedStiffnessOptions& options) {
+  options.validate();
+  CondensedStiffness out;
+  Vec6 S;
+  S << 1, 1, 1, L, L, L;
+  // Directions the node can move: the range of the scaled rows (a zero column pads an empty Tn).
+  Eigen::MatrixXd Ts = Eigen::MatrixXd::Zero(6, std::max<Eigen::Index>(1, Tn.cols()));
+  if (Tn.cols() > 0) Ts = S.asDiagonal() * Tn * col_scale.asDiagonal();
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Ts, Eigen::ComputeFullU);
+  const Eigen::VectorXd sv = svd.singularValues();
+  const double smax = sv.size() ? sv[0] : 0.0;
+  int r = 0;
+  // Relative to the largest, and to 1: the scaled rows of a node that moves at all are O(1) (a
+  // translation, or a rotation times a lever arm over L), those of a held node rounding noise.
+  while (r < sv.size() && sv[r] > options.motion_tolerance * std::max(smax, 1.0)) ++r;
+  const Eigen::MatrixXd U = svd.matrixU();  // 6 x 6
+  for (int k = r; k < 6; ++k) out.rigid_directions.push_back(reproducible_direction(S.cwiseInverse().asDiagonal() * U.col(k)));
+  if (r == 0) {  // held in every direction: nothing to condense
+    analyse_rank(out.K, L, options.rank_tolerance, out);
+    out.null_space.clear();
+    out.ok = true;
+    return out;
+  }
+  const Eigen::MatrixXd Ur = U.leftCols(r);
+  const Eigen::MatrixXd A = Ur.transpose() * S.asDiagonal() * Tn;
+  Eigen::MatrixXd Kz;
+  if (!condense_rows(K, A, Kz)) return out;
+  // Free directions of the node: the null space of K_z.
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Kz);
+  const double big = es.eigenvalues().cwiseAbs().maxCoeff();
+  Eigen::VectorXd inv = Eigen::VectorXd::Zero(r);
+  for (int i = 0; i < r; ++i) {
+    const double ev = es.eigenvalues()[i];
+    if (big > 0.0 && std::abs(ev) > options.rank_tolerance * big) {
+      inv[i] = 1.0 / ev;
+    } else {
+      out.null_space.push_back(reproducible_direction(S.cwiseInverse().asDiagonal() * Ur * es.eigenvectors().col(i)));
+    }
+  }
+  const Eigen::MatrixXd Cz = es.eigenvectors() * inv.asDiagonal() * es.eigenvectors().transpose();
+  const Mat6 Sinv = S.cwiseInverse().asDiagonal();
+  out.compliance = Sinv * Ur * Cz * Ur.transpose() * Sinv;
+  out.compliance = 0.5 * (out.compliance + out.compliance.transpose()).eval();
+  if (r == 6) {
+    out.K = S.asDiagonal() * Ur * Kz * Ur.transpose() * S.asDiagonal();  // K_c itself
+  } else {
+    // Restricted node: the pseudo-inverse of the compliance in the components [ux .. rz] (as the
+    // loaded stiffness of a chain with fewer than six joints has always been reported).
+    Eigen::SelfAdjointEigenSolver<Mat6> ec(out.compliance);
+    const double cmax = ec.eigenvalues().cwiseAbs().maxCoeff();
+    Vec6 ci = Vec6::Zero();
+    for (int i = 0; i < 6; ++i)
+      if (std::abs(ec.eigenvalues()[i]) > kPseudoInverseTolerance * cmax) ci[i] = 1.0 / ec.eigenvalues()[i];
+    out.K = ec.eigenvectors() * ci.asDiagonal() * ec.eigenvectors().transpose();
+  }
+  out.K = 0.5 * (out.K + out.K.transpose()).eval();
+  const std::vector<Vec6> free_dirs = out.null_space;
+  analyse_rank(out.K, L, options.rank_tolerance, out);  // rank and scaled eigenvalues of the matrix
+  out.null_space = free_dirs;
+  out.ok = true;
+  return out;
+}
+
 CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const SparseMatrix& K, int node,
                                     const CondensedStiffnessOptions& options) {
   options.validate();
-  CondensedStiffness out;
-  std::vector<int> raw(6);
-  for (int k = 0; k < 6; ++k) raw[k] = map.raw_node(node, k);
-  const RawCondensation c = condense_to_raw_dofs(map, K, raw);
-  if (c.outcome == RawCondensation::Outcome::HeldDof)
-    throw ModelError("node '" + model.nodes[node].id + "' dof " + kDofNames[c.held],
-                     "is supported or prescribed: the stiffness there is unbounded");
-  if (c.outcome == RawCondensation::Outcome::Mechanism) {
+  const int n = map.free_size();
+  Eigen::MatrixXd Tn = Eigen::MatrixXd::Zero(6, n);
+  for (int k = 0; k < 6; ++k)
+    for (SparseRowMatrix::InnerIterator it(map.T_free(), map.raw_node(node, k)); it; ++it) Tn(k, it.col()) += it.value();
+  const double L = model.length_scale();
+  Eigen::VectorXd col_scale(n);
+  for (int j = 0; j < n; ++j) {
+    const DofRef& d = map.free_dofs()[j];
+    const bool rotation = d.owner == DofRef::Owner::Node ? d.comp >= 3 : !model.joints[d.index].is_translation(d.comp);
+    col_scale[j] = rotation ? 1.0 / L : 1.0;
+  }
+  CondensedStiffness out = node_compliance(K, Tn, col_scale, L, options);
+  if (!out.ok) {
     out.modes = zero_energy_modes(model, map, K, 12);
-    out.message = "holding node '" + model.nodes[node].id + "' still leaves a mechanism; " +
-                  describe_mechanism(out.modes);
+    out.message = "holding node '" + model.nodes[node].id + "' still leaves a mechanism; " + describe_mechanism(out.modes);
     return out;
   }
-  out.K = c.K;
-  analyse_rank(out.K, model.length_scale(), options.rank_tolerance, out);
-  out.ok = true;
-  out.message = fmt::format("stiffness of node '{}': rank {}", model.nodes[node].id, out.rank);
+  out.message = fmt::format("stiffness of node '{}': rank {}, {} rigid directions, {} free directions", model.nodes[node].id,
+                            out.rank, out.rigid_directions.size(), out.null_space.size());
   return out;
 }
 
@@ -126,7 +244,29 @@ CondensedStiffness linear_node_stiffness(const Model& model, int node, const Con
   assembler.begin();
   structure.assemble(map, assembler);
   assembler.end();
-  return condense_to_node(model, map, assembler.K_ff(), node, options);
+  CondensedStiffness out = condense_to_node(model, map, assembler.K_ff(), node, options);
+  out.statically_indeterminate = map.redundant_constraints();
+  return out;
+}
+
+CondensedStiffness loaded_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options) {
+  const LinearStaticResult lin = solve_linear_static(model);
+  if (lin.status != SolveStatus::Converged) {
+    CondensedStiffness out;
+    out.message = "loaded stiffness: the linear static solution of the preload failed: " + lin.message;
+    out.modes = lin.modes;
+    return out;
+  }
+  const DofMap map(model);
+  const LinearStructure structure(model);
+  SystemAssembler assembler(map);
+  assembler.begin();
+  structure.assemble(map, assembler);
+  assembler.end();
+  SparseMatrix Kg = geometric_stiffness(model, map, structure, lin);
+  // Symmetric part: the skew part from applied moments is dropped, as in buckling.
+  const SparseMatrix Kt = assembler.K_ff() + SparseMatrix(0.5 * (Kg + SparseMatrix(Kg.transpose())));
+  return condense_to_node(model, map, Kt, node, options);
 }
 
 }  // namespace beamfea

@@ -9,6 +9,17 @@
 // which stays regular when K itself is singular, as long as holding the node makes the
 // structure stable (e.g. a chain ending in a spherical joint: K_c has rank 3 there).
 // Rank and null space are decided on K_c scaled by the model's length (rotations x L).
+//
+// Any node (node_compliance): the node's motion u_n = T_n u over the coordinates u may be restricted
+// (supports, prescribed values, closed loops, rigid links): T_n has rank r <= 6. With S = diag(1,1,1,
+// L,L,L) and the coordinates' rotations scaled by 1/L, the SVD of the scaled S T_n splits R^6 into the
+// r directions the node can move (U_r) and the 6 - r it cannot (rigid_directions). The saddle point
+// with the r independent rows z = U_r^T S T_n u gives the stiffness K_z on the movable directions; K_z
+// may be singular (the node moves freely: null_space, a mechanism direction of the node). Then
+//   compliance C = S^-1 U_r K_z^+ U_r^T S^-1   (6x6, symmetric, finite: zero where the node cannot
+//                                               move and in the free directions, where it is unbounded)
+//   matrix     K = S U_r K_z U_r^T S           (the pseudo-inverse of C on the directions it can move)
+// so that a node free in all six directions gets K = K_c and C = K_c^-1 exactly.
 #include <string>
 #include <vector>
 
@@ -20,6 +31,9 @@ namespace beamfea {
 
 struct CondensedStiffnessOptions {
   double rank_tolerance = 1e-9;   // eigenvalue / largest eigenvalue of the length-scaled K_c
+  // Singular value / largest of the length-scaled node rows S T_n below which the node cannot move
+  // that way: rows eliminated exactly are zero up to rounding of the elimination (1e-14 relative).
+  double motion_tolerance = 1e-10;
   void validate() const;
 };
 
@@ -27,10 +41,13 @@ struct CondensedStiffness {
   bool ok = false;
   std::string message;
   Mat6 K = Mat6::Zero();
+  Mat6 compliance = Mat6::Zero();  // zero in rigid directions and in the null space
   int rank = 0;
   std::vector<Vec6> null_space;    // unit vectors (in the length-scaled metric), u then rotation
+  std::vector<Vec6> rigid_directions;  // directions the node cannot move (unit vectors, same metric)
   Vec6 eigenvalues = Vec6::Zero(); // of the length-scaled matrix, ascending
   std::vector<ZeroEnergyMode> modes;  // when holding the node leaves a mechanism
+  std::vector<std::string> statically_indeterminate;  // redundant constraint rows (DofMap)
 };
 
 // The saddle-point condensation itself, onto any list of raw DOFs (rows of T_free).
@@ -42,6 +59,13 @@ struct RawCondensation {
 };
 RawCondensation condense_to_raw_dofs(const DofMap& map, const SparseMatrix& K, const std::vector<int>& raw);
 
+// Stiffness and compliance of a node (see the header comment) for a symmetric stiffness K (n x n) over
+// some coordinates, the node's six raw rows Tn (6 x n) over the same coordinates, col_scale (n): 1 for a
+// translation-like coordinate, 1/L for a rotation-like one, and the model's length L. Outcome not ok
+// (message empty) when holding the node's movable directions still leaves a mechanism.
+CondensedStiffness node_compliance(const SparseMatrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
+                                   double L, const CondensedStiffnessOptions& options = {});
+
 // Condensed stiffness of `node` for the reduced matrix K (free x free) of `map`.
 CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const SparseMatrix& K, int node,
                                     const CondensedStiffnessOptions& options = {});
@@ -51,5 +75,11 @@ void analyse_rank(const Mat6& K, double L, double tolerance, CondensedStiffness&
 
 // Linear (unloaded) condensed stiffness of a node of the model.
 CondensedStiffness linear_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options = {});
+
+// Loaded-mode stiffness of a node (Klimchik, Pashkevich & Chablat's "loaded mode"): condensation
+// of K + K_g, K_g the geometric stiffness (solvers/buckling.hpp) of the linear solution of the
+// model's default loads (the preload: own weight, payload), linearised about the reference
+// configuration.
+CondensedStiffness loaded_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options = {});
 
 }  // namespace beamfea

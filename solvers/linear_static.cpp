@@ -4,6 +4,7 @@
 
 #include "core/assembly.hpp"
 #include "core/errors.hpp"
+#include "solvers/member_loading.hpp"
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
 
@@ -23,69 +24,98 @@ void LinearStaticOptions::validate() const {
   if (!(zero_energy_tolerance > 0.0)) throw Error("LinearStaticOptions: zero_energy_tolerance must be positive");
 }
 
-LinearStaticResult solve_linear_static(const Model& model, const LinearStaticOptions& options) {
-  options.validate();
-  LinearStaticResult res;
-  const DofMap map(model);
-  const Eigen::VectorXd up = map.prescribed_values();
-  if (auto conflict = map.check_consistency(up); !conflict.empty()) throw ModelError("supports and prescribed values", conflict);
-  const LinearStructure structure(model);
-  SystemAssembler assembler(map, SystemAssembler::Passes::One);
-  assembler.begin();
-  structure.assemble(map, assembler);
-  assembler.end();
-  const SparseMatrix& K = assembler.K_ff();
-  res.free_dofs = map.free_size();
-
-  const Eigen::VectorXd f_raw = external_force(model, map);
-  Eigen::VectorXd f = map.reduce(f_raw);
-  if (map.prescribed_size() > 0) f -= assembler.K_fp() * up;
-
+struct LinearSystem::Impl {
+  explicit Impl(const Model& m) : map(m), structure(m), assembler(map, SystemAssembler::Passes::One) {}
+  DofMap map;
+  LinearStructure structure;
+  SystemAssembler assembler;
   SparseFactor factor;
+  Eigen::VectorXd up;
+  LinearStaticResult failure;  // status != Converged when the system cannot be solved
+};
+
+LinearSystem::~LinearSystem() = default;
+
+LinearSystem::LinearSystem(const Model& model, const LinearStaticOptions& options)
+    : model_(&model), impl_(std::make_unique<Impl>(model)) {
+  options.validate();
+  Impl& s = *impl_;
+  s.up = s.map.prescribed_values();
+  if (auto conflict = s.map.check_consistency(s.up); !conflict.empty()) throw ModelError("supports and prescribed values", conflict);
+  s.assembler.begin();
+  s.structure.assemble(s.map, s.assembler);
+  s.assembler.end();
+  const SparseMatrix& K = s.assembler.K_ff();
+  LinearStaticResult& res = s.failure;
+  res.free_dofs = s.map.free_size();
+  res.status = SolveStatus::Converged;
   FactorOptions fo;
   fo.singular_rcond = options.singular_rcond;
-  const FactorStatus fs = factor.factorize(K, fo);
+  const FactorStatus fs = s.factor.factorize(K, fo);
   if (fs == FactorStatus::TooLarge) {
     res.status = SolveStatus::Failed;
     res.message = fmt::format("the factorisation of {} free DOFs is too large for CHOLMOD's symbolic analysis "
-                              "(factor over 2^31 entries or out of memory)", map.free_size());
-    return res;
+                              "(factor over 2^31 entries or out of memory)", s.map.free_size());
+    return;
   }
   if (fs != FactorStatus::Ok) {
-    res.modes = zero_energy_modes(model, map, K, 12, options.zero_energy_tolerance);
+    res.modes = zero_energy_modes(model, s.map, K, 12, options.zero_energy_tolerance);
     if (!res.modes.empty()) {
       res.status = SolveStatus::Mechanism;
       res.message = describe_mechanism(res.modes);
-      return res;
+      return;
     }
-    if (fs == FactorStatus::Singular || !factor.usable()) {
+    if (fs == FactorStatus::Singular || !s.factor.usable()) {
       res.status = SolveStatus::Failed;
       res.message = "the stiffness matrix could not be factorised";
-      return res;
+      return;
     }
     // Ill-conditioned but without a zero-energy mode: the factorisation stands.
   }
-  const Eigen::VectorXd uf = factor.solve(f);
-  res.u = map.expand(uf, up);
+  factorizations_ = 1;
+}
 
-  const Eigen::VectorXd r = structure.internal_force(map, res.u) - f_raw;
-  const auto cf = map.constraint_forces(r);
+LinearStaticResult LinearSystem::solve(const LoadSet& loads) const {
+  const Impl& s = *impl_;
+  if (s.failure.status != SolveStatus::Converged) return s.failure;
+  const Model& model = *model_;
+  ++solves_;
+  LinearStaticResult res;
+  res.free_dofs = s.map.free_size();
+  const Eigen::VectorXd f_raw = external_force(model, s.map, loads);
+  Eigen::VectorXd f = s.map.reduce(f_raw);
+  if (s.map.prescribed_size() > 0) f -= s.assembler.K_fp() * s.up;
+  const Eigen::VectorXd uf = s.factor.solve(f);
+  res.u = s.map.expand(uf, s.up);
+
+  const Eigen::VectorXd r = s.structure.internal_force(s.map, res.u) - f_raw;
+  const auto cf = s.map.constraint_forces(r);
   res.reactions.assign(model.nodes.size(), Vec6::Zero());
   res.supported.assign(model.nodes.size(), 0);
-  for (int p = 0; p < map.prescribed_size(); ++p) {
-    const auto& d = map.prescribed()[p].dof;
+  for (int p = 0; p < s.map.prescribed_size(); ++p) {
+    const auto& d = s.map.prescribed()[p].dof;
     if (d.owner != DofRef::Owner::Node) continue;
     res.reactions[d.index][d.comp] = cf.prescribed[p];
     res.supported[d.index] = 1;
   }
   res.joint_forces = cf.joint;
+  res.element_loads = element_loads(model, loads);
+  res.statically_indeterminate = s.map.redundant_constraints();
   res.end_forces.resize(model.elements.size());
-  for (std::size_t e = 0; e < model.elements.size(); ++e)
-    res.end_forces[e] = structure.end_forces(map, static_cast<int>(e), res.u);
+  for (std::size_t e = 0; e < model.elements.size(); ++e) {
+    res.end_forces[e] = s.structure.end_forces(s.map, static_cast<int>(e), res.u);
+    if (const auto& beam = s.structure.beam(static_cast<int>(e)); beam && !res.element_loads[e].empty())
+      res.end_forces[e] += fixed_end_forces(beam->length(), res.element_loads[e]);
+  }
   res.status = SolveStatus::Converged;
-  res.message = fmt::format("linear static: {} free DOFs, max |u| = {:.6g}", map.free_size(),
+  res.message = fmt::format("linear static: {} free DOFs, max |u| = {:.6g}", s.map.free_size(),
                             res.u.size() ? res.u.cwiseAbs().maxCoeff() : 0.0);
   return res;
+}
+
+LinearStaticResult solve_linear_static(const Model& model, const LinearStaticOptions& options) {
+  const LinearSystem system(model, options);
+  return system.solve(model.default_loads());
 }
 
 }  // namespace beamfea

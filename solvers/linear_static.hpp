@@ -1,12 +1,14 @@
 #pragma once
 // Linear static analysis: K_ff u_f = T_f^T f - K_fp u_p, then reactions, end forces and joint
 // forces by back-substitution. A singular K is diagnosed (zero-energy modes named), never solved.
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/dof_map.hpp"
 #include "core/model.hpp"
 #include "elements/beam.hpp"
+#include "elements/member_loads.hpp"
 #include "solvers/mechanism.hpp"
 
 namespace beamfea {
@@ -32,10 +34,39 @@ struct LinearStaticResult {
   std::vector<Vec6> reactions;         // per node (zero where unsupported)
   std::vector<char> supported;         // per node: has at least one support or prescribed DOF
   std::vector<Vec12> end_forces;       // per element, local, forces on the element at its ends
+                                       // (k u + fixed-end forces of the member loads)
+  std::vector<ElementLoads> element_loads;  // per element: the loads between its nodes (local)
   std::vector<Vec6> joint_forces;      // per joint: force and moment from body 1 on body 2, global
   std::vector<ZeroEnergyMode> modes;   // when status == Mechanism
+  // Redundant constraint rows (over-constrained loops, supports on one rigid body), e.g. "joint 'jC'
+  // uz": their reactions are statically indeterminate; the reported ones are the minimum-norm split.
+  std::vector<std::string> statically_indeterminate;
 };
 
+// The linear system of a model, assembled and factorised once; every load case solves against the
+// same factorisation (`factorizations()` counts them: 1, or 0 when the stiffness is singular).
+class LinearSystem {
+ public:
+  explicit LinearSystem(const Model& model, const LinearStaticOptions& options = {});
+  ~LinearSystem();
+  LinearSystem(const LinearSystem&) = delete;
+  LinearSystem& operator=(const LinearSystem&) = delete;
+
+  // The solution for one load case (end forces include the member loads' fixed-end forces).
+  LinearStaticResult solve(const LoadSet& loads) const;
+  int factorizations() const { return factorizations_; }
+  const Model& model() const { return *model_; }
+  int solves() const { return solves_; }
+
+ private:
+  struct Impl;
+  const Model* model_;
+  std::unique_ptr<Impl> impl_;
+  int factorizations_ = 0;
+  mutable int solves_ = 0;
+};
+
+// The default load case (one system, one solve).
 LinearStaticResult solve_linear_static(const Model& model, const LinearStaticOptions& options = {});
 
 }  // namespace beamfea

@@ -1,17 +1,16 @@
 #include "solvers/nonlinear_structure.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <map>
 #include <set>
 
 #include "core/errors.hpp"
+#include "solvers/member_loading.hpp"
 #include "solvers/structure.hpp"
 
 namespace beamfea {
 
-namespace {
-
-// Relative rotation of a joint's scalar rotational coordinates: exp(q_1 a_1) exp(q_2 a_2) ...
 Mat3 joint_product(const Joint& j, const Eigen::VectorXd& q) {
   Mat3 P = Mat3::Identity();
   for (int k = j.translations; k < j.coordinates(); ++k) P = P * exp_so3(q[k] * j.axes[k]);
@@ -23,6 +22,8 @@ Vec3 joint_offset(const Joint& j, const Eigen::VectorXd& q) {
   for (int k = 0; k < j.translations; ++k) t += q[k] * j.axes[k];
   return t;
 }
+
+namespace {
 
 Mat3 spherical_axes(const Joint& j) {
   Mat3 A;
@@ -56,19 +57,7 @@ Configuration configuration_of(const Model& model, const NonlinearState& s) {
 }
 
 NonlinearStructure::NonlinearStructure(const Model& model) : model_(&model), map_(model), L_(model.length_scale()) {
-  // Closed loops: the forest misses an edge.
-  std::set<std::pair<int, int>> in_tree;
-  for (const auto& e : map_.tree_edges()) in_tree.insert({e.kind == ConstraintEdge::Kind::Rigid ? 0 : 1, e.index});
-  for (std::size_t e = 0; e < model.elements.size(); ++e)
-    if (model.elements[e].type == MemberType::Rigid && !in_tree.count({0, static_cast<int>(e)}))
-      throw ModelError("element '" + model.elements[e].id + "'",
-                       "closes a loop of rigid links and joints; nonlinear analyses (buckling, path) do not support "
-                       "closed kinematic loops: open the loop or replace a link by a stiff beam");
   for (std::size_t j = 0; j < model.joints.size(); ++j) {
-    if (!in_tree.count({1, static_cast<int>(j)}))
-      throw ModelError("joint '" + model.joints[j].id + "'",
-                       "closes a loop of rigid links and joints; nonlinear analyses (buckling, path) do not support "
-                       "closed kinematic loops: open the loop or replace a link by a stiff beam");
     if (model.joints[j].type == JointType::Spherical && model.joints[j].has_stiffness())
       throw ModelError("joint '" + model.joints[j].id + "'",
                        "springs on spherical joints are not supported by nonlinear analyses; use a virtual_spring");
@@ -115,6 +104,7 @@ NonlinearStructure::NonlinearStructure(const Model& model) : model_(&model), map
     chain_[e.child] = std::move(c);
   }
 
+  build_closures();
   beams_.resize(model.elements.size());
   for (std::size_t e = 0; e < model.elements.size(); ++e) {
     const auto& el = model.elements[e];
@@ -125,6 +115,25 @@ NonlinearStructure::NonlinearStructure(const Model& model) : model_(&model), map
       throw ModelError("element '" + el.id + "'", err.what());
     }
   }
+  dead_ = element_dead_loads(model, model.default_loads());
+  dead_ref_.assign(model.elements.size(), Vec12::Zero());
+  for (std::size_t e = 0; e < dead_.size(); ++e)
+    if (!dead_[e].empty()) {
+      const auto& el = model.elements[e];
+      dead_ref_[e] = dead_load_vector(dead_[e], (model.nodes[el.nodes[1]].x - model.nodes[el.nodes[0]].x).normalized());
+    }
+}
+
+Eigen::VectorXd NonlinearStructure::dead_load_change(const NonlinearState& s) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(map_.raw_size());
+  for (std::size_t e = 0; e < dead_.size(); ++e) {
+    if (dead_[e].empty()) continue;
+    const int a = model_->elements[e].nodes[0], b = model_->elements[e].nodes[1];
+    const Vec12 d = dead_load_vector(dead_[e], (s.x[b] - s.x[a]).normalized()) - dead_ref_[e];
+    f.segment<6>(6 * a) += d.head<6>();
+    f.segment<6>(6 * b) += d.tail<6>();
+  }
+  return f;
 }
 
 void NonlinearStructure::add_gen(Gen g) {
@@ -243,7 +252,10 @@ std::vector<Twist> NonlinearStructure::twists(const NonlinearState& s) const {
     const auto& j = model_->joints[jj];
     const double sign = forward[jj] ? 1.0 : -1.0;
     const Mat3& R0 = s.R[j.nodes[0]];
-    const Vec3& x1 = s.x[j.nodes[1]];
+    // The point the joint's rotations turn about: nodes[1], or for a joint that closes a loop the
+    // position of its virtual body (nodes[0]'s side).
+    const Vec3 x1 = loop_joint_.empty() || !loop_joint_[jj] ? s.x[j.nodes[1]]
+                                                           : Vec3(s.x[j.nodes[0]] + R0 * joint_offset(j, s.q[jj]));
     Mat3 M = R0;
     for (int k = 0; k < j.coordinates(); ++k) {
       const int gi = raw_to_gen_[map_.raw_joint(jj, k)];
@@ -270,36 +282,42 @@ std::vector<std::pair<int, double>> NonlinearStructure::raw_row(const NonlinearS
   return row;
 }
 
+void NonlinearStructure::add_point_curvature(const Vec3& x, const Vec3& f, const Vec3& m, const std::vector<int>& c,
+                                             const std::vector<Twist>& tw, std::vector<Eigen::Triplet<double>>& t) const {
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    const Twist& xi = tw[c[a]];
+    for (std::size_t b = 0; b < c.size(); ++b) {
+      const Twist& xj = tw[c[b]];
+      double val = f.dot(xi.w.cross(xj.v + xj.w.cross(x)));
+      const bool same = gens_[c[a]].group == gens_[c[b]].group;
+      if ((b < a && !same) || (same && a != b && gens_[c[a]].mutual)) {
+        const Vec3 bv = xj.w.cross(xi.v) - xi.w.cross(xj.v);
+        const Vec3 bw = xj.w.cross(xi.w);
+        val += f.dot(bv + bw.cross(x)) + m.dot(bw);
+      }
+      t.emplace_back(c[a], c[b], val);  // zeros too: the pattern is the same at every state
+    }
+  }
+}
+
 SparseMatrix NonlinearStructure::constraint_curvature(const NonlinearState& s, const std::vector<Twist>& tw,
                                                       const Eigen::VectorXd& f_raw) const {
   std::vector<Eigen::Triplet<double>> t;
   for (int n = 0; n < static_cast<int>(model_->nodes.size()); ++n) {
     if (!map_.is_slave(n)) continue;
     const Vec3 f = f_raw.segment<3>(6 * n), m = f_raw.segment<3>(6 * n + 3);
-    const Vec3& x = s.x[n];
-    const auto& c = chain_[n];
-    for (std::size_t a = 0; a < c.size(); ++a) {
-      const Twist& xi = tw[c[a]];
-      for (std::size_t b = 0; b < c.size(); ++b) {
-        const Twist& xj = tw[c[b]];
-        double val = f.dot(xi.w.cross(xj.v + xj.w.cross(x)));
-        const bool same = gens_[c[a]].group == gens_[c[b]].group;
-        if ((b < a && !same) || (same && a != b && gens_[c[a]].mutual)) {
-          const Vec3 bv = xj.w.cross(xi.v) - xi.w.cross(xj.v);
-          const Vec3 bw = xj.w.cross(xi.w);
-          val += f.dot(bv + bw.cross(x)) + m.dot(bw);
-        }
-        t.emplace_back(c[a], c[b], val);
-      }
-    }
+    add_point_curvature(s.x[n], f, m, chain_[n], tw, t);
   }
   SparseMatrix G(size(), size());
   G.setFromTriplets(t.begin(), t.end());
   return G;
 }
 
-NonlinearStructure::Evaluation NonlinearStructure::evaluate(const NonlinearState& s, const Eigen::VectorXd& f_app,
-                                                            bool with_tangent) const {
+NonlinearStructure::Evaluation NonlinearStructure::evaluate(const NonlinearState& s, const Eigen::VectorXd& f_app_in,
+                                                            bool with_tangent, const Eigen::VectorXd& mu,
+                                                            double dead_load_factor) const {
+  const bool dead = dead_load_factor != 0.0 && std::any_of(dead_.begin(), dead_.end(), [](const auto& d) { return !d.empty(); });
+  const Eigen::VectorXd f_app = dead ? Eigen::VectorXd(f_app_in + dead_load_factor * dead_load_change(s)) : f_app_in;
   Evaluation ev;
   const int nraw = map_.raw_size();
   ev.f_int_raw = Eigen::VectorXd::Zero(nraw);
@@ -346,7 +364,16 @@ NonlinearStructure::Evaluation NonlinearStructure::evaluate(const NonlinearState
     const auto Ta = node_T(a), Tb = node_T(b);
     for (std::size_t k = 0; k < chain_[a].size(); ++k) Te.block<6, 1>(0, pos[chain_[a][k]]) += Ta.col(k);
     for (std::size_t k = 0; k < chain_[b].size(); ++k) Te.block<6, 1>(6, pos[chain_[b][k]]) += Tb.col(k);
-    const Eigen::MatrixXd Ke = Te.transpose() * r.tangent * Te;
+    Eigen::MatrixXd Ke = Te.transpose() * r.tangent * Te;
+    if (dead && !dead_[e].empty()) {
+      // Load stiffness of the dead loads: -d(f_app)/dx, f depending on the chord x_b - x_a.
+      const Vec3 d = s.x[b] - s.x[a];
+      const auto D = dead_load_derivative(dead_[e], d.normalized(), d.norm());
+      Mat12 KL = Mat12::Zero();
+      KL.block<12, 3>(0, 0) = dead_load_factor * D;
+      KL.block<12, 3>(0, 6) = -dead_load_factor * D;
+      Ke += Te.transpose() * KL * Te;
+    }
     for (std::size_t i = 0; i < cols.size(); ++i)
       for (std::size_t k = 0; k < cols.size(); ++k) trip.emplace_back(cols[i], cols[k], Ke(i, k));
   }
@@ -365,10 +392,13 @@ NonlinearStructure::Evaluation NonlinearStructure::evaluate(const NonlinearState
 
   const Eigen::VectorXd f = ev.f_int_raw - f_app;
   ev.residual = reduce(s, tw, f);
+  const bool closed = mu.size() > 0 && !closures_.empty();
+  if (closed) ev.residual += closure_force_rows(s, tw).transpose() * mu;
   if (with_tangent) {
     ev.tangent.resize(size(), size());
     ev.tangent.setFromTriplets(trip.begin(), trip.end());
     ev.tangent += constraint_curvature(s, tw, f);
+    if (closed) ev.tangent += closure_curvature(s, tw, mu);
     // Keep every diagonal entry stored, so that the pattern is the same at every state.
     SparseMatrix I(size(), size());
     I.setIdentity();

@@ -35,15 +35,35 @@
 // except the three spins of a spherical joint met from nodes[1] in the forest, whose axes are fixed in
 // the body they move: those bracket each other both ways.
 //
-// Not supported (ModelError): closed loops of rigid links/joints (the loop-closing edge is named);
-// springs on spherical joints.
+// Closed loops (solvers/nonlinear_structure_closures.cpp). An edge of the constraint graph outside
+// the forest (DofMap::loop_edges: a rigid link or joint that closes a loop, through the ground or
+// not) is not eliminated but kept as six nonlinear equality constraints c(x) = 0 on the state. Its
+// "virtual body" b' is where nodes[1] = b would be if the edge were part of the tree, carried by
+// nodes[0] = a:
+//   rigid link  y = x_a + R_a (X_b - X_a),  S = R_a
+//   joint       y = x_a + R_a t(q),         S = R_a P(q)   (P: product of exponentials, or Q)
+//   c_t = x_b - y   (3),   c_r = log(R_b S^T)   (3, spatial)
+// Its multipliers mu = (F, M) are the force and moment that a's side exerts on b through the edge
+// (a force F and moment M on b, -F and -M on the virtual body b'). The residual gains B^T mu with
+// B the virtual work of that pair of wrenches over the gens:
+//   B_t = sum_{i in chain b} (v_i + w_i x x_b) - sum_{i in chain b'} (v_i + w_i x y)   (= dc_t exactly)
+//   B_r = sum_{i in chain b} w_i - sum_{i in chain b'} w_i       (= dc_r where c_r = 0)
+// and the tangent gains d(B^T mu)/dx at fixed mu: the constraint curvature of the two wrenches,
+// the same formula G as for the forces at slave nodes, with the point y and the chain of b'. The
+// exact gradient of c_r is T_s(c_r)^-1 (w_b - M w_S), M = R_b S^T (T_s: core/rotation.hpp).
+// No penalty: the solvers add mu as unknowns (a saddle-point system).
+//
+// Not supported (ModelError): springs on spherical joints.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "core/dof_map.hpp"
 #include "core/model.hpp"
 #include "elements/corotational_beam.hpp"
+#include "elements/member_loads.hpp"
 
 namespace beamfea {
 
@@ -53,6 +73,25 @@ struct NonlinearState {
   std::vector<Eigen::VectorXd> q;      // joint coordinates (spherical: rotation vector of Q, output only)
   std::vector<Mat3> Q;                 // spherical joints: relative rotation; identity otherwise
 };
+
+// A joint's relative motion in the frame of nodes[0]: the rotation exp(q_1 a_1) exp(q_2 a_2) ... of
+// its scalar rotational coordinates (identity for a spherical joint: its Q is kept in the state), and
+// the translation sum_t a_t q_t of a virtual spring's translations.
+Mat3 joint_product(const Joint& j, const Eigen::VectorXd& q);
+Vec3 joint_offset(const Joint& j, const Eigen::VectorXd& q);
+
+// Rank-revealing choice of independent constraint rows (Householder QR of C^T with column pivoting):
+// C is m x n, already scaled so that its entries are commensurable (rows and coordinates in lengths:
+// rotation rows and rotation coordinates' columns scaled by the model length). A row whose pivot is
+// below `tolerance` times the largest is redundant: a linear combination of the kept ones. Returns
+// the kept rows (ascending) and the redundant ones.
+// Why 1e-9: exact elimination leaves rounding of ~1e-15 relative in a row that truly vanishes, while
+// a genuine constraint of a model with aspect ratio up to 1e6 keeps pivots far above 1e-9.
+inline constexpr double kRedundancyTolerance = 1e-9;
+struct RowSelection {
+  std::vector<int> kept, redundant;
+};
+RowSelection independent_rows(const Eigen::MatrixXd& C, double tolerance = kRedundancyTolerance);
 
 // The Configuration (core/dof_map.hpp) of a state: positions, rotations, current spatial axes.
 Configuration configuration_of(const Model& model, const NonlinearState& state);
@@ -114,12 +153,42 @@ class NonlinearStructure {
     double energy = 0.0;
   };
   // f_app: applied raw forces (external loads times the load factor, reactions on slaves).
-  Evaluation evaluate(const NonlinearState& s, const Eigen::VectorXd& f_app, bool with_tangent) const;
+  // mu: multipliers of the closures (empty: none, or all zero); residual += B^T mu, tangent +=
+  // closure_curvature(mu).
+  // dead_load_factor: the load factor of the default case's loads between the nodes of beams
+  // (member loads, self-weight): f_app holds them at the reference configuration (external_force);
+  // their consistent vector follows the chords (elements/member_loads.hpp, DeadLoadTerm), so
+  // evaluate adds dead_load_factor x (vector at s - vector at the reference) and its derivative
+  // (an unsymmetric load stiffness) to the tangent.
+  Evaluation evaluate(const NonlinearState& s, const Eigen::VectorXd& f_app, bool with_tangent,
+                      const Eigen::VectorXd& mu = Eigen::VectorXd(), double dead_load_factor = 0.0) const;
+  // The change of the dead loads' raw vector from the reference to s, per unit load factor.
+  Eigen::VectorXd dead_load_change(const NonlinearState& s) const;
   // T^T f_raw over gens (virtual work of raw forces).
   Eigen::VectorXd reduce(const NonlinearState& s, const std::vector<Twist>& tw, const Eigen::VectorXd& f_raw) const;
   // The constraint-curvature matrix G alone, for raw forces f (over gens).
   SparseMatrix constraint_curvature(const NonlinearState& s, const std::vector<Twist>& tw,
                                     const Eigen::VectorXd& f_raw) const;
+
+  // Closures of loops: one per DofMap loop edge, six rows each (ux uy uz rx ry rz of c).
+  struct Closure {
+    ConstraintEdge edge;       // parent = nodes[0] (a), child = nodes[1] (b)
+    std::vector<int> chain;    // upstream gens of the virtual body b', upstream first
+  };
+  const std::vector<Closure>& closures() const { return closures_; }
+  int closure_rows() const { return 6 * static_cast<int>(closures_.size()); }
+  // "joint 'j4' ry" / "element 'r3' uz": what a closure row constrains.
+  std::string describe_closure_row(int row) const;
+  // Pose of the virtual body b' of closure k.
+  std::pair<Vec3, Mat3> closure_body(const NonlinearState& s, int k) const;
+  // c(x), closure_rows() values.
+  Eigen::VectorXd closure_values(const NonlinearState& s) const;
+  // Exact gradient of c over gens (closure_rows() x size()).
+  SparseMatrix closure_jacobian(const NonlinearState& s, const std::vector<Twist>& tw) const;
+  // B: the virtual work of the multipliers' wrenches over gens (closure_rows() x size()).
+  SparseMatrix closure_force_rows(const NonlinearState& s, const std::vector<Twist>& tw) const;
+  // d(B^T mu)/d gens at fixed mu (size() x size()).
+  SparseMatrix closure_curvature(const NonlinearState& s, const std::vector<Twist>& tw, const Eigen::VectorXd& mu) const;
 
   // Displacement (x - X) and rotation vector log(R) of a node.
   Vec6 node_displacement(const NonlinearState& s, int node) const;
@@ -128,6 +197,10 @@ class NonlinearStructure {
 
  private:
   void add_gen(Gen g);
+  void build_closures();
+  // Adds to t the curvature of a wrench (f, m) held at a point x carried by the gens of `chain`.
+  void add_point_curvature(const Vec3& x, const Vec3& f, const Vec3& m, const std::vector<int>& chain,
+                           const std::vector<Twist>& tw, std::vector<Eigen::Triplet<double>>& t) const;
   const Model* model_;
   DofMap map_;
   double L_ = 1.0;
@@ -135,6 +208,10 @@ class NonlinearStructure {
   std::vector<int> raw_to_gen_;
   std::vector<std::vector<int>> chain_;
   std::vector<std::optional<CorotationalBeam>> beams_;
+  std::vector<std::vector<DeadLoadTerm>> dead_;  // per element: dead loads between its nodes
+  std::vector<Vec12> dead_ref_;                   // their vector at the reference configuration
+  std::vector<Closure> closures_;
+  std::vector<char> loop_joint_;  // per joint: 1 when it closes a loop
 };
 
 }  // namespace beamfea

@@ -52,7 +52,10 @@ int record(PathResult& res, const PathOptions& o, const Model& original, const P
     ps.stable = st.info.negative == 0;
     ps.min_eigenvalue = st.info.min_eigenvalue;
     // The loaded stiffness of the node with the controlled DOF released (it is the probe).
-    if (o.stiffness_node >= 0) ps.stiffness = stab.node_stiffness(c, disp ? stab.analyse(c, false, false) : st, o.stiffness_node);
+    if (o.stiffness_node >= 0) {
+      ps.node_stiffness = stab.node_stiffness(c, disp ? stab.analyse(c, false, false) : st, o.stiffness_node);
+      if (ps.node_stiffness->ok) ps.stiffness = ps.node_stiffness->K;
+    }
   }
   ps.state = c.state;
   ps.end_forces = P.ns.evaluate(c.state, Eigen::VectorXd::Zero(P.ns.reference_map().raw_size()), false).end_forces;
@@ -94,6 +97,7 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
                                               : original;
   PathEquilibrium P(model, o);
   res.free_dofs = P.nf;
+  res.statically_indeterminate = P.redundant;
   if (P.nf == 0) {  // every DOF held: no path to follow (and KINSOL cannot take an empty system)
     res.finish(PathTermination::InitialStateFailed, 0.0, 0,
                "no free DOF (every DOF is supported, prescribed or held): there is no path to follow");

@@ -1,13 +1,21 @@
 #include "solvers/structure.hpp"
 
 #include "core/errors.hpp"
+#include "solvers/member_loading.hpp"
 
 namespace beamfea {
 
 BeamSection beam_section(const Model& m, const Element& e) {
   const auto& mat = m.materials.at(e.material);
   const auto& sec = m.sections.at(e.section);
-  return {mat.E, mat.G, sec.A, sec.Iy, sec.Iz, sec.J};
+  BeamSection s{mat.E, mat.G, sec.A, sec.Iy, sec.Iz, sec.J};
+  if (e.theory == BeamTheory::Timoshenko) {
+    if (!(sec.ky > 0.0 && sec.kz > 0.0))
+      throw ModelError("element '" + e.id + "'", "a Timoshenko beam needs the shear factors ky, kz of section '" + sec.id + "'");
+    s.Asy = sec.A / sec.ky;
+    s.Asz = sec.A / sec.kz;
+  }
+  return s;
 }
 
 LinearStructure::LinearStructure(const Model& model) : model_(&model), beams_(model.elements.size()) {
@@ -75,14 +83,6 @@ Vec12 LinearStructure::end_forces(const DofMap& map, int element, const Eigen::V
   return beams_[element]->local_end_forces(ue);
 }
 
-Eigen::VectorXd external_force(const Model& m, const DofMap& map) {
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(map.raw_size());
-  for (const auto& l : m.loads) {
-    f.segment<3>(map.raw_node(l.node, 0)) += l.force;
-    f.segment<3>(map.raw_node(l.node, 3)) += l.moment;
-  }
-  for (const auto& l : m.joint_loads) f[map.raw_joint(l.joint, l.coordinate)] += l.value;
-  return f;
-}
+Eigen::VectorXd external_force(const Model& m, const DofMap& map) { return external_force(m, map, m.default_loads()); }
 
 }  // namespace beamfea

@@ -11,6 +11,7 @@
 
 namespace beamfea {
 
+// The section of a beam element, with the shear areas A/ky, A/kz when it is a Timoshenko beam.
 BeamSection beam_section(const Model& m, const Element& e);
 
 class LinearStructure {
@@ -34,7 +35,8 @@ class LinearStructure {
   std::vector<std::optional<LinearBeam>> beams_;
 };
 
-// External nodal and joint loads over raw DOFs.
+// External loads of the default load case over raw DOFs: nodal and joint loads, member loads
+// and self-weight as equivalent nodal loads, point masses' weight (solvers/member_loading.hpp).
 Eigen::VectorXd external_force(const Model& m, const DofMap& map);
 
 }  // namespace beamfea

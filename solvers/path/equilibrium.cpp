@@ -16,6 +16,9 @@ constexpr double kRoundOffForceRatio = 1e-5;
 
 PathEquilibrium::PathEquilibrium(const Model& model, const PathOptions& o) : ns(model) {
   const DofMap& map = ns.reference_map();
+  // Prescribed values that the constraints make inconsistent (a loop that cannot close, a rigid link
+  // whose ends are prescribed apart): bad input naming the link, joint or DOF.
+  if (auto conflict = map.check_consistency(map.prescribed_values()); !conflict.empty()) throw ModelError("", conflict);
   L = ns.length_scale();
   gen_to_free.assign(ns.size(), -1);
   for (int i = 0; i < ns.size(); ++i) {
@@ -27,6 +30,7 @@ PathEquilibrium::PathEquilibrium(const Model& model, const PathOptions& o) : ns(
     const auto& pv = map.prescribed()[p];
     if (pv.dof.owner == DofRef::Owner::Node && map.is_slave(pv.dof.index)) cons.push_back({pv.dof.index, pv.dof.comp, pv.value});
   }
+  select_independent_constraints();
   f_ext = external_force(model, map);
   has_loads = f_ext.size() > 0 && f_ext.cwiseAbs().maxCoeff() > 0.0;
   if (o.control == PathControl::Displacement) {
@@ -39,7 +43,7 @@ PathEquilibrium::PathEquilibrium(const Model& model, const PathOptions& o) : ns(
   if (!has_loads && o.control != PathControl::Displacement)
     throw ModelError("", "path: the model has no loads; use displacement control to impose a motion");
   nf = static_cast<int>(free.size());
-  nc = static_cast<int>(cons.size());
+  nc = ncs + static_cast<int>(closure_rows.size());
   // Reference force for the convergence test.
   double fmax = 0.0;
   for (int n = 0; n < static_cast<int>(model.nodes.size()); ++n) {
@@ -62,6 +66,47 @@ PathEquilibrium::PathEquilibrium(const Model& model, const PathOptions& o) : ns(
 void PathEquilibrium::set_load_scale(double lambda_ref) {
   F_ref = std::max(f_max * lambda_ref, F_floor);
   if (!(F_ref > 0.0)) F_ref = 1.0;
+}
+
+void PathEquilibrium::select_independent_constraints() {
+  const NonlinearState s0 = ns.reference_state();
+  const auto tw = ns.twists(s0);
+  const int nfree = static_cast<int>(free.size());
+  const int nl = ns.closure_rows();
+  const int m = static_cast<int>(cons.size()) + nl;
+  if (m == 0) return;
+  // Rows and coordinates in lengths: rotation rows and rotation coordinates scaled by L.
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, nfree);
+  for (std::size_t c = 0; c < cons.size(); ++c)
+    for (const auto& [g, v] : ns.raw_row(s0, tw, cons[c].node, cons[c].comp))
+      if (gen_to_free[g] >= 0) C(static_cast<Eigen::Index>(c), gen_to_free[g]) += v * (cons[c].comp < 3 ? 1.0 : L);
+  const SparseMatrix Cl = ns.closure_jacobian(s0, tw);
+  for (int j = 0; j < Cl.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(Cl, j); it; ++it)
+      if (gen_to_free[j] >= 0) {
+        const int r = static_cast<int>(it.row());
+        C(static_cast<Eigen::Index>(cons.size()) + r, gen_to_free[j]) += it.value() * (r % 6 < 3 ? 1.0 : L);
+      }
+  for (int k = 0; k < nfree; ++k)
+    if (ns.is_rotation(free[k])) C.col(k) /= L;
+  const RowSelection sel = independent_rows(C);
+  std::vector<ConstraintDef> kept;
+  for (int i : sel.kept) {
+    if (i < static_cast<int>(cons.size())) kept.push_back(cons[i]);
+    else closure_rows.push_back(i - static_cast<int>(cons.size()));
+  }
+  for (int i : sel.redundant)
+    redundant.push_back(i < static_cast<int>(cons.size())
+                            ? ns.model().describe({DofRef::Owner::Node, cons[i].node, cons[i].comp})
+                            : ns.describe_closure_row(i - static_cast<int>(cons.size())));
+  cons = std::move(kept);
+  ncs = static_cast<int>(cons.size());
+}
+
+Eigen::VectorXd PathEquilibrium::closure_multipliers(const Eigen::VectorXd& mu) const {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(ns.closure_rows());
+  for (std::size_t i = 0; i < closure_rows.size(); ++i) out[closure_rows[i]] = mu[ncs + static_cast<Eigen::Index>(i)];
+  return out;
 }
 
 double PathEquilibrium::weighted_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const {
@@ -94,17 +139,22 @@ PathEquilibrium::Eval PathEquilibrium::state_of(const Converged& start, const St
   e.lambda = s.kind == StepKind::Load ? s.lambda : (extra_is_lambda(s) ? u[nf + nc] : 0.0);
   e.f_app = e.lambda * f_ext;
   const DofMap& map = ns.reference_map();
-  for (int c = 0; c < nc; ++c) e.f_app[map.raw_node(cons[c].node, cons[c].comp)] += u[nf + c];
+  for (int c = 0; c < ncs; ++c) e.f_app[map.raw_node(cons[c].node, cons[c].comp)] += u[nf + c];
+  e.mu_closure = closure_multipliers(u.segment(nf, nc));
   if (s.kind == StepKind::Control && !has_loads) e.f_app[map.raw_node(ctrl.node, ctrl.comp)] += u[nf + nc];
   return e;
 }
 
 void PathEquilibrium::residual(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, Eigen::VectorXd& F) const {
   const Eval e = state_of(start, s, u);
-  const auto ev = ns.evaluate(e.st, e.f_app, false);
+  const auto ev = ns.evaluate(e.st, e.f_app, false, e.mu_closure, e.lambda);
   F.resize(unknowns(s));
   for (int k = 0; k < nf; ++k) F[k] = ev.residual[free[k]];
-  for (int c = 0; c < nc; ++c) F[nf + c] = cvalue(e.st, cons[c]) - cons[c].target;
+  for (int c = 0; c < ncs; ++c) F[nf + c] = cvalue(e.st, cons[c]) - cons[c].target;
+  if (!closure_rows.empty()) {
+    const Eigen::VectorXd cl = ns.closure_values(e.st);
+    for (std::size_t i = 0; i < closure_rows.size(); ++i) F[nf + ncs + static_cast<int>(i)] = cl[closure_rows[i]];
+  }
   if (s.kind == StepKind::Control) F[nf + nc] = cvalue(e.st, ctrl) - s.control;
   if (s.kind == StepKind::Arc) {
     const double dl = e.lambda - start.lambda;
@@ -131,7 +181,7 @@ std::vector<std::pair<int, double>> PathEquilibrium::crow(const NonlinearState& 
 
 void PathEquilibrium::jacobian(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, SparseMatrix& J) const {
   const Eval e = state_of(start, s, u);
-  const auto ev = ns.evaluate(e.st, e.f_app, true);
+  const auto ev = ns.evaluate(e.st, e.f_app, true, e.mu_closure, e.lambda);
   const Eigen::VectorXd dg = delta_gens(u);
   const SparseMatrix D = ns.retraction_jacobian(dg);
   const SparseMatrix KD = ev.tangent * D;
@@ -143,14 +193,26 @@ void PathEquilibrium::jacobian(const Converged& start, const StepSpec& s, const 
     for (SparseMatrix::InnerIterator it(KD, j); it; ++it)
       if (gen_to_free[it.row()] >= 0) t.emplace_back(gen_to_free[it.row()], gen_to_free[j], it.value());
   }
-  for (int c = 0; c < nc; ++c) {
+  for (int c = 0; c < ncs; ++c) {
     for (const auto& [k, v] : crow(e.st, tw, cons[c], nullptr)) t.emplace_back(k, nf + c, -v);
     for (const auto& [k, v] : crow(e.st, tw, cons[c], &D)) t.emplace_back(nf + c, k, v);
+  }
+  if (!closure_rows.empty()) {
+    // Columns: the force rows B (the residual gains B^T mu); rows: the exact gradient of c times D.
+    const SparseRowMatrix B = ns.closure_force_rows(e.st, tw);
+    const SparseRowMatrix CD = SparseRowMatrix(ns.closure_jacobian(e.st, tw) * D);
+    for (std::size_t i = 0; i < closure_rows.size(); ++i) {
+      const int r = closure_rows[i], x = nf + ncs + static_cast<int>(i);
+      for (SparseRowMatrix::InnerIterator it(B, r); it; ++it)
+        if (gen_to_free[it.col()] >= 0) t.emplace_back(gen_to_free[it.col()], x, it.value());
+      for (SparseRowMatrix::InnerIterator it(CD, r); it; ++it)
+        if (gen_to_free[it.col()] >= 0) t.emplace_back(x, gen_to_free[it.col()], it.value());
+    }
   }
   const int x = nf + nc;
   if (s.kind != StepKind::Load) {
     if (extra_is_lambda(s)) {
-      const Eigen::VectorXd p = ns.reduce(e.st, tw, f_ext);
+      const Eigen::VectorXd p = ns.reduce(e.st, tw, load_at(e.st));
       for (int k = 0; k < nf; ++k)
         if (p[free[k]] != 0.0) t.emplace_back(k, x, -p[free[k]]);
     } else {
@@ -173,7 +235,8 @@ void PathEquilibrium::jacobian(const Converged& start, const StepSpec& s, const 
 Eigen::VectorXd PathEquilibrium::fscale(const StepSpec& s) const {
   Eigen::VectorXd f(unknowns(s));
   for (int k = 0; k < nf; ++k) f[k] = 1.0 / (F_ref * (ns.is_rotation(free[k]) ? L : 1.0));
-  for (int c = 0; c < nc; ++c) f[nf + c] = cons[c].comp < 3 ? 1.0 / L : 1.0;
+  for (int c = 0; c < ncs; ++c) f[nf + c] = cons[c].comp < 3 ? 1.0 / L : 1.0;
+  for (std::size_t i = 0; i < closure_rows.size(); ++i) f[nf + ncs + static_cast<int>(i)] = closure_rows[i] % 6 < 3 ? 1.0 / L : 1.0;
   if (s.kind == StepKind::Control) f[nf + nc] = ctrl.comp < 3 ? 1.0 / L : 1.0;
   if (s.kind == StepKind::Arc) f[nf + nc] = 1.0 / s.ds;
   return f;
@@ -201,8 +264,10 @@ bool PathEquilibrium::solve(KinsolSolver& kin, const Converged& start, const Ste
   return true;
 }
 
+Eigen::VectorXd PathEquilibrium::load_at(const NonlinearState& st) const { return f_ext + ns.dead_load_change(st); }
+
 Eigen::VectorXd PathEquilibrium::load_pattern(const NonlinearState& st) const {
-  const Eigen::VectorXd p = ns.reduce(st, ns.twists(st), f_ext);
+  const Eigen::VectorXd p = ns.reduce(st, ns.twists(st), load_at(st));
   Eigen::VectorXd pf(nf);
   for (int k = 0; k < nf; ++k) pf[k] = p[free[k]];
   return pf;
@@ -263,8 +328,16 @@ Eigen::MatrixXd PathEquilibrium::constraint_matrix(const NonlinearState& st, boo
   const auto tw = ns.twists(st);
   const int m = nc + (with_control ? 1 : 0);
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, nf);
-  for (int c = 0; c < m; ++c)
-    for (const auto& [k, v] : crow(st, tw, c < nc ? cons[c] : ctrl, nullptr)) C(c, k) += v;
+  for (int c = 0; c < ncs; ++c)
+    for (const auto& [k, v] : crow(st, tw, cons[c], nullptr)) C(c, k) += v;
+  if (with_control)
+    for (const auto& [k, v] : crow(st, tw, ctrl, nullptr)) C(nc, k) += v;
+  if (!closure_rows.empty()) {
+    const SparseRowMatrix Cl = ns.closure_jacobian(st, tw);
+    for (std::size_t i = 0; i < closure_rows.size(); ++i)
+      for (SparseRowMatrix::InnerIterator it(Cl, closure_rows[i]); it; ++it)
+        if (gen_to_free[it.col()] >= 0) C(ncs + static_cast<Eigen::Index>(i), gen_to_free[it.col()]) += it.value();
+  }
   return C;
 }
 

@@ -12,6 +12,13 @@
 //     Arc       Crisfield's spherical constraint (Crisfield 1981; Crisfield 1991, vol. 1, eq. 9.13)
 //               (|Delta|_W^2 + psi^2 dlambda^2 - ds^2) / (2 ds) = 0, W: 1 on translations, L^2 on
 //               rotations; psi^2 is set by the step control (solvers/path/step_control.hpp).
+// Closed loops (solvers/nonlinear_structure.hpp, "Closed loops"): the closures' rows c(x) = 0 join the
+// slave constraints, with multipliers mu_l; the residual gains B^T mu_l and the tangent the closure
+// curvature contracted with mu_l. Redundant rows among the slave constraints and the closures (a
+// planar loop in 3-D: three) are found once, rank-revealingly, at the reference state (independent_rows,
+// rows and coordinates scaled to lengths by the model length L) and dropped: the motion is solved
+// exactly with the independent rows; the dropped rows' reactions are statically indeterminate
+// (`redundant` names them) and reported as zero.
 // The Jacobian is K_t D(Delta) bordered by the constraint rows and columns, D the derivative of the
 // retraction. The convergence test scales the rows (fscale) so that KINSOL's tolerance is relative
 // to the problem: forces by F_ref (the reference load at the structure's own load scale lambda_ref,
@@ -83,6 +90,7 @@ class PathEquilibrium {
     NonlinearState st;
     double lambda;
     Eigen::VectorXd f_app;
+    Eigen::VectorXd mu_closure;   // multipliers of all closure rows (zero on the dropped ones)
   };
   Eval state_of(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u) const;
   void residual(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, Eigen::VectorXd& F) const;
@@ -108,6 +116,9 @@ class PathEquilibrium {
   // Sparse row of a constraint over free gens at a state (D applied when given).
   std::vector<std::pair<int, double>> crow(const NonlinearState& st, const std::vector<Twist>& tw,
                                            const ConstraintDef& c, const SparseMatrix* D) const;
+  // The reference load at a state over raw DOFs: f_ext with the dead member loads' consistent
+  // vector following the chords (NonlinearStructure::dead_load_change).
+  Eigen::VectorXd load_at(const NonlinearState& st) const;
   // Constraint rows (nc [+ control]) over the free gens at a state, dense.
   Eigen::MatrixXd constraint_matrix(const NonlinearState& st, bool with_control) const;
   // The state at the start of the path: the reference with the prescribed independent values
@@ -123,13 +134,19 @@ class PathEquilibrium {
   double f_max = 0.0;     // largest reference load component (moments / L)
   double F_floor = 0.0;   // round-off: kRoundOffForceRatio x the stiffest element's force for a displacement L
   std::vector<int> free, gen_to_free;
-  std::vector<ConstraintDef> cons;
+  std::vector<ConstraintDef> cons;       // independent slave constraints (the first ncs multipliers)
+  std::vector<int> closure_rows;         // independent closure rows (the next ones), into the closure rows
+  std::vector<std::string> redundant;    // the dropped rows: statically indeterminate reactions
+  int ncs = 0;
+  // Multipliers of all closure rows from the unknowns' multipliers (nc of them).
+  Eigen::VectorXd closure_multipliers(const Eigen::VectorXd& mu) const;
   ConstraintDef ctrl;
   Eigen::VectorXd f_ext;
   bool has_loads = false;
   int nf = 0, nc = 0;
 
  private:
+  void select_independent_constraints();
   mutable LuFactor predictor_lu_;   // tangent predictor: symbolic analysis kept along the path
 };
 

@@ -9,6 +9,7 @@
 
 #include "core/model.hpp"
 #include "solvers/kinsol_solver.hpp"
+#include "solvers/condensed_stiffness.hpp"
 #include "solvers/nonlinear_structure.hpp"
 
 namespace beamfea {
@@ -61,7 +62,10 @@ struct PathStep {
   int negative_eigenvalues = -1;
   bool stable = false;
   double min_eigenvalue = 0.0;
-  std::optional<Mat6> stiffness;
+  std::optional<Mat6> stiffness;    // stiffness_node: node_stiffness->K when it is ok
+  // stiffness_node: the loaded stiffness, compliance, rigid and free directions of the node
+  // (solvers/condensed_stiffness.hpp, node_compliance).
+  std::optional<CondensedStiffness> node_stiffness;
   NonlinearState state;
   std::vector<Vec12> end_forces;
 };
@@ -109,6 +113,9 @@ struct PathResult {
   std::string termination_detail;
   int free_dofs = 0;
   long factorizations = 0, symbolic_analyses = 0;
+  // Redundant constraint rows (over-constrained loops, supports on one rigid body), dropped from the
+  // equations: their reactions are statically indeterminate (e.g. "joint 'jC' uz").
+  std::vector<std::string> statically_indeterminate;
   // One line: why the path stopped (the result file's "termination").
   std::string brief_report() const;
   // Sets the termination and `completed`.

@@ -26,9 +26,6 @@ constexpr double kNegativeShiftFactor = 1.5;
 // The shift when the first negative eigenvalue appears (just past a critical point the lowest
 // eigenvalue of the Jacobi-scaled matrix is small).
 constexpr double kFirstNegativeShift = 1e-3;
-// Singular values of the node compliance below this fraction of the largest are zero (motions
-// that cannot reach the node).
-constexpr double kComplianceRankTolerance = 1e-10;
 }  // namespace
 
 SparseMatrix null_space(const Eigen::MatrixXd& C0, int n) {
@@ -77,7 +74,7 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_contr
   const PathEquilibrium::Eval e = P.state_of(c, s, P.start_unknowns(c, s));
   Eigen::VectorXd f_app = e.f_app;
   if (P.ctrl.node >= 0 && !P.has_loads) f_app[P.ns.reference_map().raw_node(P.ctrl.node, P.ctrl.comp)] += c.extra_mu;
-  const auto ev = P.ns.evaluate(c.state, f_app, true);
+  const auto ev = P.ns.evaluate(c.state, f_app, true, e.mu_closure, c.lambda);
   std::vector<Eigen::Triplet<double>> t;
   for (int j = 0; j < ev.tangent.outerSize(); ++j) {
     if (P.gen_to_free[j] < 0) continue;
@@ -159,55 +156,21 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_contr
   return out;
 }
 
-std::optional<Mat6> StabilityAnalyzer::node_stiffness(const Converged& c, const StabilityAnalysis& st, int node) const {
+CondensedStiffness StabilityAnalyzer::node_stiffness(const Converged& c, const StabilityAnalysis& st, int node) const {
   const PathEquilibrium& P = eq_;
   const auto tw = P.ns.twists(c.state);
   const int n = static_cast<int>(st.K.rows());
-  if (n == 0) return std::nullopt;
-  std::vector<Eigen::Triplet<double>> t;
-  for (int j = 0; j < st.K.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(st.K, j); it; ++it) t.emplace_back(static_cast<int>(it.row()), j, it.value());
-  bool moves = false;
-  for (int k = 0; k < 6; ++k) {
+  // The node's six rows over the constrained coordinates: T_n Z.
+  Eigen::MatrixXd Tn = Eigen::MatrixXd::Zero(6, n);
+  for (int k = 0; k < 6 && n > 0; ++k) {
     Eigen::VectorXd r = Eigen::VectorXd::Zero(P.nf);
     for (const auto& [g, v] : P.ns.raw_row(c.state, tw, node, k))
       if (P.gen_to_free[g] >= 0) r[P.gen_to_free[g]] += v;
-    const Eigen::VectorXd rz = st.Z.transpose() * r;
-    if (rz.size() > 0 && rz.cwiseAbs().maxCoeff() > 0.0) moves = true;
-    for (int i = 0; i < n; ++i)
-      if (rz[i] != 0.0) {
-        t.emplace_back(n + k, i, rz[i]);
-        t.emplace_back(i, n + k, rz[i]);
-      }
+    Tn.row(k) = (st.Z.transpose() * r).transpose();
   }
-  if (!moves) return std::nullopt;  // the node is held
-  SparseMatrix A(n + 6, n + 6);
-  A.setFromTriplets(t.begin(), t.end());
-  Eigen::UmfPackLU<SparseMatrix> lu;
-  lu.compute(A);
-  if (lu.info() == Eigen::Success) {
-    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(n + 6, 6);
-    B.bottomRows(6).setIdentity();
-    const Eigen::MatrixXd X = lu.solve(B);
-    if (X.allFinite()) return Mat6(-X.bottomRows(6));
-  }
-  // Fewer than six independent motions reach the node (a chain with fewer joints): the
-  // stiffness is the pseudo-inverse of the compliance T_n K^-1 T_n^T, of rank below six.
-  Eigen::UmfPackLU<SparseMatrix> lk;
-  lk.compute(st.K);
-  if (lk.info() != Eigen::Success) return std::nullopt;
-  Eigen::MatrixXd Tn(n, 6);
-  for (int j = 0; j < n; ++j)
-    for (int k = 0; k < 6; ++k) Tn(j, k) = A.coeff(n + k, j);
-  const Eigen::MatrixXd Y = lk.solve(Tn);
-  if (!Y.allFinite()) return std::nullopt;
-  const Mat6 C = Tn.transpose() * Y;
-  Eigen::JacobiSVD<Mat6> svd(C, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const double smax = svd.singularValues()[0];
-  Vec6 inv = Vec6::Zero();
-  for (int k = 0; k < 6; ++k)
-    if (svd.singularValues()[k] > kComplianceRankTolerance * smax) inv[k] = 1.0 / svd.singularValues()[k];
-  return Mat6(svd.matrixV() * inv.asDiagonal() * svd.matrixU().transpose());
+  // The coordinates of Z mix translations and rotations: no per-column scale (the range of T_n Z,
+  // what the node can move, does not depend on it).
+  return node_compliance(st.K, Tn, Eigen::VectorXd::Ones(n), P.L);
 }
 
 }  // namespace beamfea

@@ -7,10 +7,14 @@
 // LDL^T (Sylvester's law of inertia): stable when it has no negative eigenvalue (eq. 23: the second
 // variation of the energy is positive on all admissible variations). min_eigenvalue is the lowest
 // eigenvalue of the Jacobi-scaled matrix (dimensionless). The loaded Cartesian stiffness of a node
-// is the condensed tangent [ K_t  T_n^T ; T_n  0 ] [X; M] = [0; I],  K_c = -M.
+// is the condensed tangent [ K_t  T_n^T ; T_n  0 ] [X; M] = [0; I],  K_c = -M, on the directions the
+// node can move (node_compliance, solvers/condensed_stiffness.hpp): any node, held or restricted by
+// supports, closed loops or the controlled DOF, gets its compliance (zero where it cannot move),
+// rigid directions and free directions.
 #include <Eigen/Core>
 #include <optional>
 
+#include "solvers/condensed_stiffness.hpp"
 #include "solvers/path/equilibrium.hpp"
 #include "solvers/path/pattern_factor.hpp"
 
@@ -39,8 +43,8 @@ class StabilityAnalyzer {
   // with_control: the controlled DOF is held too (displacement control). want_mode: the critical
   // mode (the eigenvector of the eigenvalue nearest zero) is returned in info.mode.
   StabilityAnalysis analyse(const Converged& c, bool with_control, bool want_mode);
-  // Loaded Cartesian stiffness of a node; empty when the node is held.
-  std::optional<Mat6> node_stiffness(const Converged& c, const StabilityAnalysis& st, int node) const;
+  // Loaded Cartesian stiffness and compliance of a node (not ok when holding it leaves a mechanism).
+  CondensedStiffness node_stiffness(const Converged& c, const StabilityAnalysis& st, int node) const;
 
  private:
   const PathEquilibrium& eq_;

@@ -125,18 +125,31 @@ TEST(SafeIds, LongAnalysisIdIsAnErrorNotACrash) {
 
 // --- Checks that used to run only inside the analysis -------------------------------------------
 
-TEST(ValidateFirst, StiffnessAtASupportedNode) {
+// Issue 11: the stiffness of a node whose motion supports or rigid links restrict is a well-posed
+// question (formerly exit 2 "the stiffness there is unbounded"): the answer is a zero compliance, six
+// rigid directions and rank 0.
+TEST(ValidateFirst, StiffnessAtASupportedNodeIsAZeroCompliance) {
   json d = base();
   d["analyses"].push_back({{"id", "K"}, {"type", "stiffness"}, {"node", "A"}});
-  expect_bad_in_check_and_run("stiff_supported", d, {"/analyses/1/node", "node 'A'", "is supported (/supports/0)"});
+  const auto r = run("stiff_supported", d);
+  ASSERT_EQ(r.code, 0) << r.message;
+  const json k = read_results(r.dir)["analyses"]["K"];
+  EXPECT_EQ(k["rank"], 0);
+  EXPECT_EQ(k["rigid_directions"].size(), 6u);
+  for (const auto& row : k["compliance"])
+    for (const auto& v : row) EXPECT_EQ(v.get<double>(), 0.0);
 }
 
-TEST(ValidateFirst, StiffnessAtANodeHeldByARigidLinkSaysSo) {
+TEST(ValidateFirst, StiffnessAtANodeHeldByARigidLinkIsAZeroCompliance) {
   json d = base();
   d["nodes"].push_back({{"id", "C"}, {"xyz", {0, 1, 0}}});
   d["elements"].push_back({{"id", "r"}, {"type", "rigid"}, {"nodes", {"A", "C"}}});
   d["analyses"].push_back({{"id", "K"}, {"type", "stiffness"}, {"node", "C"}});
-  expect_bad_in_check_and_run("stiff_rigid", d, {"/analyses/1/node", "node 'C'", "held by rigid link 'r'"});
+  const auto r = run("stiff_rigid", d);
+  ASSERT_EQ(r.code, 0) << r.message;
+  const json k = read_results(r.dir)["analyses"]["K"];
+  EXPECT_EQ(k["rank"], 0);
+  EXPECT_EQ(k["rigid_directions"].size(), 6u);
 }
 
 TEST(ValidateFirst, DisplacementControlOnASupportedDof) {
@@ -164,7 +177,8 @@ TEST(ValidateFirst, ImperfectionModeThatDoesNotExist) {
 
 TEST(ValidateFirst, EarlierAnalysesWriteNothingWhenALaterOneIsBad) {
   json d = base();
-  d["analyses"].push_back({{"id", "K"}, {"type", "stiffness"}, {"node", "A"}});
+  // (A stiffness at a supported node is no longer bad input since issue 11: a control on a supported DOF is.)
+  d["analyses"].push_back({{"id", "p"}, {"type", "path"}, {"control", {{"node", "A"}, {"dof", "uy"}, {"to", 0.1}}}});
   const auto r = run("staged_bad", d, "run", /*keep_out=*/true);
   EXPECT_EQ(r.code, 2) << r.message;
   // --out exactly as it was: the old file, nothing else.

@@ -1,0 +1,114 @@
+// Analysis "modal": natural frequencies and mode shapes (solvers/modal.hpp).
+//   {"id": "m", "type": "modal", "modes": 10, "mass": "consistent" | "lumped", "load_case": ...}
+// Result analyses.<id>: type, status, message, free_dofs, mass, preloaded, frequencies (Hz,
+// ascending), eigenvalues (omega^2), kinds, total_mass {ux..rz}, effective_mass {ux..rz: one per
+// mode}, effective_mass_sum {ux..rz}, modes[] {mode, frequency, kind, participation[6],
+// effective_mass[6], nodes.<id>.displacement (6, mass-normalised)}, vtk, vtk_scale; files
+// DIR/<id>_mode<k>.vtu and DIR/<id>.pvd (time = mode number).
+#include "core/errors.hpp"
+#include "io/analysis.hpp"
+#include "io/json_util.hpp"
+#include "io/load_reader.hpp"
+#include "io/mode_shapes_vtk.hpp"
+#include "solvers/modal.hpp"
+
+namespace beamfea {
+
+namespace {
+
+constexpr int kMaxModes = 1000;
+constexpr const char* kDirections[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+
+ModalOptions read_options(const nlohmann::json& spec) {
+  ModalOptions o;
+  if (spec.contains("modes")) o.modes = spec["modes"].get<int>();
+  if (spec.contains("mass")) o.mass = spec["mass"].get<std::string>() == "lumped" ? MassKind::Lumped : MassKind::Consistent;
+  o.preload = spec.contains("load_case");
+  return o;
+}
+
+void check_modal(const Model& model, const nlohmann::json& spec, const std::string& p) {
+  json_in::expect_keys(spec, p, {"id", "type", "description", "modes", "mass", "load_case"});
+  if (spec.contains("modes")) {
+    const std::string mp = json_in::child(p, "modes");
+    const int m = json_in::integer_in(spec["modes"], mp, "modal modes", 1, kMaxModes);
+    const int n = modal_dof_count(model);
+    if (m > n)
+      throw InputError(mp, "modal: " + std::to_string(m) + " modes asked for, but the model has only " +
+                               std::to_string(n) + " free DOFs");
+  }
+  if (spec.contains("mass")) {
+    const std::string mp = json_in::child(p, "mass");
+    const std::string kind = json_in::string(spec["mass"], mp, "modal mass");
+    if (kind != "consistent" && kind != "lumped")
+      throw InputError(mp, "modal: unknown mass '" + kind + "' (expected consistent or lumped)");
+  }
+  // load_case: checked by the registry (io/load_reader.hpp, check_load_case): a case or a combination.
+}
+
+ojson per_direction(const Eigen::VectorXd& v) {
+  ojson o = ojson::object();
+  for (int d = 0; d < 6; ++d) o[kDirections[d]] = v[d];
+  return o;
+}
+
+AnalysisOutcome run_modal(const AnalysisContext& ctx) {
+  const Model& model = ctx.model;
+  const ModalOptions opt = read_options(ctx.spec);
+  const ModalResult r = solve_modal(model_for_load_case(model, ctx.spec), opt);
+  AnalysisOutcome out;
+  out.result["type"] = "modal";
+  out.result["status"] = to_string(r.status);
+  out.result["message"] = r.message;
+  out.result["free_dofs"] = r.free_dofs;
+  out.result["mass"] = opt.mass == MassKind::Lumped ? "lumped" : "consistent";
+  if (ctx.spec.contains("load_case")) out.result["load_case"] = ctx.spec["load_case"];
+  out.message = r.message;
+  if (r.status != ModalStatus::Ok) {
+    out.termination = r.status == ModalStatus::MasslessMechanism ? AnalysisTermination::Mechanism
+                      : r.status == ModalStatus::Failed          ? AnalysisTermination::NotConverged
+                                                                 : AnalysisTermination::Failed;
+    out.result["frequencies"] = ojson::array();
+    return out;
+  }
+  const Eigen::Index count = r.frequencies.size();
+  out.result["frequencies"] = to_json(r.frequencies);
+  out.result["eigenvalues"] = to_json(r.eigenvalues);
+  ojson kinds = ojson::array();
+  for (ModeKind k : r.kinds) kinds.push_back(to_string(k));
+  out.result["kinds"] = kinds;
+  out.result["total_mass"] = per_direction(r.total_mass);
+  ojson eff = ojson::object(), eff_sum = ojson::object();
+  for (int d = 0; d < 6; ++d) {
+    eff[kDirections[d]] = to_json(Eigen::VectorXd(r.effective_mass.col(d)));
+    eff_sum[kDirections[d]] = r.effective_mass.col(d).sum();
+  }
+  out.result["effective_mass"] = eff;
+  out.result["effective_mass_sum"] = eff_sum;
+  ojson modes = ojson::array();
+  for (Eigen::Index k = 0; k < count; ++k) {
+    ojson nodes = ojson::object();
+    const auto& u = r.modes[static_cast<std::size_t>(k)];
+    for (std::size_t n = 0; n < model.nodes.size(); ++n)
+      nodes[model.nodes[n].id] = ojson{{"displacement", to_json(Vec6(u.segment<6>(6 * static_cast<Eigen::Index>(n))))}};
+    modes.push_back(ojson{{"mode", k + 1},
+                          {"frequency", r.frequencies[k]},
+                          {"kind", to_string(r.kinds[static_cast<std::size_t>(k)])},
+                          {"participation", to_json(Vec6(r.participation.row(k).transpose()))},
+                          {"effective_mass", to_json(Vec6(r.effective_mass.row(k).transpose()))},
+                          {"nodes", nodes}});
+  }
+  out.result["modes"] = modes;
+  if (!ctx.out_dir.empty() && ctx.write_vtk) {
+    const double scale = write_mode_shapes(model, ctx.out_dir, ctx.id, r.modes, "frequency", r.frequencies);
+    out.result["vtk"] = ctx.id + ".pvd";
+    out.result["vtk_scale"] = scale;
+  }
+  return out;
+}
+
+}  // namespace
+
+AnalysisType modal_analysis() { return {"modal", check_modal, run_modal}; }
+
+}  // namespace beamfea

@@ -1,0 +1,223 @@
+#include "io/load_reader.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <map>
+
+#include "core/errors.hpp"
+#include "io/json_util.hpp"
+#include "io/model_reader.hpp"
+
+namespace beamfea {
+
+using json = nlohmann::json;
+using namespace json_in;
+
+namespace {
+
+// Relative tolerances of an inertia matrix's symmetry and positive semi-definiteness (round-off
+// of user-typed numbers, relative to its largest entry).
+constexpr double kInertiaSymmetry = 1e-9;
+constexpr double kInertiaPsd = 1e-9;
+
+double fraction(const json& o, const std::string& p, const char* key, double fallback, const std::string& what) {
+  if (!o.contains(key)) return fallback;
+  const double v = number(o[key], child(p, key), what + " " + key);
+  if (!(v >= 0.0 && v <= 1.0))
+    throw InputError(child(p, key), what + ": '" + key + "' must lie in [0, 1] (a fraction of the member's length)");
+  return v;
+}
+
+MemberLoad read_member_load(const Model& m, const json& o, const std::string& p) {
+  MemberLoad l;
+  const std::string id = json_in::id(o["element"], child(p, "element"), "load element");
+  l.member = m.find_member(id);
+  if (l.member < 0) throw InputError(child(p, "element"), "load on unknown element '" + id + "'");
+  const std::string what = "load on element '" + id + "'";
+  if (m.members[l.member].type != MemberType::Beam)
+    throw InputError(child(p, "element"), what + ": a rigid link carries no member loads; load its nodes");
+  if (o.contains("axes")) {
+    const std::string axes = string(o["axes"], child(p, "axes"), what + " axes");
+    if (axes == "local") l.local = true;
+    else if (axes != "global") throw InputError(child(p, "axes"), what + ": axes must be \"local\" or \"global\"");
+  }
+  const bool dist = o.contains("distributed");
+  const bool point = o.contains("point") || o.contains("moment");
+  if (dist == point)
+    throw InputError(p, what + ": give either 'distributed' (force per unit length) or 'point'/'moment' with 'at'");
+  if (dist) {
+    l.kind = MemberLoad::Kind::Distributed;
+    l.q_from = vec3(o["distributed"], child(p, "distributed"), what + " distributed");
+    l.q_to = o.contains("distributed_end") ? vec3(o["distributed_end"], child(p, "distributed_end"), what + " distributed_end")
+                                           : l.q_from;
+    l.from = fraction(o, p, "from", 0.0, what);
+    l.to = fraction(o, p, "to", 1.0, what);
+    if (!(l.from < l.to))
+      throw InputError(child(p, o.contains("to") ? "to" : "from"),
+                       what + ": 'from' must be below 'to' (got from " + std::to_string(l.from) + ", to " +
+                           std::to_string(l.to) + ")");
+    expect_keys(o, p, {"element", "distributed", "distributed_end", "from", "to", "axes"});
+  } else {
+    l.kind = MemberLoad::Kind::Point;
+    if (o.contains("point")) l.force = vec3(o["point"], child(p, "point"), what + " point");
+    if (o.contains("moment")) l.moment = vec3(o["moment"], child(p, "moment"), what + " moment");
+    if (!o.contains("at")) throw InputError(child(p, "at"), what + ": missing 'at' (fraction of the member's length)");
+    l.at = fraction(o, p, "at", 0.5, what);
+    expect_keys(o, p, {"element", "point", "moment", "at", "axes"});
+  }
+  return l;
+}
+
+Vec3 read_gravity(const json& v, const std::string& p) { return vec3(v, p, "gravity"); }
+
+PointMass read_mass(const Model& m, const json& o, const std::string& p) {
+  PointMass pm;
+  pm.node = node_ref(m, require(o, p, "node", "mass"), child(p, "node"));
+  const std::string what = "mass at node '" + m.nodes[pm.node].id + "'";
+  pm.mass = number(require(o, p, "mass", what), child(p, "mass"), what);
+  if (!(pm.mass >= 0.0)) throw InputError(child(p, "mass"), what + ": mass must not be negative");
+  if (o.contains("inertia")) {
+    const std::string ip = child(p, "inertia");
+    const auto& rows = array(o["inertia"], ip, what + " inertia");
+    if (rows.size() != 3) throw InputError(ip, what + ": inertia must be a 3x3 matrix");
+    for (int r = 0; r < 3; ++r) {
+      const auto v = numbers(rows[r], child(ip, r), what + " inertia");
+      if (v.size() != 3) throw InputError(child(ip, r), what + ": inertia must be a 3x3 matrix");
+      for (int c = 0; c < 3; ++c) pm.inertia(r, c) = v[c];
+    }
+    const double scale = pm.inertia.cwiseAbs().maxCoeff();
+    if ((pm.inertia - pm.inertia.transpose()).cwiseAbs().maxCoeff() > kInertiaSymmetry * scale)
+      throw InputError(ip, what + ": inertia must be symmetric");
+    Eigen::SelfAdjointEigenSolver<Mat3> es(pm.inertia);
+    if (es.eigenvalues().minCoeff() < -kInertiaPsd * scale)
+      throw InputError(ip, what + ": inertia must be positive semi-definite");
+  }
+  expect_keys(o, p, {"node", "mass", "inertia"});
+  return pm;
+}
+
+}  // namespace
+
+LoadSet read_load_list(const Model& m, const json& list, const std::string& base) {
+  LoadSet s;
+  array(list, base, "loads");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string p = child(base, i);
+    const auto& o = object(list[i], p, "load");
+    if (o.contains("element")) {
+      s.member.push_back(read_member_load(m, o, p));
+      continue;
+    }
+    if (o.contains("joint")) {
+      JointLoad l;
+      l.joint = joint_ref(m, o["joint"], child(p, "joint"));
+      const std::string what = "load on joint '" + m.joints[l.joint].id + "'";
+      l.coordinate = o.contains("coordinate") ? integer(o["coordinate"], child(p, "coordinate"), what) : 0;
+      if (l.coordinate < 0 || l.coordinate >= m.joints[l.joint].coordinates())
+        throw InputError(child(p, "coordinate"), what + ": joint '" + m.joints[l.joint].id + "' has " +
+                                                     std::to_string(m.joints[l.joint].coordinates()) + " coordinate(s)");
+      l.value = number(require(o, p, "value", what), child(p, "value"), "load value");
+      expect_keys(o, p, {"joint", "coordinate", "value"});
+      s.joint.push_back(l);
+      continue;
+    }
+    NodalLoad l;
+    l.node = node_ref(m, require(o, p, "node", "load"), child(p, "node"));
+    const std::string what = "load at node '" + m.nodes[l.node].id + "'";
+    if (o.contains("force")) l.force = vec3(o["force"], child(p, "force"), what + " force");
+    if (o.contains("moment")) l.moment = vec3(o["moment"], child(p, "moment"), what + " moment");
+    expect_keys(o, p, {"node", "force", "moment"});
+    s.nodal.push_back(l);
+  }
+  return s;
+}
+
+void read_loads_and_cases(const json& doc, Model& m) {
+  LoadSet def;
+  if (doc.contains("loads")) def = read_load_list(m, doc["loads"], "/loads");
+  if (doc.contains("gravity")) def.gravity = read_gravity(doc["gravity"], "/gravity");
+  m.set_default_loads(def);
+
+  if (doc.contains("masses")) {
+    const auto& arr = array(doc["masses"], "/masses", "masses");
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      const std::string p = child("/masses", i);
+      m.masses.push_back(read_mass(m, object(arr[i], p, "mass"), p));
+    }
+  }
+
+  std::map<std::string, std::string> seen;  // id -> pointer of its first definition
+  if (doc.contains("load_cases")) {
+    const auto& arr = array(doc["load_cases"], "/load_cases", "load_cases");
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      const std::string p = child("/load_cases", i);
+      const auto& o = object(arr[i], p, "load case");
+      LoadCase c;
+      c.id = json_in::id(require(o, p, "id", "load case"), child(p, "id"), "load case");
+      if (auto [it, fresh] = seen.emplace(c.id, p); !fresh)
+        throw InputError(child(p, "id"), "load case '" + c.id + "' is defined twice (first at " + it->second + ")");
+      if (o.contains("loads")) c.loads = read_load_list(m, o["loads"], child(p, "loads"));
+      if (o.contains("gravity")) c.loads.gravity = read_gravity(o["gravity"], child(p, "gravity"));
+      expect_keys(o, p, {"id", "loads", "gravity"});
+      m.load_cases.push_back(std::move(c));
+    }
+  }
+  if (doc.contains("combinations")) {
+    const auto& arr = array(doc["combinations"], "/combinations", "combinations");
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      const std::string p = child("/combinations", i);
+      const auto& o = object(arr[i], p, "combination");
+      Combination c;
+      c.id = json_in::id(require(o, p, "id", "combination"), child(p, "id"), "combination");
+      if (auto [it, fresh] = seen.emplace(c.id, p); !fresh)
+        throw InputError(child(p, "id"), "combination '" + c.id + "': the id is defined twice (first at " + it->second + ")");
+      const std::string fp = child(p, "factors");
+      const auto& factors = object(require(o, p, "factors", "combination '" + c.id + "'"), fp, "combination factors");
+      for (const auto& [name, v] : factors.items()) {
+        const int k = m.find_load_case(name);
+        if (k < 0) throw InputError(child(fp, name), "combination '" + c.id + "' names unknown load case '" + name + "'");
+        c.factors.emplace_back(k, number(v, child(fp, name), "combination factor"));
+      }
+      expect_keys(o, p, {"id", "factors"});
+      m.combinations.push_back(std::move(c));
+    }
+  }
+}
+
+double read_density(const json& o, const std::string& p, const std::string& what) {
+  if (!o.contains("density")) return 0.0;
+  const double rho = number(o["density"], child(p, "density"), what + " density");
+  if (!(rho >= 0.0)) throw InputError(child(p, "density"), what + ": density must not be negative");
+  return rho;
+}
+
+namespace {
+// An analysis's load_case naming the top-level loads and gravity (unless a case or a combination
+// has this id).
+constexpr const char* kDefaultLoadCase = "default";
+
+// "default, dead, tool, uls": the names an analysis's load_case may take.
+std::string known_cases(const Model& m) {
+  std::string s = kDefaultLoadCase;
+  for (const auto& c : m.load_cases) s += ", " + c.id;
+  for (const auto& c : m.combinations) s += ", " + c.id;
+  return s;
+}
+}  // namespace
+
+void check_load_case(const Model& m, const json& spec, const std::string& p) {
+  if (!spec.contains("load_case")) return;
+  const std::string id = json_in::id(spec["load_case"], child(p, "load_case"), "load_case");
+  if (m.find_load_case(id) < 0 && m.find_combination(id) < 0 && id != kDefaultLoadCase)
+    throw InputError(child(p, "load_case"), "unknown load case or combination '" + id + "' (known: " + known_cases(m) + ")");
+}
+
+Model model_for_load_case(const Model& m, const json& spec) {
+  Model out = m;
+  if (!spec.contains("load_case")) return out;
+  const std::string id = json_in::id(spec["load_case"], "", "load_case");
+  if (id == kDefaultLoadCase && m.find_load_case(id) < 0 && m.find_combination(id) < 0) return out;
+  out.set_default_loads(m.loads_of(id));
+  return out;
+}
+
+}  // namespace beamfea

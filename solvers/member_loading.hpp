@@ -1,0 +1,43 @@
+#pragma once
+// A load case on the model: member loads and self-weight distributed onto the analysis elements,
+// the external load vector over raw DOFs, dead-load terms for the co-rotational analyses, and
+// section forces at stations along members.
+//
+// A member load follows its member over its segments: a distributed load on [from, to] (fractions
+// of the member's length) is cut at the segment ends, its intensity interpolated linearly; a point
+// load goes to the segment that contains it (at a segment end, to the segment that starts there).
+// Self-weight: q = density x A x gravity on every beam element (force per unit length, global);
+// point masses: mass x gravity at their node.
+#include <Eigen/Core>
+#include <vector>
+
+#include "core/dof_map.hpp"
+#include "core/model.hpp"
+#include "elements/member_loads.hpp"
+
+namespace beamfea {
+
+// Loads between the nodes of every element (local components; empty for rigid links).
+std::vector<ElementLoads> element_loads(const Model& model, const LoadSet& loads);
+
+// External forces over raw DOFs: nodal and joint loads, the equivalent nodal loads of the member
+// loads and self-weight (global axes), and the weight of the point masses.
+Eigen::VectorXd external_force(const Model& model, const DofMap& map, const LoadSet& loads);
+
+// Dead-load terms of every element (global directions, fixed at the reference configuration),
+// for the co-rotational analyses (elements/member_loads.hpp, DeadLoadTerm).
+std::vector<std::vector<DeadLoadTerm>> element_dead_loads(const Model& model, const LoadSet& loads);
+
+// Section forces [N Vy Vz T My Mz] (local, positive face, docs/conventions.md) at x, the distance
+// from the member's first node.
+struct Station {
+  double x = 0.0;
+  Vec6 forces = Vec6::Zero();
+};
+// Stations of a beam member: both ends, every segment end, both sides of every point load, every
+// start and end of a distributed load, and `interior` equally spaced points (x = L k/(interior+1)).
+// end_forces: per element, k u + fixed-end forces (local); loads: element_loads(...).
+std::vector<Station> member_stations(const Model& model, int member, const std::vector<Vec12>& end_forces,
+                                     const std::vector<ElementLoads>& loads, int interior = 10);
+
+}  // namespace beamfea

@@ -1,0 +1,182 @@
+#include "solvers/modal.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "core/assembly.hpp"
+#include "core/errors.hpp"
+#include "solvers/generalized_eigen.hpp"
+#include "solvers/initial_stress.hpp"
+#include "solvers/linear_static.hpp"
+#include "solvers/mass_matrix.hpp"
+#include "solvers/structure.hpp"
+
+namespace beamfea {
+
+namespace {
+// sigma = -kShiftRelative * min_i(K_ii/M_ii). min_i(K_ii/M_ii) bounds lambda_1 from above (the
+// Rayleigh quotient of a unit vector), and exceeds it by about 30 n^4 for a member of n cubic
+// elements; 1e-9 keeps |sigma| below lambda_1 up to ~100 elements per member (fast Lanczos
+// convergence) while K - sigma M stays safely factorisable where K is singular (rigid modes).
+constexpr double kShiftRelative = 1e-9;
+// A zero mode is a rigid-body motion when its distance to the span of the 6 rigid motions is
+// below this fraction of its size.
+constexpr double kRigidRelative = 1e-6;
+}  // namespace
+
+void ModalOptions::validate() const {
+  if (modes < 1) throw Error("ModalOptions: modes must be at least 1");
+  if (!(zero_tolerance > 0.0)) throw Error("ModalOptions: zero_tolerance must be positive");
+}
+
+const char* to_string(ModalStatus s) {
+  switch (s) {
+    case ModalStatus::Ok: return "ok";
+    case ModalStatus::NoMass: return "no mass";
+    case ModalStatus::MasslessMechanism: return "massless mechanism";
+    case ModalStatus::PreloadFailed: return "preload failed";
+    case ModalStatus::Failed: return "failed";
+  }
+  return "?";
+}
+
+const char* to_string(ModeKind k) {
+  switch (k) {
+    case ModeKind::Elastic: return "elastic";
+    case ModeKind::RigidBody: return "rigid_body";
+    case ModeKind::Mechanism: return "mechanism";
+    case ModeKind::Unstable: return "unstable";
+  }
+  return "?";
+}
+
+int modal_dof_count(const Model& model) { return DofMap(model).free_size(); }
+
+ModalResult solve_modal(const Model& model, const ModalOptions& options) {
+  options.validate();
+  ModalResult res;
+  const DofMap map(model);
+  const LinearStructure structure(model);
+  res.free_dofs = map.free_size();
+  const int n = map.free_size();
+  if (n == 0) {
+    res.status = ModalStatus::NoMass;
+    res.message = "modal: no free DOFs";
+    return res;
+  }
+
+  SystemAssembler ka(map), ma(map);
+  ka.begin();
+  structure.assemble(map, ka);
+  ka.end();
+  ma.begin();
+  assemble_mass(model, map, options.mass, ma);
+  ma.end();
+  SparseMatrix K = ka.K_ff();
+  const SparseMatrix& M = ma.K_ff();
+  if (options.preload) {
+    const LinearStaticResult lin = solve_linear_static(model);
+    if (lin.status != SolveStatus::Converged) {
+      res.status = ModalStatus::PreloadFailed;
+      res.message = "modal: the linear static solution of the preload failed: " + lin.message;
+      return res;
+    }
+    const SparseMatrix Kg = geometric_stiffness(model, map, structure, lin);
+    K += SparseMatrix(0.5 * (SparseMatrix(Kg.transpose()) + Kg));
+  }
+
+  // The shift: just below zero, relative to the smallest diagonal ratio.
+  const Eigen::VectorXd dK = K.diagonal(), dM = M.diagonal();
+  double ratio = std::numeric_limits<double>::infinity();
+  double m_max = 0.0;
+  for (int i = 0; i < n; ++i) {
+    m_max = std::max(m_max, dM[i]);
+    if (dM[i] > 0.0 && dK[i] > 0.0) ratio = std::min(ratio, dK[i] / dM[i]);
+  }
+  if (!(m_max > 0.0)) {
+    res.status = ModalStatus::NoMass;
+    res.message = "modal: the model has no mass (give the materials a density or add point masses)";
+    return res;
+  }
+  if (!std::isfinite(ratio)) ratio = 1.0;  // no DOF both stiff and massive: any scale
+  const double sigma = -kShiftRelative * ratio;
+
+  GeneralizedEigenPairs eig;
+  try {
+    eig = nearest_generalized_eigenpairs(K, M, options.modes, sigma);
+  } catch (const Error& e) {
+    res.status = ModalStatus::MasslessMechanism;
+    res.message = std::string("modal: ") + e.what();
+    return res;
+  }
+  if (!eig.converged) {
+    res.status = ModalStatus::Failed;
+    res.message = "modal: " + eig.message;
+    return res;
+  }
+
+  // Mode kinds, frequencies, raw shapes, participation.
+  const Eigen::MatrixXd R = rigid_body_motions(model, map);
+  Eigen::MatrixXd MR(map.raw_size(), 6);
+  for (int d = 0; d < 6; ++d) MR.col(d) = raw_mass_product(model, map, options.mass, R.col(d));
+  for (int d = 0; d < 6; ++d) res.total_mass[d] = R.col(d).dot(MR.col(d));
+  // Node DOFs of the rigid motions, rotations scaled by the model's length (commensurable).
+  const double Ls = model.length_scale();
+  auto node_part = [&](const Eigen::VectorXd& u) {
+    Eigen::VectorXd v(6 * static_cast<Eigen::Index>(model.nodes.size()));
+    for (Eigen::Index i = 0; i < v.size(); ++i) v[i] = (i % 6 < 3) ? u[i] : Ls * u[i];
+    return v;
+  };
+  Eigen::MatrixXd Rn(6 * static_cast<Eigen::Index>(model.nodes.size()), 6);
+  for (int d = 0; d < 6; ++d) Rn.col(d) = node_part(R.col(d));
+  const auto rigid_qr = Rn.colPivHouseholderQr();
+
+  const Eigen::Index count = eig.values.size();
+  res.eigenvalues = eig.values;
+  res.frequencies.resize(count);
+  res.participation.resize(count, 6);
+  res.effective_mass.resize(count, 6);
+  int zero = 0, unstable = 0;
+  for (Eigen::Index k = 0; k < count; ++k) {
+    const Eigen::VectorXd phi = eig.vectors.col(k);
+    const double quad = phi.dot(K * phi);
+    double scaled = 0.0;
+    for (int i = 0; i < n; ++i) scaled += std::abs(dK[i]) * phi[i] * phi[i];
+    const double rayleigh = scaled > 0.0 ? quad / scaled : 0.0;
+    const Eigen::VectorXd raw = map.T_free() * phi;
+    ModeKind kind = ModeKind::Elastic;
+    double lambda = eig.values[k];
+    if (std::abs(rayleigh) < options.zero_tolerance) {
+      ++zero;
+      lambda = 0.0;
+      const Eigen::VectorXd v = node_part(raw);
+      const Eigen::VectorXd fit = Rn * rigid_qr.solve(v);
+      const bool rigid = (v - fit).norm() <= kRigidRelative * v.norm();
+      kind = rigid ? ModeKind::RigidBody : ModeKind::Mechanism;
+    } else if (lambda < 0.0) {
+      ++unstable;
+      kind = ModeKind::Unstable;
+    }
+    res.eigenvalues[k] = lambda;
+    res.frequencies[k] = std::copysign(std::sqrt(std::abs(lambda)), lambda) / (2.0 * std::numbers::pi);
+    res.kinds.push_back(kind);
+    res.modes.push_back(raw);
+    for (int d = 0; d < 6; ++d) {
+      res.participation(k, d) = raw.dot(MR.col(d));
+      res.effective_mass(k, d) = res.participation(k, d) * res.participation(k, d);
+    }
+  }
+  res.status = ModalStatus::Ok;
+  res.message = fmt::format("modal: {} free DOFs, {} modes{}, lowest {:.6g} Hz{}{}", n, count,
+                            options.preload ? " about the loaded state" : "",
+                            count > 0 ? res.frequencies[0] : 0.0,
+                            zero > 0 ? fmt::format(", {} zero-frequency", zero) : "",
+                            unstable > 0 ? fmt::format(", {} unstable (beyond buckling)", unstable) : "");
+  return res;
+}
+
+}  // namespace beamfea
