@@ -167,8 +167,7 @@ TEST(ActuatorLoadCase, FrozenLShapedArmDeflectsAsTheUnitLoadMethodSays) {
 // mu^2 = P/EI): EI w'' = H (L - x) + P (delta - w), w(0) = 0, w'(0) = (H L + P delta)/k, w(L) =
 // delta give K = P / (1 / (mu cot(mu L) - P/k) - L); k -> infinity: P / (tan(mu L)/mu - L) (the
 // frozen structure); EI -> infinity: (k - P L) / L^2 (the rigid inverted pendulum).
-json column(double Lc, double k, double mass, int divisions) {
-  (void)k;
+json column(double Lc, double mass, int divisions) {
   return {{"nodes", {{{"id", "G"}, {"xyz", {0, 0, 0}}}, {{"id", "B"}, {"xyz", {0, 0, 0}}}, {{"id", "T"}, {"xyz", {0, Lc, 0}}}}},
           {"materials", {{{"id", "steel"}, {"E", kE}, {"nu", kNu}}}},
           {"sections", {{{"id", "s"}, {"shape", "circle"}, {"r", kR}}}},
@@ -191,7 +190,7 @@ TEST(ActuatorLoadCase, LoadedStiffnessOfAColumnOnASpringMatchesTheExactBeamColum
   const double Pcr = M_PI * M_PI * EI / (4 * Lc * Lc);  // Euler, cantilever
   const double P = 0.3 * Pcr, mass = P / kG;
   const double k = 3.0 * P * Lc;  // the rigid inverted pendulum keeps 2/3 of its spring
-  const Model model = read_model(column(Lc, k, mass, 16));
+  const Model model = read_model(column(Lc, mass, 16));
   AllocationOptions o;
   o.platform_node = model.find_node("T");
   o.directions = {0};  // ux
