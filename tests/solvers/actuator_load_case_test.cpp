@@ -3,10 +3,12 @@
 // (tau = -J^T W for a platform wrench W; Craig, Introduction to Robotics, 3rd ed., eq. 5.105 with
 // F = -W), the platform displacement of the frozen arm by the unit-load method, and the loaded
 // stiffness of a column on a base spring under a tip weight against the exact beam-column
-// solution (derived below; Timoshenko & Gere, Theory of Elastic Stability, 2nd ed., sec. 1.11).
+// solution (derived below from the beam-column equation of Timoshenko & Gere, Theory of Elastic
+// Stability, 2nd ed., chapter 1).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "io/model_reader.hpp"
@@ -202,10 +204,13 @@ TEST(ActuatorLoadCase, LoadedStiffnessOfAColumnOnASpringMatchesTheExactBeamColum
   ASSERT_TRUE(r.total.stiffness_ok) << r.total.stiffness_message;
   // Rigid links: exact (one rigid link, the constraint curvature of the tip load).
   EXPECT_NEAR(r.actuated.K_loaded(0, 0), (k - P * Lc) / (Lc * Lc), 1e-9 * k / (Lc * Lc));
-  // Beams: K + K_g with 16 cubic elements; the exact second-order stiffness to 1e-5.
+  // Beams: K + K_g with 16 cubic elements; the exact second-order stiffness (errors 1.7e-8, 1.3e-8).
   const double Ks = beam_column_tip_stiffness(P, EI, Lc, 0.0), Kt = beam_column_tip_stiffness(P, EI, Lc, k);
-  EXPECT_NEAR(r.structural.K_loaded(0, 0), Ks, 1e-5 * Ks);
-  EXPECT_NEAR(r.total.K_loaded(0, 0), Kt, 1e-5 * Kt);
+  std::printf("column P = 0.3 P_cr, 16 elements: loaded stiffness errors frozen %.2e, sprung %.2e, rigid %.2e\n",
+              r.structural.K_loaded(0, 0) / Ks - 1, r.total.K_loaded(0, 0) / Kt - 1,
+              r.actuated.K_loaded(0, 0) / ((k - P * Lc) / (Lc * Lc)) - 1);
+  EXPECT_NEAR(r.structural.K_loaded(0, 0), Ks, 1e-6 * Ks);
+  EXPECT_NEAR(r.total.K_loaded(0, 0), Kt, 1e-6 * Kt);
   // The preload softens: the unloaded frozen cantilever is 3EI/L^3.
   EXPECT_LT(r.structural.K_loaded(0, 0), 3 * EI / (Lc * Lc * Lc));
   // No lateral load: no effort, and the column only shortens.
