@@ -11,8 +11,10 @@
 //  "structural_terms": ["bending"],        terms of eq. 12 (axial, shear, torsion, bending); default all
 //  "poses": [{"id": "P1", "nodes": [{"node": "J2", "xyz": [x, y, z]}, ...]}],   default: the model as given
 //  "schemes": [["J1", "J2", "J3"]],        optional: only these schemes (default: all C(N, n))
-//  "rank_by": {"stiffness": "total", "direction": "uy"}}
-//     stiffness: actuated (K_A,dd), structural (1/C_S,dd), total_eq19 (eq. 19), total (1/C_dd, C = K_A^-1 + C_S)
+//  "rank_by": {"stiffness": "total", "direction": "uy"},
+//  "load_case": "payload"}                 optional: efforts, displacement, loaded stiffness per scheme
+//     stiffness: actuated (K_A,dd), structural (1/C_S,dd), total_eq19 (eq. 19), total (1/C_dd, C = K_A^-1 + C_S);
+//     with a load_case also loaded_actuated, loaded_structural, loaded_total (K + K_g of the case)
 #include <fmt/format.h>
 
 #include <cmath>
@@ -21,9 +23,11 @@
 
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
+#include "io/actuator_load_case_output.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json_util.hpp"
 #include "elements/beam.hpp"
+#include "io/load_reader.hpp"
 #include "io/model_reader.hpp"
 #include "solvers/actuator_allocation.hpp"
 
@@ -34,7 +38,13 @@ namespace {
 using json = nlohmann::json;
 using namespace json_in;
 
-constexpr const char* kComponents[] = {"actuated", "structural", "total_eq19", "total", "total_fea"};
+// The unloaded components (results' "components", the stiffness CSV), then the loaded ones of a
+// load case (rank_by only; results' "loaded_stiffness.components").
+constexpr const char* kComponents[] = {"actuated",        "structural",        "total_eq19",  "total",
+                                       "total_fea",       "loaded_actuated",   "loaded_structural",
+                                       "loaded_total"};
+constexpr int kUnloadedComponents = 5;
+constexpr int kComponentCount = 8;
 constexpr std::size_t kMaxSchemes = 20000;
 
 struct Pose {
@@ -49,6 +59,7 @@ struct Spec {
   std::vector<std::vector<int>> schemes;
   int rank_component = 3;  // index into kComponents
   int rank_direction = 0;  // index into options.directions
+  std::string load_case;   // empty: none
 };
 
 Spec read_spec(const Model& model, const json& spec, const std::string& p) {
@@ -56,7 +67,10 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
   const std::string what = "actuator_allocation analysis";
   auto& o = s.options;
   expect_keys(spec, p, {"id", "type", "description", "platform_node", "candidate_joints", "actuators",
-                        "actuator_stiffness", "directions", "structural_terms", "poses", "schemes", "rank_by"});
+                        "actuator_stiffness", "directions", "structural_terms", "poses", "schemes", "rank_by",
+                        "load_case"});
+  check_load_case(model, spec, p);
+  if (spec.contains("load_case")) s.load_case = json_in::id(spec["load_case"], child(p, "load_case"), "load_case");
   o.platform_node = node_ref(model, require(spec, p, "platform_node", what), child(p, "platform_node"));
   // Candidates
   const std::string pc = child(p, "candidate_joints");
@@ -220,10 +234,14 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
     if (r.contains("stiffness")) {
       const std::string c = string(r["stiffness"], child(pr, "stiffness"), "rank_by stiffness");
       s.rank_component = -1;
-      for (int i = 0; i < 4; ++i)
-        if (c == kComponents[i]) s.rank_component = i;
+      for (int i = 0; i < kComponentCount; ++i)
+        if (i != 4 && c == kComponents[i]) s.rank_component = i;
       if (s.rank_component < 0)
-        throw InputError(child(pr, "stiffness"), "unknown stiffness '" + c + "' (expected actuated, structural, total_eq19, total)");
+        throw InputError(child(pr, "stiffness"), "unknown stiffness '" + c +
+                                                     "' (expected actuated, structural, total_eq19, total, loaded_actuated, "
+                                                     "loaded_structural, loaded_total)");
+      if (s.rank_component >= kUnloadedComponents && s.load_case.empty())
+        throw InputError(child(pr, "stiffness"), "rank_by stiffness '" + c + "' needs a \"load_case\"");
     }
     if (r.contains("direction")) {
       const std::string d = string(r["direction"], child(pr, "direction"), "rank_by direction");
@@ -314,8 +332,16 @@ AnalysisOutcome run_actuator_allocation(const AnalysisContext& ctx) {
   ojson pose_ids = ojson::array();
   for (const auto& p : s.poses) pose_ids.push_back(p.id);
   res["poses"] = pose_ids;
+  const bool loaded = !s.load_case.empty();
+  LoadSet case_loads;
+  if (loaded) {
+    res["load_case"] = s.load_case;
+    case_loads = model_for_load_case(model, ctx.spec).default_loads();
+  }
 
-  std::ostringstream csv_k, csv_l, csv_r;
+  std::ostringstream csv_k, csv_l, csv_r, csv_e, csv_c;
+  csv_e << kEffortsCsvHeader;
+  csv_c << kLoadCaseCsvHeader;
   csv_k << "scheme,pose,status,det_J,direction,actuated,structural,total_eq19,total,total_fea,vf_fea_mismatch\n";
   csv_l << "scheme,pose,direction,member,int_N2,int_Qy2,int_Qz2,int_T2,int_My2,int_Mz2,c_axial,c_shear,c_torsion,"
            "c_bending,c_sum\n";
@@ -417,9 +443,24 @@ AnalysisOutcome run_actuator_allocation(const AnalysisContext& ctx) {
       if (r.total.ok) tot["K_series"] = matrix_json(r.total.K_series);
       if (r.total.fea_ok) tot["K_fea"] = matrix_json(r.total.K_fea);
       po["total"] = tot;
-      const auto comp = components(r, nd);
+      std::array<Eigen::VectorXd, kComponentCount> comp;
+      {
+        const auto unloaded = components(r, nd);
+        for (int c = 0; c < kUnloadedComponents; ++c) comp[c] = unloaded[c];
+        for (int c = kUnloadedComponents; c < kComponentCount; ++c)
+          comp[c] = Eigen::VectorXd::Constant(nd, std::numeric_limits<double>::quiet_NaN());
+      }
+      if (loaded) {
+        // What the case does to this scheme: efforts, platform displacement, loaded stiffness.
+        const SchemeLoadResponse lr = scheme_load_response(m, o, sch, case_loads);
+        write_load_response(model, o, sch, lr, po);
+        const auto lc = loaded_components(lr, nd);
+        for (int c = 0; c < 3; ++c) comp[kUnloadedComponents + c] = lc[c];
+        csv_e << efforts_csv_rows(model, o, sch, name, pose, lr);
+        csv_c << load_case_csv_rows(o, name, pose, lr);
+      }
       ojson co;
-      for (int c = 0; c < 5; ++c) {
+      for (int c = 0; c < kUnloadedComponents; ++c) {
         ojson v;
         for (int d = 0; d < nd; ++d) v[kDofNames[o.directions[d]]] = num(comp[c][d]);
         co[kComponents[c]] = v;
@@ -435,7 +476,10 @@ AnalysisOutcome run_actuator_allocation(const AnalysisContext& ctx) {
         if (rank.status == "ok") rank.status = r.status + " at " + pose;
       } else {
         const double v = comp[s.rank_component][s.rank_direction];
-        if (std::isfinite(v) && v < rank.value) {
+        if (!std::isfinite(v)) {
+          // No value to rank by (e.g. the loaded structure is a mechanism): not ranked.
+          if (rank.status == "ok") rank.status = std::string("no ") + kComponents[s.rank_component] + " at " + pose;
+        } else if (v < rank.value) {
           rank.value = v;
           rank.pose = pose;
         }
@@ -473,9 +517,13 @@ AnalysisOutcome run_actuator_allocation(const AnalysisContext& ctx) {
   res["virtual_force_vs_fea_max"] = worst_mismatch;
   if (!ctx.out_dir.empty()) {
     ojson files = ojson::array();
-    const std::pair<std::string, std::string> f[] = {{ctx.id + "_stiffness.csv", csv_k.str()},
-                                                     {ctx.id + "_links.csv", csv_l.str()},
-                                                     {ctx.id + "_ranking.csv", csv_r.str()}};
+    std::vector<std::pair<std::string, std::string>> f = {{ctx.id + "_stiffness.csv", csv_k.str()},
+                                                          {ctx.id + "_links.csv", csv_l.str()},
+                                                          {ctx.id + "_ranking.csv", csv_r.str()}};
+    if (loaded) {
+      f.emplace_back(ctx.id + "_efforts.csv", csv_e.str());
+      f.emplace_back(ctx.id + "_load_case.csv", csv_c.str());
+    }
     for (const auto& [file, text] : f) {
       write_text_atomic(ctx.out_dir / file, text);
       files.push_back(file);

@@ -125,26 +125,19 @@ void apply_node_positions(Model& model, const std::vector<std::pair<int, Vec3>>&
                                                    model.nodes[j.nodes[1]].id + "' do not coincide in this pose");
 }
 
-namespace {
-
-enum class Links { Rigid, Flexible };
-enum class ActuatorRole { Spring, Frozen };
-
-// The model of one scheme: candidates passive (stiffness 0) or actuated (spring or frozen),
-// links rigid or as given, no loads, every prescribed value zero.
-Model scheme_model(const Model& model, const AllocationOptions& o, const std::vector<int>& actuated, Links links,
-                   ActuatorRole role) {
+Model scheme_model(const Model& model, const AllocationOptions& o, const std::vector<int>& actuated, SchemeLinks links,
+                   SchemeActuators role, const LoadSet& loads) {
   Model m = model;
-  m.set_default_loads({});
+  m.set_default_loads(loads);
   for (auto& p : m.prescribed) p.value = 0.0;
-  if (links == Links::Rigid) {
+  if (links == SchemeLinks::Rigid) {
     for (auto& e : m.elements) e.type = MemberType::Rigid;
     for (auto& mem : m.members) mem.type = MemberType::Rigid;
   }
   for (const auto& c : o.candidates) m.joints[c.joint].stiffness[c.coordinate] = 0.0;
   for (int i : actuated) {
     const auto& c = o.candidates[i];
-    if (role == ActuatorRole::Spring) {
+    if (role == SchemeActuators::Springs) {
       m.joints[c.joint].stiffness[c.coordinate] = o.actuator_stiffness[i];
     } else {
       // Drop any user prescription of the same coordinate: it is frozen at zero here.
@@ -155,6 +148,8 @@ Model scheme_model(const Model& model, const AllocationOptions& o, const std::ve
   }
   return m;
 }
+
+namespace {
 
 SparseMatrix assemble_K(const Model& m, const DofMap& map) {
   const LinearStructure structure(m);
@@ -195,7 +190,7 @@ ActuatedStiffness actuated_stiffness(const Model& model, const AllocationOptions
 
   // (a) Jacobian: rigid links, actuated coordinates prescribed (one at 1, the others locked at 0).
   {
-    const Model m = scheme_model(model, o, actuated, Links::Rigid, ActuatorRole::Frozen);
+    const Model m = scheme_model(model, o, actuated, SchemeLinks::Rigid, SchemeActuators::Frozen);
     const DofMap map(m);
     // Which prescribed values are the actuators.
     std::vector<int> pidx(na, -1);
@@ -289,7 +284,7 @@ ActuatedStiffness actuated_stiffness(const Model& model, const AllocationOptions
   }
   // (b) Condensed stiffness of the rigid model with actuator springs.
   {
-    const Model m = scheme_model(model, o, actuated, Links::Rigid, ActuatorRole::Spring);
+    const Model m = scheme_model(model, o, actuated, SchemeLinks::Rigid, SchemeActuators::Springs);
     const DofMap map(m);
     const SparseMatrix K = assemble_K(m, map);
     DirectionalStiffness ds = condense_to_directions(m, map, K, P, o.directions);
@@ -304,7 +299,7 @@ StructuralStiffness structural_stiffness(const Model& model, const AllocationOpt
   StructuralStiffness out;
   const int nd = static_cast<int>(o.directions.size());
   const int P = o.platform_node;
-  const Model m = scheme_model(model, o, actuated, Links::Flexible, ActuatorRole::Frozen);
+  const Model m = scheme_model(model, o, actuated, SchemeLinks::Flexible, SchemeActuators::Frozen);
   const DofMap map(m);
   const LinearStructure structure(m);
   SystemAssembler assembler(map);
@@ -444,7 +439,7 @@ SchemeResult evaluate_scheme(const Model& model, const AllocationOptions& o, con
   } else {
     T.message = "K_A is singular: no compliance in series";
   }
-  const Model m = scheme_model(model, o, actuated, Links::Flexible, ActuatorRole::Spring);
+  const Model m = scheme_model(model, o, actuated, SchemeLinks::Flexible, SchemeActuators::Springs);
   const DofMap map(m);
   const SparseMatrix K = assemble_K(m, map);
   const DirectionalStiffness ds = condense_to_directions(m, map, K, o.platform_node, o.directions);

@@ -149,6 +149,16 @@ StructuralStiffness structural_stiffness(const Model& model, const AllocationOpt
                                          const std::vector<int>& actuated);
 SchemeResult evaluate_scheme(const Model& model, const AllocationOptions& options, const std::vector<int>& actuated);
 
+// The model of one scheme: every candidate passive (stiffness 0) except the actuated ones, which
+// are springs k_i or frozen (prescribed 0); links rigid (every beam an exact rigid link) or as
+// modelled; every prescribed value zero; `loads` as its default load case (none by default).
+// Rigid links carry no member loads or self-weight (member_loading skips non-beams): give such a
+// model statically equivalent nodal loads (solvers/actuator_load_case.hpp does).
+enum class SchemeLinks { Rigid, Flexible };
+enum class SchemeActuators { Springs, Frozen };
+Model scheme_model(const Model& model, const AllocationOptions& options, const std::vector<int>& actuated,
+                   SchemeLinks links, SchemeActuators actuators, const LoadSet& loads = {});
+
 // All C(n, k) ascending index combinations, lexicographic.
 std::vector<std::vector<int>> combinations(int n, int k);
 

@@ -7,6 +7,7 @@
 
 #include "core/errors.hpp"
 #include "solvers/buckling.hpp"
+#include "solvers/corotated_member_loads.hpp"
 #include "solvers/path/critical_points.hpp"
 #include "solvers/path/equilibrium.hpp"
 #include "solvers/path/path_scales.hpp"
@@ -59,6 +60,9 @@ int record(PathResult& res, const PathOptions& o, const Model& original, const P
   }
   ps.state = c.state;
   ps.end_forces = P.ns.evaluate(c.state, Eigen::VectorXd::Zero(P.ns.reference_map().raw_size()), false).end_forces;
+  // Plus the member loads' fixed-end forces in the co-rotated frames (dead loads), as linear_static.
+  const auto fe = corotated_fixed_end_forces(original, original.default_loads(), c.state.x, c.state.R, c.lambda);
+  for (std::size_t e = 0; e < fe.size(); ++e) ps.end_forces[e] += fe[e];
   res.steps.push_back(std::move(ps));
   return res.steps.back().negative_eigenvalues;
 }

@@ -94,4 +94,49 @@ TEST(ActuatorAllocationCli, PoseThatSeparatesAJointExitsTwoNamingTheJoint) {
   EXPECT_NE(r.output.find("joint 'JB'"), std::string::npos) << r.output;
 }
 
+// load_case (docs/analyses/actuator-allocation.md, "With a load case").
+TEST(ActuatorAllocationCli, UnknownLoadCaseExitsTwoNamingIt) {
+  json d = chain();
+  d["analyses"][0]["load_case"] = "wind";
+  const CliRun r = run(d, "unknown_case");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("/analyses/0/load_case"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'wind'"), std::string::npos) << r.output;
+}
+
+TEST(ActuatorAllocationCli, RankingByALoadedStiffnessWithoutALoadCaseExitsTwo) {
+  json d = chain();
+  d["analyses"][0]["rank_by"] = {{"stiffness", "loaded_total"}, {"direction", "uy"}};
+  const CliRun r = run(d, "loaded_rank");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("/analyses/0/rank_by/stiffness"), std::string::npos) << r.output;
+}
+
+TEST(ActuatorAllocationCli, LoadCaseReportsEffortsDisplacementAndLoadedStiffness) {
+  json d = chain();
+  d["load_cases"] = {{{"id", "tip"}, {"loads", {{{"node", "P"}, {"force", {0, -2, 0}}}}}}};
+  d["analyses"][0]["load_case"] = "tip";
+  d["analyses"][0]["rank_by"] = {{"stiffness", "loaded_total"}, {"direction", "uy"}};
+  const CliRun r = run(d, "load_case");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const fs::path out = fs::temp_directory_path() / "beamfea_alloc_cli_load_case" / "out";
+  json res;
+  std::ifstream(out / "results.json") >> res;
+  const json& a = res["analyses"]["alloc"];
+  EXPECT_EQ(a["load_case"], "tip");
+  const json& pose = a["schemes"][0]["poses"][0];
+  // Statics of the straight chain A (x = 0) - B (x = 1) - P (x = 2), force -2 along y at P: the
+  // motors hold the moments about their axes, tau_A = 2 x 2 = 4, tau_B = 1 x 2 = 2.
+  ASSERT_EQ(pose["actuator_efforts"].size(), 2u);
+  EXPECT_NEAR(pose["actuator_efforts"][0]["effort"].get<double>(), 4.0, 1e-9);
+  EXPECT_NEAR(pose["actuator_efforts"][1]["effort"].get<double>(), 2.0, 1e-9);
+  // Rigid links, unit springs: q = -tau, uy(P) = 2 q_A + 1 q_B = -10.
+  EXPECT_NEAR(pose["platform_displacement"]["actuated"]["uy"].get<double>(), -10.0, 1e-9);
+  EXPECT_TRUE(pose["loaded_stiffness"]["total"].is_array());
+  EXPECT_TRUE(pose["loaded_stiffness"]["components"]["total"]["uy"].is_number());
+  EXPECT_EQ(a["rank_by"]["stiffness"], "loaded_total");
+  EXPECT_TRUE(fs::exists(out / "alloc_efforts.csv"));
+  EXPECT_TRUE(fs::exists(out / "alloc_load_case.csv"));
+}
+
 }  // namespace

@@ -9,8 +9,10 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <algorithm>
 #include <cmath>
 
+#include "solvers/linear_static.hpp"
 #include "solvers/path_following.hpp"
 #include "support/models.hpp"
 
@@ -78,4 +80,37 @@ TEST(DeadLoadPath, CantileverUnderLargeUniformDeadLoadFollowsTheElastica) {
     prev = err;
   }
   EXPECT_LT(prev, 1e-4);  // O(h^2): 7.4e-4, 2.0e-4, 5.3e-5 with 4, 8, 16 elements
+}
+
+// A path step's element end forces are the co-rotated nodal forces plus the member loads'
+// fixed-end forces (in the co-rotated frame, times the load factor): at a small load they equal
+// linear_static's k u + fixed-end forces. Without the fixed-end forces the elements' end shears
+// and moments would be off by q Le / 2 and q Le^2 / 12 (of order 1 here, relative).
+TEST(DeadLoadPath, StepEndForcesIncludeTheMemberLoadsFixedEndForcesAsLinearStatic) {
+  const double L = 1.0, E = 1e7, I = 1e-6, A = 1e-1;
+  const double q = 1e-4 * E * I / (L * L * L), P = 0.3 * q * L;  // q L^3/EI = 1e-4: nearly linear
+  json doc = test::cantilever(L, E, E / 2.6, A, I, I, 2 * I, 4);
+  doc["loads"].push_back({{"element", "e"}, {"distributed", {0, 0, -q}}});
+  doc["loads"].push_back({{"element", "e"}, {"point", {0, -P, 0}}, {"at", 0.3}});
+  doc["loads"].push_back({{"element", "e"}, {"distributed", {0, q, 0}}, {"axes", "local"}, {"from", 0.5}, {"to", 0.9}});
+  const Model m = test::model_from(doc);
+  const LinearStaticResult lin = solve_linear_static(m);
+  ASSERT_EQ(lin.status, SolveStatus::Converged);
+  PathOptions o;
+  o.target = 1.0;
+  o.increments = 2;
+  o.stability = false;
+  const PathResult r = follow_path(m, o);
+  ASSERT_TRUE(r.completed) << r.brief_report();
+  const auto& step = r.steps.back();
+  ASSERT_NEAR(step.load_factor, 1.0, 1e-12);
+  double scale = 0.0;
+  for (const auto& f : lin.end_forces) scale = std::max(scale, f.cwiseAbs().maxCoeff());
+  ASSERT_GT(scale, 0.0);
+  for (std::size_t e = 0; e < m.elements.size(); ++e)
+    for (int k = 0; k < 12; ++k)
+      // Geometric nonlinearity at q L^3/EI = 1e-4 changes end forces by ~q L^3/6EI = 2e-5 relative
+      // (the load's axial component in the turned frame); the axial rounding of the co-rotated
+      // elongation is ~1e-9 of EA/L x 1e-16 (below it).
+      EXPECT_NEAR(step.end_forces[e][k], lin.end_forces[e][k], 1e-4 * scale) << "element " << e << " component " << k;
 }

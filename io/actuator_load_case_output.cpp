@@ -1,0 +1,119 @@
+#include "io/actuator_load_case_output.hpp"
+
+#include <Eigen/LU>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+namespace beamfea {
+
+namespace {
+
+ojson number_or_null(double v) { return std::isfinite(v) ? ojson(v) : ojson(nullptr); }
+std::string csv_number(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : std::string(); }
+
+ojson matrix(const Eigen::MatrixXd& m) {
+  ojson a = ojson::array();
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    ojson row = ojson::array();
+    for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(m(i, j));
+    a.push_back(row);
+  }
+  return a;
+}
+
+ojson six(const Vec6& v) {
+  ojson o;
+  for (int k = 0; k < 6; ++k) o[kDofNames[k]] = v[k];
+  return o;
+}
+
+const LoadedSchemeModel& model_of(const SchemeLoadResponse& r, int which) {
+  return which == 0 ? r.actuated : which == 1 ? r.structural : r.total;
+}
+constexpr const char* kModels[] = {"actuated", "structural", "total"};
+
+}  // namespace
+
+std::array<Eigen::VectorXd, 3> loaded_components(const SchemeLoadResponse& r, int nd) {
+  std::array<Eigen::VectorXd, 3> c;
+  for (int w = 0; w < 3; ++w) {
+    c[w] = Eigen::VectorXd::Constant(nd, std::numeric_limits<double>::quiet_NaN());
+    const auto& m = model_of(r, w);
+    if (!m.stiffness_ok) continue;
+    if (w == 0) {
+      c[w] = m.K_loaded.diagonal();  // as the unloaded "actuated" component, K_A,dd
+      continue;
+    }
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(m.K_loaded);
+    if (!lu.isInvertible()) continue;
+    const Eigen::MatrixXd C = lu.inverse();
+    for (int d = 0; d < nd; ++d) c[w][d] = 1.0 / C(d, d);
+  }
+  return c;
+}
+
+void write_load_response(const Model& model, const AllocationOptions& o, const std::vector<int>& scheme,
+                         const SchemeLoadResponse& r, ojson& po) {
+  ojson eff = ojson::array();
+  for (std::size_t k = 0; k < scheme.size(); ++k) {
+    const auto& c = o.candidates[scheme[k]];
+    eff.push_back(ojson{{"joint", model.joints[c.joint].id},
+                        {"coordinate", c.coordinate},
+                        {"effort", r.efforts_ok ? ojson(r.efforts[static_cast<Eigen::Index>(k)]) : ojson(nullptr)}});
+  }
+  po["actuator_efforts"] = eff;
+  po["actuator_efforts_message"] = r.efforts_message;
+  ojson disp, msgs;
+  for (int w = 0; w < 3; ++w) {
+    const auto& m = model_of(r, w);
+    disp[kModels[w]] = m.ok ? six(m.platform) : ojson(nullptr);
+    msgs[kModels[w]] = m.message;
+  }
+  disp["messages"] = msgs;
+  po["platform_displacement"] = disp;
+  const int nd = static_cast<int>(o.directions.size());
+  const auto comp = loaded_components(r, nd);
+  ojson ks, kmsg, co;
+  for (int w = 0; w < 3; ++w) {
+    const auto& m = model_of(r, w);
+    ks[kModels[w]] = m.stiffness_ok ? matrix(m.K_loaded) : ojson(nullptr);
+    kmsg[kModels[w]] = m.stiffness_message;
+    ojson v;
+    for (int d = 0; d < nd; ++d) v[kDofNames[o.directions[d]]] = number_or_null(comp[w][d]);
+    co[kModels[w]] = v;
+  }
+  ks["components"] = co;
+  ks["messages"] = kmsg;
+  po["loaded_stiffness"] = ks;
+}
+
+std::string efforts_csv_rows(const Model& model, const AllocationOptions& o, const std::vector<int>& scheme,
+                             const std::string& name, const std::string& pose, const SchemeLoadResponse& r) {
+  std::string s;
+  for (std::size_t k = 0; k < scheme.size(); ++k) {
+    const auto& c = o.candidates[scheme[k]];
+    s += fmt::format("{},{},{},{},{}\n", name, pose, model.joints[c.joint].id, c.coordinate,
+                     r.efforts_ok ? csv_number(r.efforts[static_cast<Eigen::Index>(k)]) : std::string());
+  }
+  return s;
+}
+
+std::string load_case_csv_rows(const AllocationOptions& o, const std::string& name, const std::string& pose,
+                               const SchemeLoadResponse& r) {
+  const int nd = static_cast<int>(o.directions.size());
+  const auto comp = loaded_components(r, nd);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::string s;
+  for (int d = 0; d < nd; ++d) {
+    const int dof = o.directions[d];
+    auto u = [&](const LoadedSchemeModel& m) { return m.ok ? m.platform[dof] : nan; };
+    s += fmt::format("{},{},{},{},{},{},{},{},{}\n", name, pose, kDofNames[dof], csv_number(u(r.total)),
+                     csv_number(u(r.structural)), csv_number(u(r.actuated)), csv_number(comp[0][d]),
+                     csv_number(comp[1][d]), csv_number(comp[2][d]));
+  }
+  return s;
+}
+
+}  // namespace beamfea
