@@ -123,6 +123,39 @@ TEST(SafeIds, LongAnalysisIdIsAnErrorNotACrash) {
   expect_bad(run("id_long", d), {"/analyses/0/id", "300 characters", "at most 64"});
 }
 
+// Two analyses whose files would have one name: the buckling analysis "a" writes a_mode1.vtu,
+// a_mode2.vtu ..., so an analysis "a_mode1" (a_mode1.vtu) would overwrite one of them; the path
+// analysis "p" writes p.csv, p.pvd and p_step<k>.vtu. check and run both reject, naming both
+// analyses' pointers and the file.
+TEST(SafeIds, AnalysesWhoseFilesWouldShareANameAreRejected) {
+  json d = base();
+  d["analyses"] = {{{"id", "a"}, {"type", "buckling"}, {"modes", 2}}, {{"id", "lin"}, {"type", "linear_static"}},
+                   {{"id", "a_mode1"}, {"type", "linear_static"}}};
+  expect_bad_in_check_and_run("clash_mode", d, {"/analyses/2/id", "/analyses/0/id", "a_mode1.vtu", "rename"});
+
+  json e = base();
+  e["analyses"] = {{{"id", "p_step12"}, {"type", "linear_static"}},
+                   {{"id", "p"}, {"type", "path"}, {"control", {{"load_factor", 1.0}, {"increments", 2}}}}};
+  expect_bad_in_check_and_run("clash_step", e, {"/analyses/1/id", "/analyses/0/id", "p_step12.vtu"});
+
+  json f = base();
+  f["analyses"] = {{{"id", "p"}, {"type", "path"}, {"control", {{"load_factor", 1.0}, {"increments", 2}}}},
+                   {{"id", "p"}, {"type", "linear_static"}}};
+  expect_bad_in_check_and_run("clash_dup", f, {"/analyses/1/id", "duplicate"});
+}
+
+// Names that only look alike are accepted: "a_mode" and "a_mode01" are no file of the buckling
+// analysis "a" (its numbers have no leading zero), nor is "a_mode1x".
+TEST(SafeIds, AnalysesWhoseFilesOnlyLookAlikeAreAccepted) {
+  json d = base();
+  d["analyses"] = {{{"id", "a"}, {"type", "buckling"}, {"modes", 2}},
+                   {{"id", "a_mode"}, {"type", "linear_static"}},
+                   {{"id", "a_mode01"}, {"type", "linear_static"}},
+                   {{"id", "a_mode1x"}, {"type", "linear_static"}}};
+  const auto r = run("clash_none", d, "check");
+  EXPECT_EQ(r.code, 0) << r.message;
+}
+
 // --- Checks that used to run only inside the analysis -------------------------------------------
 
 // Issue 11: the stiffness of a node whose motion supports or rigid links restrict is a well-posed
