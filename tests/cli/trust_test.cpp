@@ -8,6 +8,7 @@
 
 #include <chrono>
 
+#include "support/cli_case.hpp"
 #include "support/models.hpp"
 
 using namespace beamfea;
@@ -24,33 +25,16 @@ json base() {
   return d;
 }
 
-struct Run {
-  int code;
-  std::string message;
-  fs::path dir;  // the test's folder; the output folder is dir/out
-};
+using Run = test::CliCase;
 
 Run run(const std::string& name, const std::string& text, const std::string& verb = "run", bool keep_out = false) {
-  const auto dir = test::temp_dir("trust_" + name);
-  if (keep_out) {
-    fs::create_directories(dir / "out");
-    test::write_file(dir / "out" / "old.txt", "from an earlier run");
-  }
-  test::write_file(dir / "model.json", text);
-  std::string args = verb + " " + (dir / "model.json").string();
-  if (verb == "run") args += " --out " + (dir / "out").string() + " -q";
-  const auto r = test::run_cli(args);
-  return {r.exit_code, r.output, dir};
+  return test::run_model_text("trust_" + name, text, verb, keep_out);
 }
 Run run(const std::string& name, const json& d, const std::string& verb = "run", bool keep_out = false) {
   return run(name, d.dump(), verb, keep_out);
 }
 
-void expect_bad(const Run& r, const std::vector<std::string>& fragments) {
-  EXPECT_EQ(r.code, 2) << r.message;
-  EXPECT_FALSE(fs::exists(r.dir / "out")) << "bad input must leave --out as it was (absent)";
-  for (const auto& f : fragments) EXPECT_NE(r.message.find(f), std::string::npos) << "missing '" << f << "' in: " << r.message;
-}
+void expect_bad(const Run& r, const std::vector<std::string>& fragments) { test::expect_bad_input(r, fragments); }
 
 // `check` and `run` share one validation: both reject, naming the same pointer.
 void expect_bad_in_check_and_run(const std::string& name, const json& d, const std::vector<std::string>& fragments) {
