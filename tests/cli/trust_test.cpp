@@ -122,6 +122,11 @@ TEST(SafeIds, AnalysesWhoseFilesWouldShareANameAreRejected) {
                    {{"id", "p"}, {"type", "path"}, {"control", {{"load_factor", 1.0}, {"increments", 2}}}}};
   expect_bad_in_check_and_run("clash_step", e, {"/analyses/1/id", "/analyses/0/id", "p_step12.vtu"});
 
+  json m = base();
+  m["materials"][0]["density"] = 7850.0;
+  m["analyses"] = {{{"id", "m"}, {"type", "modal"}, {"modes", 3}}, {{"id", "m_mode3"}, {"type", "linear_static"}}};
+  expect_bad_in_check_and_run("clash_modal", m, {"/analyses/1/id", "/analyses/0/id", "m_mode3.vtu"});
+
   json f = base();
   f["analyses"] = {{{"id", "p"}, {"type", "path"}, {"control", {{"load_factor", 1.0}, {"increments", 2}}}},
                    {{"id", "p"}, {"type", "linear_static"}}};

@@ -1,10 +1,7 @@
 // libFuzzer target over the sweep file (issue 9): parsing, read_sweep's checks, and for a few
 // cases of an accepted sweep (the first, the middle and the last) the case document, one
 // bounded run, and the table's header and row. Built with fuzz_model (-DBEAMFEA_BUILD_FUZZERS=ON,
-// clang; docs/testing.md):
-//
-//   build-fuzz/tests/fuzz/fuzz_sweep -max_total_time=300 -dict=tests/fuzz/sweep.dict \
-//       fuzz-sweep-work tests/fuzz/corpus_sweep      # new findings land in fuzz-sweep-work/
+// clang); how to build and run it: docs/testing.md.
 //
 // A "base" file name is always replaced by tests/fuzz/corpus_sweep/base.json: the fuzzer never
 // reads the machine's files (a "base" of /dev/zero would only measure the disk).
