@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/sweep_runner.hpp"
 #include "io/run.hpp"
 #include "io/sweep.hpp"
 
@@ -123,7 +124,6 @@ Row measure(const std::string& name, int dofs, const json& base, const json& swe
   beamfea::SweepOptions opt;
   opt.out_dir = dir / "out";
   opt.jobs = jobs;
-  opt.progress = beamfea::SweepProgress::None;
   const auto t0 = std::chrono::steady_clock::now();
   const auto summary = beamfea::run_sweep(sweep, opt);
   const double wall = seconds_since(t0);

@@ -1,8 +1,18 @@
 #include "cli/sweep_command.hpp"
 
+#include <dlfcn.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 
+#include "app/sweep_runner.hpp"
 #include "core/errors.hpp"
 #include "io/sweep.hpp"
 
@@ -13,6 +23,111 @@
 namespace beamfea::cli {
 
 namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Process-wide matters of a sweep: they belong to the program, never to a library that a Python
+// process loads (app/sweep_runner.hpp only sees a stop flag and a progress callback).
+
+// Set by SIGINT/SIGTERM; the sweep loop stops handing out cases when it is.
+std::atomic<bool> g_stop{false};
+
+extern "C" void on_stop_signal(int) {
+  if (g_stop.load()) _exit(130);  // a second Ctrl-C: stop now (the table is valid CSV already)
+  g_stop.store(true);
+}
+
+// Ctrl-C and SIGTERM stop the sweep cleanly while it runs; the previous handlers come back after.
+class StopOnSignals {
+ public:
+  StopOnSignals() {
+    g_stop = false;
+    old_int_ = std::signal(SIGINT, on_stop_signal);
+    old_term_ = std::signal(SIGTERM, on_stop_signal);
+  }
+  ~StopOnSignals() {
+    std::signal(SIGINT, old_int_);
+    std::signal(SIGTERM, old_term_);
+  }
+  StopOnSignals(const StopOnSignals&) = delete;
+  StopOnSignals& operator=(const StopOnSignals&) = delete;
+
+ private:
+  void (*old_int_)(int);
+  void (*old_term_)(int);
+};
+
+// Cases are the unit of parallelism, one per thread: OpenBLAS's own threads would only
+// oversubscribe the cores (and spin in sched_yield between the small factorisations).
+void single_threaded_blas() {
+  using SetThreads = void (*)(int);
+  if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
+}
+
+// Processes of this run on this host, from the launcher (OpenMPI); all of them when it does not say.
+int ranks_on_this_host(int ranks) {
+  if (const char* l = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE")) return std::max(1, std::atoi(l));
+  return ranks;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Progress on stderr: a bar redrawn in place on a terminal, a plain line every few seconds
+// otherwise.
+
+enum class ProgressStyle { Bar, Lines, None };
+
+// Redraw period of the bar, and the period of the plain lines (a log file stays short).
+constexpr double kBarPeriodS = 0.1;
+constexpr double kLinePeriodS = 5.0;
+
+std::string duration_text(double s) {
+  if (!(s >= 0.0) || s > 1e7) return "--:--";
+  const long t = static_cast<long>(s + 0.5);
+  if (t >= 3600) return fmt::format("{}:{:02}:{:02}", t / 3600, (t / 60) % 60, t % 60);
+  return fmt::format("{}:{:02}", t / 60, t % 60);
+}
+
+class ProgressPrinter {
+ public:
+  explicit ProgressPrinter(ProgressStyle style) : style_(style) {}
+
+  void operator()(const SweepProgress& p) {
+    const auto now = std::chrono::steady_clock::now();
+    const double since = std::chrono::duration<double>(now - last_).count();
+    const double rate = p.elapsed_s > 0 ? p.done / p.elapsed_s : 0.0;
+    const double left = rate > 0 ? (p.total - p.done) / rate : -1.0;
+    if (style_ == ProgressStyle::Bar && (p.final ? drew_ : since >= kBarPeriodS)) {
+      constexpr int width = 30;
+      const int filled = p.total ? static_cast<int>(width * p.done / p.total) : width;
+      std::fprintf(stderr, "\r[%s%s] %zu/%zu cases  %zu failed  %.0f cases/s  %s left \033[K",
+                   std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), p.done, p.total,
+                   p.failed, rate, duration_text(left).c_str());
+      if (p.final) std::fputc('\n', stderr);
+      std::fflush(stderr);
+      last_ = now;
+      drew_ = true;
+    } else if (style_ == ProgressStyle::Lines && (p.final || since >= kLinePeriodS)) {
+      std::fprintf(stderr, "beamfea sweep: %zu/%zu cases, %zu failed, %.0f cases/s, %s left\n", p.done, p.total,
+                   p.failed, rate, duration_text(left).c_str());
+      std::fflush(stderr);
+      last_ = now;
+    }
+  }
+
+ private:
+  ProgressStyle style_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+  bool drew_ = false;
+};
+
+ProgressStyle progress_style(const SweepCommand& cmd) {
+  if (cmd.quiet || cmd.progress == "none") return ProgressStyle::None;
+  if (cmd.progress == "bar") return ProgressStyle::Bar;
+  if (cmd.progress == "lines") return ProgressStyle::Lines;
+  return ::isatty(2) ? ProgressStyle::Bar : ProgressStyle::Lines;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Processes
 
 // Number of processes the launcher started, from its environment (1 when not under mpirun).
 int launched_ranks() {
@@ -104,13 +219,14 @@ int run_sweep_command(const SweepCommand& cmd) {
     SweepOptions opt;
     opt.out_dir = cmd.out_dir;
     opt.jobs = cmd.jobs;
+    opt.ranks_on_host = comm ? ranks_on_this_host(comm->size()) : 1;
     opt.keep = cmd.keep;
     opt.resume = cmd.resume;
-    opt.progress = cmd.quiet                   ? SweepProgress::None
-                   : cmd.progress == "bar"     ? SweepProgress::Bar
-                   : cmd.progress == "lines"   ? SweepProgress::Lines
-                   : cmd.progress == "none"    ? SweepProgress::None
-                                               : SweepProgress::Auto;
+    opt.stop = &g_stop;
+    const ProgressStyle style = progress_style(cmd);
+    if (root && style != ProgressStyle::None) opt.progress = ProgressPrinter(style);
+    single_threaded_blas();
+    const StopOnSignals signals;
     const SweepSummary summary = run_sweep(sweep, opt, comm.get());
     if (!root) return summary.interrupted ? 130 : 0;
     if (!cmd.quiet) std::cerr << "beamfea sweep: " << summary.report() << "\n";

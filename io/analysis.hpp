@@ -64,12 +64,24 @@ struct AnalysisOutcome {
   std::string brief_report() const;
 };
 
+// The files an analysis may write into the output folder, named from its id: whole names
+// ("<id>.vtu", "<id>.pvd") and numbered families "<stem><k>.vtu" (k = 0, 1, 2 ... written
+// without leading zeros; the stem ends in a letter, "<id>_mode"). check_analyses rejects two
+// analyses whose files could have one name (issue 9: "a" buckling writes a_mode1.vtu, and so
+// would an analysis "a_mode1").
+struct AnalysisFiles {
+  std::vector<std::string> names;
+  std::vector<std::string> numbered_vtu_stems;
+};
+
 struct AnalysisType {
   std::string name;
   // Validates the spec against the model, covering everything the run needs that input can
   // decide without solving (InputError with the JSON pointer). `check` and `run` share it.
   std::function<void(const Model&, const nlohmann::json& spec, const std::string& pointer)> check;
   std::function<AnalysisOutcome(const AnalysisContext&)> run;
+  // Every file `run` may write for an analysis of this id (empty: it writes none).
+  std::function<AnalysisFiles(const std::string& id)> files;
 };
 
 const std::vector<AnalysisType>& analysis_types();
@@ -78,6 +90,15 @@ const AnalysisType* find_analysis_type(const std::string& name);
 // Validates every analysis spec (at least one; ids unique and safe as file names, types known,
 // each type's check).
 void check_analyses(const Model& model, const nlohmann::json& document);
+
+// Throws InputError at the later analysis's id when two analyses (id, pointer "/analyses/<i>",
+// type) could write files of one name, naming both pointers and the file.
+struct AnalysisFileOwner {
+  std::string id;
+  std::string pointer;
+  const AnalysisType* type = nullptr;
+};
+void check_file_clashes(const std::vector<AnalysisFileOwner>& analyses);
 
 // Analysis ids become file names (DIR/<id>.vtu, DIR/<id>_mode1.vtu ...): letters, digits and
 // _ - . + = only, not "." or "..", at most kMaxAnalysisIdLength characters. Returns the id of

@@ -542,7 +542,9 @@ AnalysisOutcome run_actuator_allocation(const AnalysisContext& ctx) {
 }  // namespace
 
 AnalysisType actuator_allocation_analysis() {
-  return {"actuator_allocation", check_actuator_allocation, run_actuator_allocation};
+  return {"actuator_allocation", check_actuator_allocation, run_actuator_allocation, [](const std::string& id) {
+            return AnalysisFiles{{id + "_stiffness.csv", id + "_links.csv", id + "_ranking.csv"}, {}};
+          }};
 }
 
 }  // namespace beamfea

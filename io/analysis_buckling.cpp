@@ -87,6 +87,9 @@ AnalysisOutcome run_buckling(const AnalysisContext& ctx) {
 
 }  // namespace
 
-AnalysisType buckling_analysis() { return {"buckling", check_buckling, run_buckling}; }
+AnalysisType buckling_analysis() {
+  return {"buckling", check_buckling, run_buckling,
+          [](const std::string& id) { return AnalysisFiles{{id + ".pvd"}, {id + "_mode"}}; }};
+}
 
 }  // namespace beamfea

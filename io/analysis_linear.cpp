@@ -191,7 +191,12 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
 
 }  // namespace
 
-AnalysisType linear_static_analysis() { return {"linear_static", check_linear_static, run_linear_static}; }
-AnalysisType stiffness_analysis() { return {"stiffness", check_stiffness, run_stiffness}; }
+AnalysisType linear_static_analysis() {
+  return {"linear_static", check_linear_static, run_linear_static,
+          [](const std::string& id) { return AnalysisFiles{{id + ".vtu"}, {}}; }};
+}
+AnalysisType stiffness_analysis() {
+  return {"stiffness", check_stiffness, run_stiffness, [](const std::string&) { return AnalysisFiles{}; }};  // no files
+}
 
 }  // namespace beamfea

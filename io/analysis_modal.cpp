@@ -109,6 +109,9 @@ AnalysisOutcome run_modal(const AnalysisContext& ctx) {
 
 }  // namespace
 
-AnalysisType modal_analysis() { return {"modal", check_modal, run_modal}; }
+AnalysisType modal_analysis() {
+  return {"modal", check_modal, run_modal,
+          [](const std::string& id) { return AnalysisFiles{{id + ".pvd"}, {id + "_mode"}}; }};
+}
 
 }  // namespace beamfea

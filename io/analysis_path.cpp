@@ -298,6 +298,9 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
 
 }  // namespace
 
-AnalysisType path_analysis() { return {"path", check_path, run_path}; }
+AnalysisType path_analysis() {
+  return {"path", check_path, run_path,
+          [](const std::string& id) { return AnalysisFiles{{id + ".csv", id + ".pvd"}, {id + "_step"}}; }};
+}
 
 }  // namespace beamfea

@@ -44,6 +44,7 @@ void check_analyses(const Model& model, const nlohmann::json& document) {
   json_in::array(*it, "/analyses", "analyses");
   if (it->empty()) throw InputError("/analyses", "no analyses: nothing to run");
   std::map<std::string, std::size_t> ids;
+  std::vector<AnalysisFileOwner> owners;
   for (std::size_t i = 0; i < it->size(); ++i) {
     const std::string p = json_in::child("/analyses", i);
     const auto& a = json_in::object((*it)[i], p, "analysis");
@@ -61,7 +62,9 @@ void check_analyses(const Model& model, const nlohmann::json& document) {
     }
     check_load_case(model, a, p);
     t->check(model, a, p);
+    owners.push_back({id, p, t});
   }
+  check_file_clashes(owners);
 }
 
 void check_nonlinear_model(const Model& model, const std::string& p) {

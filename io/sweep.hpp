@@ -8,10 +8,14 @@
 //
 //   case, <parameters...>, <outputs, arrays flattened: name[i][j]...>, status, message, wall_time_s
 //
-// status is "ok", "analysis failed" or "bad input". Rows are appended (one write per batch of
-// whole rows) as cases finish, so the table is valid CSV at every moment; at the end it is
-// sorted by case order and rewritten atomically. Nothing here is analysis-specific: the sweep
+// status is "ok", "analysis failed" or "bad input". Nothing here is analysis-specific: a case
 // goes only through load_and_check and run_document.
+//
+// This library reads sweep files (io/sweep_reader.cpp), runs one case (run_sweep_case, below)
+// and writes the table (io/sweep_table.hpp). The loop over the cases (threads, the MPI ranks'
+// share, a stop flag and progress) is the program's: app/sweep_runner.hpp; signals, the
+// launcher's environment, BLAS threads and the progress bar are cli/'s. A Python process that
+// loads this library gets none of them.
 //
 // Glossary: *case index* is the position of a case in the sweep (grid order or list order);
 // *case id* is its name in the table (the index for a grid, "id" or the index for a list).
@@ -96,54 +100,5 @@ const char* to_string(SweepCaseResult::Status s);
 
 // Runs one case in process. keep_dir non-empty: results.json and VTK files written there.
 SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir = {});
-
-// Transport between the processes of a multi-process sweep (MPI lives in the program, so that
-// this library does not depend on it). Rank 0 writes the table; the others send it rows.
-class SweepComm {
- public:
-  virtual ~SweepComm() = default;
-  virtual int rank() const = 0;
-  virtual int size() const = 0;
-  // Rank 0's text to every rank.
-  virtual void broadcast(std::string& text) = 0;
-  // Not rank 0: sends a batch of rows to rank 0; `last` marks this rank's final batch.
-  virtual void send(const std::string& batch, bool last) = 0;
-  // Rank 0: receives one pending batch if there is one (does not block).
-  virtual bool receive(std::string& batch, bool& last) = 0;
-};
-
-enum class SweepProgress { Auto, Bar, Lines, None };
-
-struct SweepOptions {
-  std::filesystem::path out_dir = "out";
-  int jobs = 0;             // worker threads (0: all cores, divided among the ranks on one host)
-  bool keep = false;        // per-case results.json and VTK in DIR/cases/<id>/
-  bool resume = false;      // skip the cases already in DIR/cases.csv
-  SweepProgress progress = SweepProgress::Auto;  // Auto: a bar on a terminal, lines otherwise
-  double line_interval_s = 5.0;                  // period of the plain progress lines
-  void validate() const;
-};
-
-struct SweepSummary {
-  std::size_t cases = 0;     // in the sweep
-  std::size_t skipped = 0;   // already in the table (--resume)
-  std::size_t ran = 0;       // run now (all ranks)
-  std::size_t ok = 0, analysis_failed = 0, bad_input = 0;  // over the whole table
-  int processes = 1;         // MPI ranks
-  bool interrupted = false;  // SIGINT/SIGTERM: the table holds the finished cases
-  double wall_time_s = 0.0;
-  std::filesystem::path table;
-  std::string report() const;  // one line
-  // 0 every case ok; 1 some case failed (see the table); 130 interrupted.
-  int exit_code() const;
-};
-
-// Runs the sweep (all ranks of `comm` call it; null: one process). Throws InputError for a
-// bad sweep or a table that --resume cannot continue.
-SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepComm* comm = nullptr);
-
-// RFC 4180 field quoting, and splitting one line of such a table.
-std::string csv_field(const std::string& s);
-std::vector<std::string> csv_split(const std::string& line);
 
 }  // namespace beamfea

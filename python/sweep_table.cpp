@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "io/sweep_table.hpp"
 #include "python/convert.hpp"
 
 namespace py = pybind11;
@@ -101,12 +102,9 @@ py::dict sweep_columns(const Sweep& sweep, int jobs) {
   // or the output's name alone when none does; other cases fill the columns they share.
   const auto first_ok = std::find_if(results.begin(), results.end(),
                                      [](const SweepCaseResult& r) { return r.status == SweepCaseResult::Status::Ok; });
+  const SweepColumns columns = beamfea::sweep_columns(sweep, first_ok != results.end() ? &*first_ok : nullptr);
   for (std::size_t o = 0; o < sweep.outputs.size(); ++o) {
-    std::vector<std::string> names;
-    if (first_ok != results.end() && !first_ok->outputs[o].empty())
-      for (const auto& kv : first_ok->outputs[o]) names.push_back(kv.first);
-    else
-      names.push_back(sweep.outputs[o].name);
+    const std::vector<std::string>& names = columns.outputs[o];
     std::map<std::string, std::vector<std::string>> cells;
     for (const auto& name : names) cells.emplace(name, std::vector<std::string>(n));
     for (std::size_t i = 0; i < n; ++i)

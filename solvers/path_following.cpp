@@ -22,7 +22,8 @@ Model imperfect_model(const Model& model, int mode, double amplitude) {
   bo.modes = mode;
   const BucklingResult b = solve_buckling(model, bo);
   if (b.status != BucklingStatus::Ok || static_cast<int>(b.modes.size()) < mode)
-    throw ModelError("", fmt::format("imperfection: buckling mode {} is not available ({})", mode, b.message));
+    throw ModelError(fmt::format("imperfection mode {}", mode),
+                     fmt::format("buckling mode {} is not available ({})", mode, b.message));
   Model m = model;
   for (std::size_t n = 0; n < m.nodes.size(); ++n) m.nodes[n].x += amplitude * b.modes[mode - 1].segment<3>(6 * n);
   return m;

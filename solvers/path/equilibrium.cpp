@@ -18,7 +18,7 @@ PathEquilibrium::PathEquilibrium(const Model& model, const PathOptions& o) : ns(
   const DofMap& map = ns.reference_map();
   // Prescribed values that the constraints make inconsistent (a loop that cannot close, a rigid link
   // whose ends are prescribed apart): bad input naming the link, joint or DOF.
-  if (auto conflict = map.check_consistency(map.prescribed_values()); !conflict.empty()) throw ModelError("", conflict);
+  if (auto conflict = map.check_consistency(map.prescribed_values()); !conflict.empty()) throw ModelError("supports and prescribed values", conflict);
   L = ns.length_scale();
   gen_to_free.assign(ns.size(), -1);
   for (int i = 0; i < ns.size(); ++i) {
@@ -41,7 +41,7 @@ PathEquilibrium::PathEquilibrium(const Model& model, const PathOptions& o) : ns(
     ctrl = {o.control_node, o.control_dof, 0.0};
   }
   if (!has_loads && o.control != PathControl::Displacement)
-    throw ModelError("", "path: the model has no loads; use displacement control to impose a motion");
+    throw ModelError("loads", "path: the model has none; use displacement control to impose a motion");
   nf = static_cast<int>(free.size());
   nc = ncs + static_cast<int>(closure_rows.size());
   // Reference force for the convergence test.

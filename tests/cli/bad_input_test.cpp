@@ -1,6 +1,7 @@
 // Bad input: exit code 2, a message naming the field (JSON pointer) and the entity, no results.
 #include <gtest/gtest.h>
 
+#include "support/cli_case.hpp"
 #include "support/models.hpp"
 
 using namespace beamfea;
@@ -15,33 +16,20 @@ json base() {
   return d;
 }
 
-struct Outcome {
-  int code;
-  std::string message;
-  bool results_written;
-};
+using Outcome = test::CliCase;
 
-Outcome run_text(const std::string& name, const std::string& text) {
-  const auto dir = test::temp_dir(name);
-  test::write_file(dir / "model.json", text);
-  const auto r = test::run_cli("run " + (dir / "model.json").string() + " --out " + (dir / "out").string() + " -q");
-  return {r.exit_code, r.output, std::filesystem::exists(dir / "out" / "results.json")};
-}
+Outcome run_text(const std::string& name, const std::string& text) { return test::run_model_text(name, text); }
 
 Outcome run_doc(const std::string& name, const json& d) { return run_text(name, d.dump()); }
 
-void expect_bad(const Outcome& o, const std::vector<std::string>& fragments) {
-  EXPECT_EQ(o.code, 2) << o.message;
-  EXPECT_FALSE(o.results_written);
-  for (const auto& f : fragments) EXPECT_NE(o.message.find(f), std::string::npos) << "missing '" << f << "' in: " << o.message;
-}
+void expect_bad(const Outcome& o, const std::vector<std::string>& fragments) { test::expect_bad_input(o, fragments); }
 
 }  // namespace
 
 TEST(BadInput, GoodModelRunsAndWritesResults) {
   const auto o = run_doc("good", base());
   EXPECT_EQ(o.code, 0) << o.message;
-  EXPECT_TRUE(o.results_written);
+  EXPECT_TRUE(o.results_written());
 }
 
 TEST(BadInput, MalformedJsonIsRejected) { expect_bad(run_text("malformed", "{\"nodes\": [}"), {"malformed JSON", "byte"}); }
@@ -167,5 +155,5 @@ TEST(AnalysisFailure, MechanismExitsWithOneAndNamesTheJoint) {
   d["joints"] = {{{"id", "hinge"}, {"type", "revolute"}, {"nodes", {"B", "C"}}, {"axes", {{0, 0, 1}}}}};
   const auto o = run_doc("mechanism", d);
   EXPECT_EQ(o.code, 1) << o.message;
-  EXPECT_TRUE(o.results_written);
+  EXPECT_TRUE(o.results_written());
 }

@@ -10,7 +10,7 @@
 #include <set>
 #include <thread>
 
-#include "../io/sweep_test_util.hpp"
+#include "support/sweep_util.hpp"
 
 extern char** environ;
 

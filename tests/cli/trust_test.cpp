@@ -8,6 +8,7 @@
 
 #include <chrono>
 
+#include "support/cli_case.hpp"
 #include "support/models.hpp"
 
 using namespace beamfea;
@@ -24,33 +25,16 @@ json base() {
   return d;
 }
 
-struct Run {
-  int code;
-  std::string message;
-  fs::path dir;  // the test's folder; the output folder is dir/out
-};
+using Run = test::CliCase;
 
 Run run(const std::string& name, const std::string& text, const std::string& verb = "run", bool keep_out = false) {
-  const auto dir = test::temp_dir("trust_" + name);
-  if (keep_out) {
-    fs::create_directories(dir / "out");
-    test::write_file(dir / "out" / "old.txt", "from an earlier run");
-  }
-  test::write_file(dir / "model.json", text);
-  std::string args = verb + " " + (dir / "model.json").string();
-  if (verb == "run") args += " --out " + (dir / "out").string() + " -q";
-  const auto r = test::run_cli(args);
-  return {r.exit_code, r.output, dir};
+  return test::run_model_text("trust_" + name, text, verb, keep_out);
 }
 Run run(const std::string& name, const json& d, const std::string& verb = "run", bool keep_out = false) {
   return run(name, d.dump(), verb, keep_out);
 }
 
-void expect_bad(const Run& r, const std::vector<std::string>& fragments) {
-  EXPECT_EQ(r.code, 2) << r.message;
-  EXPECT_FALSE(fs::exists(r.dir / "out")) << "bad input must leave --out as it was (absent)";
-  for (const auto& f : fragments) EXPECT_NE(r.message.find(f), std::string::npos) << "missing '" << f << "' in: " << r.message;
-}
+void expect_bad(const Run& r, const std::vector<std::string>& fragments) { test::expect_bad_input(r, fragments); }
 
 // `check` and `run` share one validation: both reject, naming the same pointer.
 void expect_bad_in_check_and_run(const std::string& name, const json& d, const std::vector<std::string>& fragments) {
@@ -121,6 +105,44 @@ TEST(SafeIds, LongAnalysisIdIsAnErrorNotACrash) {
   json d = base();
   d["analyses"][0]["id"] = std::string(300, 'a');
   expect_bad(run("id_long", d), {"/analyses/0/id", "300 characters", "at most 64"});
+}
+
+// Two analyses whose files would have one name: the buckling analysis "a" writes a_mode1.vtu,
+// a_mode2.vtu ..., so an analysis "a_mode1" (a_mode1.vtu) would overwrite one of them; the path
+// analysis "p" writes p.csv, p.pvd and p_step<k>.vtu. check and run both reject, naming both
+// analyses' pointers and the file.
+TEST(SafeIds, AnalysesWhoseFilesWouldShareANameAreRejected) {
+  json d = base();
+  d["analyses"] = {{{"id", "a"}, {"type", "buckling"}, {"modes", 2}}, {{"id", "lin"}, {"type", "linear_static"}},
+                   {{"id", "a_mode1"}, {"type", "linear_static"}}};
+  expect_bad_in_check_and_run("clash_mode", d, {"/analyses/2/id", "/analyses/0/id", "a_mode1.vtu", "rename"});
+
+  json e = base();
+  e["analyses"] = {{{"id", "p_step12"}, {"type", "linear_static"}},
+                   {{"id", "p"}, {"type", "path"}, {"control", {{"load_factor", 1.0}, {"increments", 2}}}}};
+  expect_bad_in_check_and_run("clash_step", e, {"/analyses/1/id", "/analyses/0/id", "p_step12.vtu"});
+
+  json m = base();
+  m["materials"][0]["density"] = 7850.0;
+  m["analyses"] = {{{"id", "m"}, {"type", "modal"}, {"modes", 3}}, {{"id", "m_mode3"}, {"type", "linear_static"}}};
+  expect_bad_in_check_and_run("clash_modal", m, {"/analyses/1/id", "/analyses/0/id", "m_mode3.vtu"});
+
+  json f = base();
+  f["analyses"] = {{{"id", "p"}, {"type", "path"}, {"control", {{"load_factor", 1.0}, {"increments", 2}}}},
+                   {{"id", "p"}, {"type", "linear_static"}}};
+  expect_bad_in_check_and_run("clash_dup", f, {"/analyses/1/id", "duplicate"});
+}
+
+// Names that only look alike are accepted: "a_mode" and "a_mode01" are no file of the buckling
+// analysis "a" (its numbers have no leading zero), nor is "a_mode1x".
+TEST(SafeIds, AnalysesWhoseFilesOnlyLookAlikeAreAccepted) {
+  json d = base();
+  d["analyses"] = {{{"id", "a"}, {"type", "buckling"}, {"modes", 2}},
+                   {{"id", "a_mode"}, {"type", "linear_static"}},
+                   {{"id", "a_mode01"}, {"type", "linear_static"}},
+                   {{"id", "a_mode1x"}, {"type", "linear_static"}}};
+  const auto r = run("clash_none", d, "check");
+  EXPECT_EQ(r.code, 0) << r.message;
 }
 
 // --- Checks that used to run only inside the analysis -------------------------------------------

@@ -1,22 +1,27 @@
-// Replays every file of the fuzz corpus (tests/fuzz/corpus: seeds from the examples and tests,
-// and the mutations that found bugs) through the program on every build (issue 9). Each case:
-// no crash, no hang; `check` exits 0 or 2 and `run` agrees with it (one shared validation):
-// check 2 -> run 2 with --out left absent; check 0 -> run 0 or 1 with a parsable results.json.
+// Replays every file of the fuzz corpora through the program on every build (issue 9;
+// docs/testing.md). No crash, no hang, and:
+// - tests/fuzz/corpus (models): `check` exits 0 or 2 and `run` agrees with it (one shared
+//   validation): check 2 -> run 2 with --out left absent; check 0 -> run 0 or 1 with a parsable
+//   results.json;
+// - tests/fuzz/corpus_sweep (sweep files): `sweep` exits 2 with --out left absent, or 0/1 with a
+//   whole table of one row per case, 0 exactly when every row is "ok".
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <fstream>
 
+#include "io/sweep.hpp"
 #include "support/models.hpp"
+#include "support/sweep_util.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
 
-std::vector<fs::path> corpus() {
+std::vector<fs::path> corpus(const std::string& folder = "corpus") {
   std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(fs::path(BEAMFEA_SOURCE_DIR) / "tests" / "fuzz" / "corpus"))
+  for (const auto& e : fs::directory_iterator(fs::path(BEAMFEA_SOURCE_DIR) / "tests" / "fuzz" / folder))
     if (e.is_regular_file()) files.push_back(e.path());
   std::sort(files.begin(), files.end());
   return files;
@@ -57,4 +62,43 @@ TEST(FuzzCorpus, EveryCaseEndsByTheRules) {
   }
   std::cout << "[corpus] " << files.size() << " cases: " << n_ok << " exit 0, " << n_failed << " exit 1, " << n_bad
             << " exit 2\n";
+}
+
+TEST(FuzzCorpus, EverySweepEndsByTheRules) {
+  const auto files = corpus("corpus_sweep");
+  ASSERT_GE(files.size(), 8u) << "the sweep corpus went missing";
+  const auto dir = beamfea::test::temp_dir("corpus_sweep");
+  int n_ok = 0, n_failed = 0, n_bad = 0;
+  for (const auto& f : files) {
+    SCOPED_TRACE(f.filename().string());
+    const auto out = dir / f.stem();
+    const auto run = beamfea::test::run_cli_with_prefix("timeout " + std::to_string(kCaseTimeout) + " ",
+                                                        "sweep " + f.string() + " --out " + out.string() + " -q --jobs 1");
+    ASSERT_TRUE(run.exit_code == 0 || run.exit_code == 1 || run.exit_code == 2) << "exit " << run.exit_code << "\n"
+                                                                                  << run.output;
+    if (run.exit_code == 2) {
+      EXPECT_FALSE(fs::exists(out)) << "a bad sweep file must leave --out as it was";
+      EXPECT_NE(run.output.find("error"), std::string::npos) << run.output;
+      ++n_bad;
+      continue;
+    }
+    const beamfea::Sweep sweep = beamfea::read_sweep_file(f.string());  // the program accepted it
+    bool well_formed = false;
+    const auto table = sweep_test::read_csv(out / "cases.csv", &well_formed);
+    EXPECT_TRUE(well_formed);
+    ASSERT_EQ(table.rows.size(), sweep.size());
+    const int status = table.col("status");
+    ASSERT_GE(status, 0);
+    bool all_ok = true;
+    for (std::size_t i = 0; i < table.rows.size(); ++i) {
+      EXPECT_EQ(table.rows[i][0], sweep.case_id(i));
+      const std::string& st = table.rows[i][status];
+      EXPECT_TRUE(st == "ok" || st == "analysis failed" || st == "bad input") << st;
+      all_ok = all_ok && st == "ok";
+    }
+    EXPECT_EQ(run.exit_code, all_ok ? 0 : 1);
+    (run.exit_code == 0 ? n_ok : n_failed) += 1;
+  }
+  std::cout << "[corpus_sweep] " << files.size() << " sweep files: " << n_ok << " exit 0, " << n_failed << " exit 1, "
+            << n_bad << " exit 2\n";
 }

@@ -1,11 +1,6 @@
 // libFuzzer target over the model file: parsing, the shared validation (`check`) and a bounded
-// run of small models (issue 9). Built only with clang (-DBEAMFEA_BUILD_FUZZERS=ON):
-//
-//   CC=clang-14 CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DBEAMFEA_BUILD_FUZZERS=ON \
-//       -DBEAMFEA_BUILD_TESTS=OFF -DBEAMFEA_BUILD_BENCHMARKS=OFF -DBEAMFEA_BUILD_PYTHON=OFF
-//   cmake --build build-fuzz --target fuzz_model
-//   build-fuzz/tests/fuzz/fuzz_model -max_total_time=600 -dict=tests/fuzz/model.dict \
-//       fuzz-work tests/fuzz/corpus        # new findings land in fuzz-work/
+// run of small models (issue 9). Built only with clang (-DBEAMFEA_BUILD_FUZZERS=ON); how to build
+// and run it: docs/testing.md.
 //
 // The rules it enforces beside "no crash, no sanitizer report": reading and checking throw only
 // beamfea's own errors (InputError, ModelError), never a library's exception; a run after a

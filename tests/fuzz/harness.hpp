@@ -1,10 +1,11 @@
 #pragma once
 // One fuzz case: parse, check, and (for small models) a bounded run without files. Shared by the
-// libFuzzer target (fuzz_model.cpp). Returns the exit code the program would give (0, 1, 2) and
-// aborts when a rule is broken (see fuzz_model.cpp).
+// libFuzzer targets (fuzz_model.cpp, fuzz_sweep.cpp). Returns the exit code the program would
+// give (0, 1, 2) and aborts when a rule is broken (see fuzz_model.cpp).
 #include <cstdlib>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "io/model_reader.hpp"
@@ -34,28 +35,52 @@ inline void bound(nlohmann::json& doc) {
   }
 }
 
-inline int run_one_case(const std::string& text) {
-  nlohmann::json doc;
+// What one document gives: the program's exit code, and whether its analyses ran (false: too
+// big, only read and checked).
+struct DocumentOutcome {
+  int code = 0;
+  bool ran = false;
+};
+
+// Checks and (when small) runs a parsed model document, already bounded; `only`: the analysis
+// ids to run (empty: all).
+inline DocumentOutcome run_document_case(const nlohmann::json& doc, const std::vector<std::string>& only = {}) {
   Model model;
   try {
-    doc = parse_json_text(text, "fuzz");
-    bound(doc);
     model = load_and_check(doc);
   } catch (const InputError&) {
-    return 2;
+    return {2, false};
   } catch (const ModelError&) {
-    return 2;
+    return {2, false};
   } catch (const std::exception& e) {
     broken_rule(std::string("reading or checking threw a non-beamfea exception: ") + e.what());
   }
-  if (model.nodes.size() > kMaxRunNodes) return 0;
+  if (model.nodes.size() > kMaxRunNodes) return {0, false};
   try {
     RunOptions opt;  // no files, no messages
+    opt.only = only;
     const RunReport r = run_document(model, doc, opt);
-    return r.failed ? 1 : 0;
+    return {r.failed ? 1 : 0, true};
+  } catch (const InputError& e) {
+    // An --analysis id that the model lacks is bad input, said before anything runs.
+    if (!only.empty()) return {2, false};
+    broken_rule(std::string("a run after a successful check threw: ") + e.what());
   } catch (const std::exception& e) {
     broken_rule(std::string("a run after a successful check threw: ") + e.what());
   }
+}
+
+inline int run_one_case(const std::string& text) {
+  nlohmann::json doc;
+  try {
+    doc = parse_json_text(text, "fuzz");
+  } catch (const InputError&) {
+    return 2;
+  } catch (const std::exception& e) {
+    broken_rule(std::string("parsing threw a non-beamfea exception: ") + e.what());
+  }
+  bound(doc);
+  return run_document_case(doc).code;
 }
 
 }  // namespace beamfea::fuzz

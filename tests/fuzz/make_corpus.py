@@ -1,8 +1,12 @@
 #!/usr/bin/env python3
-"""Writes the seed corpus of the model fuzzer (tests/fuzz/corpus/): small models from the
-examples and tests, one per analysis type, and the mutations that found bugs (issue 9).
-Files are small JSON (or deliberately broken) texts; the replay test runs each through
-`beamfea check` and `beamfea run` (tests/fuzz/corpus_replay_test.cpp).
+"""Writes the seed corpora of the fuzzers (issue 9; docs/testing.md):
+- tests/fuzz/corpus/ for fuzz_model: small models from the examples and tests, one per analysis
+  type, and the mutations that found bugs;
+- tests/fuzz/corpus_sweep/ for fuzz_sweep: sweep files (grid, list, patches, a base file, an
+  analysis subset, failing cases) and the sweep files that found bugs, with base.json, the one
+  base model file the sweeps name (the fuzzer reads no other file).
+Files are small JSON (or deliberately broken) texts; the replay tests run each through
+`beamfea check` and `beamfea run`, or `beamfea sweep` (tests/fuzz/corpus_replay_test.cpp).
 Run from the repository root: python3 tests/fuzz/make_corpus.py"""
 import copy
 import json
@@ -10,6 +14,7 @@ import os
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "corpus")
+OUT_SWEEP = os.path.join(HERE, "corpus_sweep")
 ROOT = os.path.dirname(os.path.dirname(HERE))
 
 
@@ -28,10 +33,14 @@ def cantilever(**kw):
     return d
 
 
-def write(name, doc):
+def write(name, doc, folder=OUT):
     text = doc if isinstance(doc, str) else json.dumps(doc, separators=(",", ":"))
-    with open(os.path.join(OUT, name), "w") as f:
+    with open(os.path.join(folder, name), "w") as f:
         f.write(text)
+
+
+def write_sweep(name, doc):
+    write(name, doc, OUT_SWEEP)
 
 
 def example(path, bound_steps=None):
@@ -129,5 +138,53 @@ def main():
     write("bug_empty.json", "")
 
 
+def sweeps():
+    os.makedirs(OUT_SWEEP, exist_ok=True)
+    base = cantilever(analyses=[{"id": "lin", "type": "linear_static"}, {"id": "K", "type": "stiffness", "node": "B"}])
+    write_sweep("base.json", base)
+    tip = "analyses.lin.nodes.B.displacement[1]"
+    # Seeds: every form of the sweep file.
+    write_sweep("seed_grid_base.json", {
+        "base": "base.json",
+        "grid": [{"name": "P", "pointer": "/loads/0/force/1", "values": [-100, -200, 50.5]},
+                 {"name": "L", "pointer": "/nodes/1/xyz/0", "values": [1.0, 2.5]}],
+        "outputs": [tip, {"name": "K", "path": "analyses.K.matrix"}]})
+    write_sweep("seed_grid_inline.json", {
+        "model": base,
+        "grid": [{"name": "b", "pointer": ["/sections/0/Iy", "/sections/0/Iz"], "values": [1e-6, 2e-6]}],
+        "outputs": ["/analyses/lin/nodes/B/displacement/1", "analyses.K.rank"]})
+    write_sweep("seed_grid_patches.json", {
+        "base": "base.json",
+        "grid": [{"name": "extra", "values": ["none", "second load"],
+                  "patches": [[], [{"op": "add", "path": "/loads/-", "value": {"node": "B", "force": [0, 0, -10]}}]]}],
+        "outputs": [tip]})
+    write_sweep("seed_list_set_patch.json", {
+        "base": "base.json",
+        "cases": [{"id": "soft", "parameters": {"E": 7e10}, "set": {"/materials/0/E": 7e10}},
+                  {"id": "both", "set": {"/loads/0/force/1": -5.0},
+                   "patch": [{"op": "replace", "path": "/sections/0/Iz", "value": 4e-6}]},
+                  {}],
+        "outputs": [tip]})
+    write_sweep("seed_analyses_subset.json", {
+        "base": "base.json", "analyses": ["K"],
+        "cases": [{"id": "a"}, {"id": "b", "set": {"/nodes/1/xyz/0": 3.0}}],
+        "outputs": ["analyses.K.matrix[1][1]"], "description": "only the stiffness"})
+    # One case a mechanism (no support: analysis failed), one bad input (unknown section): exit 1.
+    write_sweep("seed_failing_cases.json", {
+        "base": "base.json",
+        "cases": [{"id": "ok"}, {"id": "free", "patch": [{"op": "remove", "path": "/supports/0"}]},
+                  {"id": "bad", "set": {"/elements/0/section": "nope"}}],
+        "outputs": [tip]})
+    write_sweep("seed_path.json", {
+        "model": cantilever(analyses=[{"id": "p", "type": "path", "control": {"load_factor": 1.0, "increments": 2}}]),
+        "grid": [{"name": "P", "pointer": "/loads/0/force/0", "values": [-10, -20]}],
+        "outputs": ["analyses.p.steps"]})
+    write_sweep("bad_unknown_key.json", {"base": "base.json", "grid": [{"pointer": "/loads/0/force/1", "values": [1]}],
+                                         "output": [tip]})
+    write_sweep("bad_pointer_missing.json", {"base": "base.json",
+                                             "grid": [{"pointer": "/loads/0/force/7", "values": [1, 2]}]})
+
+
 if __name__ == "__main__":
     main()
+    sweeps()

@@ -1,35 +1,23 @@
-// The sweep engine in process: grids and lists, set and patch forms, collected outputs against
-// closed forms, parallel == serial, failing cases, resume, bad sweep files.
+// The io half of sweeps: reading sweep files (errors name the entry), running one case, and the
+// table (columns, rows, CSV quoting, resume, the final sorted rewrite). The loop over the cases
+// is tested in tests/app/sweep_runner_test.cpp.
 #include "io/sweep.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "core/errors.hpp"
-#include "sweep_test_util.hpp"
+#include "io/sweep_table.hpp"
+#include "support/sweep_util.hpp"
 
 using namespace sweep_test;
 using beamfea::InputError;
 using beamfea::Sweep;
-using beamfea::SweepOptions;
-using beamfea::SweepProgress;
+using beamfea::SweepCaseResult;
 
 namespace {
-
-SweepOptions quiet_options(const fs::path& out, int jobs = 1) {
-  SweepOptions o;
-  o.out_dir = out;
-  o.jobs = jobs;
-  o.progress = SweepProgress::None;
-  return o;
-}
-
-json load_grid() {
-  return json{{"grid", json::array({json{{"name", "P"}, {"pointer", "/loads/0/force/1"}, {"values", {-1000, -2000, 500.5}}},
-                                    json{{"name", "tip"}, {"pointer", "/nodes/1/xyz"}, {"values", {{1, 0, 0}, {2.5, 0, 0}}}}})},
-              {"outputs", {"analyses.lin.nodes.B.displacement[1]", "analyses.K.matrix"}}};
-}
 
 std::string pointer_of(const std::function<void()>& f) {
   try {
@@ -40,159 +28,18 @@ std::string pointer_of(const std::function<void()>& f) {
   return "(no error)";
 }
 
+// Three list cases on the cantilever: two tip loads and one with an unknown section.
+json three_cases() {
+  return {{"cases",
+           {json{{"id", "p1"}, {"set", {{"/loads/0/force/1", -1000.0}}}},
+            json{{"id", "bad"}, {"set", {{"/elements/0/section", "nope"}}}},
+            json{{"id", "p2"}, {"set", {{"/loads/0/force/1", -3000.0}}}}}},
+          {"outputs", {json{{"name", "v"}, {"path", "analyses.lin.nodes.B.displacement[1]"}}, "analyses.K.matrix[1]"}}};
+}
+
 }  // namespace
 
-TEST(Sweep, GridOfLoadsAndLengthsMatchesCantileverClosedForms) {
-  const auto dir = temp_dir("grid");
-  const Sweep s = beamfea::read_sweep_file(write_sweep(dir, load_grid()).string());
-  ASSERT_EQ(s.size(), 6u);
-  const auto summary = beamfea::run_sweep(s, quiet_options(dir / "out"));
-  EXPECT_EQ(summary.ok, 6u);
-  EXPECT_EQ(summary.exit_code(), 0);
-
-  bool well_formed = false;
-  const Csv t = read_csv(dir / "out" / "cases.csv", &well_formed);
-  ASSERT_TRUE(well_formed);
-  ASSERT_EQ(t.rows.size(), 6u);
-  // Columns: case, parameters, flattened outputs (6x6 matrix = 36 columns), status, message, time.
-  EXPECT_EQ(t.header.size(), 1u + 2u + 1u + 36u + 3u);
-  const int P = t.col("P"), uy = t.col("analyses.lin.nodes.B.displacement[1]");
-  const int k11 = t.col("analyses.K.matrix[1][1]"), k15 = t.col("analyses.K.matrix[1][5]"), st = t.col("status");
-  ASSERT_GE(P, 0);
-  ASSERT_GE(uy, 0);
-  ASSERT_GE(k11, 0);
-  ASSERT_GE(k15, 0);
-  const double Ls[2] = {1.0, 2.5};
-  for (std::size_t i = 0; i < 6; ++i) {
-    const auto& r = t.rows[i];
-    EXPECT_EQ(r[0], std::to_string(i));  // sorted by case order, last axis fastest
-    EXPECT_EQ(r[st], "ok");
-    const double L = Ls[i % 2], p = std::stod(r[P]);
-    const double v = p * L * L * L / (3 * kE * kIz);
-    EXPECT_NEAR(std::stod(r[uy]), v, 1e-9 * std::abs(v));
-    EXPECT_NEAR(std::stod(r[k11]), 12 * kE * kIz / (L * L * L), 1e-9 * 12 * kE * kIz / (L * L * L));
-    EXPECT_NEAR(std::stod(r[k15]), 6 * kE * kIz / (L * L) * (std::stod(r[k15]) < 0 ? -1 : 1), 1e-6 * kE * kIz / (L * L));
-  }
-}
-
-TEST(Sweep, ListCasesApplySetsAndJsonPatches) {
-  const auto dir = temp_dir("list");
-  json sweep = {
-      {"cases",
-       {json{{"id", "soft"}, {"parameters", {{"E", 70e9}}}, {"set", {{"/materials/0/E", 70e9}}}},
-        json{{"id", "stiff"},
-             {"parameters", {{"E", 210e9}, {"Iz", 4e-6}}},
-             {"patch", {json{{"op", "replace"}, {"path", "/sections/0/Iz"}, {"value", 4e-6}}}}},
-        // Both forms in one case: "set" first, then the patch (which adds a second tip load).
-        json{{"id", "both"},
-             {"set", {{"/loads/0/force/1", -500.0}}},
-             {"patch", {json{{"op", "add"}, {"path", "/loads/-"}, {"value", {{"node", "B"}, {"force", {0, -500, 0}}}}}}}}}},
-      {"outputs", {json{{"name", "v"}, {"path", "/analyses/lin/nodes/B/displacement/1"}}}}};
-  const Sweep s = beamfea::read_sweep_file(write_sweep(dir, sweep).string());
-  EXPECT_EQ(s.parameter_names, (std::vector<std::string>{"E", "Iz", "/loads/0/force/1"}));
-  const auto summary = beamfea::run_sweep(s, quiet_options(dir / "out", 2));
-  EXPECT_EQ(summary.ok, 3u);
-  const Csv t = read_csv(dir / "out" / "cases.csv");
-  ASSERT_EQ(t.rows.size(), 3u);
-  const int v = t.col("v");
-  const double L = 2.0;
-  EXPECT_EQ(t.rows[0][0], "soft");
-  EXPECT_NEAR(std::stod(t.rows[0][v]), -1000 * L * L * L / (3 * 70e9 * kIz), 1e-12);
-  EXPECT_EQ(t.rows[1][0], "stiff");
-  EXPECT_EQ(t.rows[1][t.col("Iz")], "4e-06");
-  EXPECT_NEAR(std::stod(t.rows[1][v]), -1000 * L * L * L / (3 * kE * 4e-6), 1e-12);
-  EXPECT_EQ(t.rows[2][0], "both");
-  EXPECT_EQ(t.rows[2][t.col("/loads/0/force/1")], "-500");
-  EXPECT_NEAR(std::stod(t.rows[2][v]), -1000 * L * L * L / (3 * kE * kIz), 1e-12);
-}
-
-TEST(Sweep, ParallelRunGivesTheSerialTable) {
-  const auto dir = temp_dir("parallel");
-  std::vector<double> loads, lengths;
-  for (int i = 0; i < 40; ++i) loads.push_back(-100.0 * (i + 1));
-  for (int i = 0; i < 10; ++i) lengths.push_back(0.5 + 0.25 * i);
-  json sweep = {{"grid", {json{{"name", "P"}, {"pointer", "/loads/0/force/1"}, {"values", loads}},
-                          json{{"name", "L"}, {"pointer", "/nodes/1/xyz/0"}, {"values", lengths}}}},
-                {"outputs", {"analyses.lin.nodes.B.displacement", "analyses.K.matrix", "analyses.K.rank"}}};
-  const Sweep s = beamfea::read_sweep_file(write_sweep(dir, sweep).string());
-  const auto serial = beamfea::run_sweep(s, quiet_options(dir / "serial", 1));
-  const auto parallel = beamfea::run_sweep(s, quiet_options(dir / "parallel", 4));
-  EXPECT_EQ(serial.ok, 400u);
-  EXPECT_EQ(parallel.ok, 400u);
-  const Csv a = read_csv(dir / "serial" / "cases.csv"), b = read_csv(dir / "parallel" / "cases.csv");
-  EXPECT_EQ(a.header, b.header);
-  EXPECT_EQ(a.without_time(), b.without_time());
-}
-
-TEST(Sweep, FailingCasesAreRowsAndTheSweepGoesOn) {
-  const auto dir = temp_dir("failing");
-  json sweep = {{"cases",
-                 {json{{"id", "a"}, {"set", {{"/loads/0/force/1", -1.0}}}},
-                  // No support: a mechanism, so the analyses fail.
-                  json{{"id", "free"}, {"patch", {json{{"op", "remove"}, {"path", "/supports/0"}}}}},
-                  // An unknown section: the case's model is bad input.
-                  json{{"id", "bad"}, {"set", {{"/elements/0/section", "nope"}}}},
-                  json{{"id", "z"}, {"set", {{"/loads/0/force/1", -2.0}}}}}},
-                {"outputs", {"analyses.lin.nodes.B.displacement[1]"}}};
-  const Sweep s = beamfea::read_sweep_file(write_sweep(dir, sweep).string());
-  const auto summary = beamfea::run_sweep(s, quiet_options(dir / "out", 2));
-  EXPECT_EQ(summary.ok, 2u);
-  EXPECT_EQ(summary.analysis_failed, 1u);
-  EXPECT_EQ(summary.bad_input, 1u);
-  EXPECT_EQ(summary.exit_code(), 1);
-  const Csv t = read_csv(dir / "out" / "cases.csv");
-  ASSERT_EQ(t.rows.size(), 4u);
-  const int st = t.col("status"), msg = t.col("message");
-  EXPECT_EQ(t.rows[1][st], "analysis failed");
-  EXPECT_FALSE(t.rows[1][msg].empty());
-  EXPECT_EQ(t.rows[2][st], "bad input");
-  EXPECT_NE(t.rows[2][msg].find("/elements/0/section"), std::string::npos) << t.rows[2][msg];
-  EXPECT_EQ(t.rows[3][st], "ok");
-}
-
-TEST(Sweep, ResumeRunsOnlyTheCasesMissingFromTheTable) {
-  const auto dir = temp_dir("resume");
-  std::vector<double> loads;
-  for (int i = 0; i < 30; ++i) loads.push_back(-10.0 * (i + 1));
-  json sweep = {{"grid", {json{{"name", "P"}, {"pointer", "/loads/0/force/1"}, {"values", loads}}}},
-                {"outputs", {"analyses.lin.nodes.B.displacement[1]"}}};
-  const Sweep s = beamfea::read_sweep_file(write_sweep(dir, sweep).string());
-  beamfea::run_sweep(s, quiet_options(dir / "out", 2));
-  const Csv full = read_csv(dir / "out" / "cases.csv");
-
-  // Keep the header and 7 rows, as if the sweep had been killed.
-  const std::string text = read(dir / "out" / "cases.csv");
-  std::size_t pos = 0;
-  for (int line = 0; line < 8; ++line) pos = text.find('\n', pos) + 1;
-  write(dir / "out" / "cases.csv", text.substr(0, pos));
-
-  auto opt = quiet_options(dir / "out", 3);
-  opt.resume = true;
-  const auto summary = beamfea::run_sweep(s, opt);
-  EXPECT_EQ(summary.skipped, 7u);
-  EXPECT_EQ(summary.ran, 23u);
-  EXPECT_EQ(summary.ok, 30u);
-  const Csv resumed = read_csv(dir / "out" / "cases.csv");
-  EXPECT_EQ(resumed.without_time(), full.without_time());
-
-  // Resuming a complete table runs nothing.
-  EXPECT_EQ(beamfea::run_sweep(s, opt).ran, 0u);
-}
-
-TEST(Sweep, KeepWritesEachCasesResults) {
-  const auto dir = temp_dir("keep");
-  json sweep = {{"grid", {json{{"pointer", "/loads/0/force/1"}, {"values", {-1, -2}}}}}, {"outputs", json::array()}};
-  const Sweep s = beamfea::read_sweep_file(write_sweep(dir, sweep).string());
-  auto opt = quiet_options(dir / "out");
-  beamfea::run_sweep(s, opt);
-  EXPECT_FALSE(fs::exists(dir / "out" / "cases"));
-  opt.keep = true;
-  beamfea::run_sweep(s, opt);
-  EXPECT_TRUE(fs::exists(dir / "out" / "cases" / "0" / "results.json"));
-  EXPECT_TRUE(fs::exists(dir / "out" / "cases" / "1" / "lin.vtu"));
-}
-
-TEST(Sweep, BadSweepFilesNameTheEntry) {
+TEST(SweepFile, BadSweepFilesNameTheEntry) {
   const auto dir = temp_dir("bad");
   auto read = [&](const json& sweep) { return [&, sweep] { beamfea::read_sweep_file(write_sweep(dir, sweep).string()); }; };
   const json out = {"analyses.lin.nodes.B.displacement[1]"};
@@ -211,4 +58,128 @@ TEST(Sweep, BadSweepFilesNameTheEntry) {
   EXPECT_EQ(pointer_of(read({{"cases", {json::object()}}, {"outputs", {"analyses.nope.x"}}})), "/outputs/0");
   EXPECT_EQ(pointer_of(read({{"cases", {json::object()}}, {"output", out}})), "/output");
   EXPECT_EQ(pointer_of(read({{"cases", {json{{"id", "a/b"}}}}})), "/cases/0/id");
+}
+
+// One case in process, and its row: the tip deflection of the cantilever, v = P L^3 / (3 E Iz)
+// (Gere & Goodno, Table G-1 case 4), and the stiffness row K[uy] = (0, 12 E Iz / L^3, 0, 0, 0,
+// -6 E Iz / L^2) of the tip node (Przemieniecki eq. 5.116), with L = 2.
+TEST(SweepCase, OneCaseGivesTheClosedFormsAndItsRow) {
+  const auto dir = temp_dir("one_case");
+  const Sweep s = beamfea::read_sweep_file(write_sweep(dir, three_cases()).string());
+  const double L = 2.0;
+  const SweepCaseResult r = beamfea::run_sweep_case(s, 2);
+  ASSERT_EQ(r.status, SweepCaseResult::Status::Ok) << r.message;
+  ASSERT_EQ(r.outputs.size(), 2u);
+  ASSERT_EQ(r.outputs[0].size(), 1u);
+  EXPECT_EQ(r.outputs[0][0].first, "v");
+  const double v = -3000.0 * L * L * L / (3 * kE * kIz);
+  EXPECT_NEAR(std::stod(r.outputs[0][0].second), v, 1e-9 * std::abs(v));
+  ASSERT_EQ(r.outputs[1].size(), 6u);
+  EXPECT_EQ(r.outputs[1][1].first, "analyses.K.matrix[1][1]");
+  const double k11 = 12 * kE * kIz / (L * L * L), k15 = 6 * kE * kIz / (L * L);
+  EXPECT_NEAR(std::stod(r.outputs[1][1].second), k11, 1e-9 * k11);
+  EXPECT_NEAR(std::abs(std::stod(r.outputs[1][5].second)), k15, 1e-9 * k15);
+
+  const auto columns = beamfea::sweep_columns(s, &r);
+  const auto header = columns.header(s);
+  // case, the two set pointers (the parameters of a list without "parameters"), v, the K row,
+  // status, message, wall time.
+  ASSERT_EQ(header.size(), 1u + 2u + 1u + 6u + 3u);
+  EXPECT_EQ(header[1], "/loads/0/force/1");
+  EXPECT_EQ(header[3], "v");
+  std::string row = beamfea::sweep_row(s, 2, columns, r);
+  ASSERT_EQ(row.back(), '\n');
+  row.pop_back();
+  const auto cells = beamfea::csv_split(row);
+  ASSERT_EQ(cells.size(), header.size());
+  EXPECT_EQ(cells[0], "p2");
+  EXPECT_EQ(cells[1], "-3000");
+  EXPECT_EQ(cells[2], "");  // p2 does not set the section
+  EXPECT_EQ(std::stod(cells[3]), std::stod(r.outputs[0][0].second));  // shortest round trip: exact
+  EXPECT_EQ(cells[header.size() - 3], "ok");
+
+  // A case whose model the reader rejects is "bad input" naming the entry; its outputs are empty
+  // cells of the same row shape.
+  const SweepCaseResult b = beamfea::run_sweep_case(s, 1);
+  EXPECT_EQ(b.status, SweepCaseResult::Status::BadInput);
+  EXPECT_NE(b.message.find("/elements/0/section"), std::string::npos) << b.message;
+  std::string brow = beamfea::sweep_row(s, 1, columns, b);
+  brow.pop_back();
+  const auto bcells = beamfea::csv_split(brow);
+  ASSERT_EQ(bcells.size(), header.size());
+  EXPECT_EQ(bcells[2], "nope");
+  EXPECT_EQ(bcells[3], "");
+  EXPECT_EQ(bcells[header.size() - 3], "bad input");
+}
+
+TEST(SweepTable, CsvFieldsAreQuotedOnlyWhenNeededAndSplitBack) {
+  const std::vector<std::string> cells{"plain", "a,b", "say \"hi\"", "", "x\ny"};
+  std::string line = beamfea::csv_line(cells);
+  EXPECT_EQ(line, "plain,\"a,b\",\"say \"\"hi\"\"\",,\"x\ny\"\n");
+  line.pop_back();
+  // A quoted line break cannot be split by csv_split line by line; the others come back as written.
+  const auto back = beamfea::csv_split("plain,\"a,b\",\"say \"\"hi\"\"\",");
+  EXPECT_EQ(back, (std::vector<std::string>{"plain", "a,b", "say \"hi\"", ""}));
+  EXPECT_EQ(beamfea::csv_cell(json(0.1)), "0.1");
+  EXPECT_EQ(beamfea::csv_cell(json("two\nlines")), "two lines");
+  EXPECT_EQ(beamfea::csv_cell(json(nullptr)), "");
+}
+
+TEST(SweepTable, ResumeFindsTheCasesOfThisSweepAndRejectsAnotherTable) {
+  const auto dir = temp_dir("resume_io");
+  const Sweep s = beamfea::read_sweep_file(write_sweep(dir, three_cases()).string());
+  const auto table = dir / "cases.csv";
+  EXPECT_FALSE(beamfea::resume_sweep_table(s, table).found);
+
+  const auto r = beamfea::run_sweep_case(s, 2);
+  const auto columns = beamfea::sweep_columns(s, &r);
+  // A header, the row of case "p2" and half a row (as if the writer had died mid-line).
+  write(table, beamfea::csv_line(columns.header(s)) + beamfea::sweep_row(s, 2, columns, r) + "p1,-1000,,0.0");
+  const auto resumed = beamfea::resume_sweep_table(s, table);
+  ASSERT_TRUE(resumed.found);
+  EXPECT_EQ(resumed.columns.outputs, columns.outputs);
+  EXPECT_EQ(resumed.done, (std::vector<char>{0, 0, 1}));
+  const std::string repaired = read(table);
+  EXPECT_EQ(repaired.back(), '\n');
+  EXPECT_EQ(repaired.find("p1,"), std::string::npos) << "the partial line is cut off";
+
+  // Another sweep's table: other columns, or a case id that is not this sweep's.
+  write(table, "case,x,status,message,wall_time_s\n");
+  try {
+    beamfea::resume_sweep_table(s, table);
+    ADD_FAILURE() << "another sweep's table was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a table of this sweep"), std::string::npos) << e.what();
+  }
+  write(table, beamfea::csv_line(columns.header(s)) + "zz" + beamfea::sweep_row(s, 2, columns, r));
+  EXPECT_THROW(beamfea::resume_sweep_table(s, table), InputError);
+}
+
+TEST(SweepTable, FinishSortsByCaseKeepsTheLastRowOfACaseAndCounts) {
+  const auto dir = temp_dir("finish_io");
+  const Sweep s = beamfea::read_sweep_file(write_sweep(dir, three_cases()).string());
+  std::vector<SweepCaseResult> r;
+  for (std::size_t i = 0; i < 3; ++i) r.push_back(beamfea::run_sweep_case(s, i));
+  const auto columns = beamfea::sweep_columns(s, &r[0]);
+  const auto table = dir / "cases.csv";
+  write(table, beamfea::csv_line(columns.header(s)));
+  {
+    beamfea::SweepTableAppender out(table);
+    SweepCaseResult failed = r[0];
+    failed.status = SweepCaseResult::Status::AnalysisFailed;
+    out.append(beamfea::sweep_row(s, 2, columns, r[2]) + beamfea::sweep_row(s, 0, columns, failed));
+    out.append(beamfea::sweep_row(s, 1, columns, r[1]) + beamfea::sweep_row(s, 0, columns, r[0]));  // case 0 again: ok
+  }
+  const auto counts = beamfea::finish_sweep_table(s, table);
+  EXPECT_EQ(counts.ok, 2u);
+  EXPECT_EQ(counts.bad_input, 1u);
+  EXPECT_EQ(counts.analysis_failed, 0u);
+  bool well_formed = false;
+  const Csv t = read_csv(table, &well_formed);
+  EXPECT_TRUE(well_formed);
+  ASSERT_EQ(t.rows.size(), 3u);
+  EXPECT_EQ(t.rows[0][0], "p1");
+  EXPECT_EQ(t.rows[0][t.col("status")], "ok");
+  EXPECT_EQ(t.rows[1][0], "bad");
+  EXPECT_EQ(t.rows[2][0], "p2");
 }

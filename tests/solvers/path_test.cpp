@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
+#include "core/errors.hpp"
 #include "solvers/buckling.hpp"
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/path_following.hpp"
@@ -315,4 +317,35 @@ TEST(PathFollowing, VirtualSpringChainStiffnessAtStartEqualsLinearStiffness) {
   // free, i.e. 1 / (K_c^-1)_zz.
   const double kzz = 1.0 / Kc.inverse()(2, 2);
   EXPECT_NEAR(r.steps.back().reaction / 1e-6, kzz, 1e-4 * kzz);
+}
+
+// Bad input that reaches the path solver directly (beamfea check rejects it first) names its
+// entity, never an empty one: a model without loads under load control, a buckling mode that
+// does not exist for the imperfection, a rigid link whose ends are held apart.
+TEST(PathFollowing, BadInputNamesItsEntity) {
+  auto entity_of = [](const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const ModelError& e) {
+      EXPECT_FALSE(e.entity().empty()) << e.what();
+      return e.entity();
+    }
+    return std::string("(no ModelError)");
+  };
+  json d = straight_member(1.0, 2, 2.1e11, 8.1e10, 1e-3, 2e-6, 3e-6, 1e-6);
+  d["supports"] = json::array({{{"node", "A"}, {"fix", "all"}}});
+  const Model unloaded = read_model(d);
+  EXPECT_EQ(entity_of([&] { follow_path(unloaded, PathOptions{}); }), "loads");
+
+  d["loads"] = json::array({{{"node", "B"}, {"force", {-1000, 0, 0}}}});
+  const Model loaded = read_model(d);
+  EXPECT_EQ(entity_of([&] { imperfect_model(loaded, 999, 1e-3); }), "imperfection mode 999");
+
+  // A rigid link from the clamped node A to a node C prescribed to move (the bad_rigid_body
+  // case of the fuzz corpus).
+  d["nodes"].push_back({{"id", "C"}, {"xyz", {0, 1, 0}}});
+  d["elements"].push_back({{"id", "r"}, {"type", "rigid"}, {"nodes", {"A", "C"}}});
+  d["prescribed"] = json::array({{{"node", "C"}, {"dof", "uz"}, {"value", 0.01}}});
+  const Model held_apart = read_model(d);
+  EXPECT_EQ(entity_of([&] { follow_path(held_apart, PathOptions{}); }), "supports and prescribed values");
 }

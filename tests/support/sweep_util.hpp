@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "io/sweep.hpp"
+#include "io/sweep_table.hpp"
 
 namespace sweep_test {
 

@@ -1,0 +1,290 @@
+#include "app/sweep_runner.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <thread>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "io/atomic_file.hpp"
+#include "io/sweep_table.hpp"
+
+namespace beamfea {
+
+using json = nlohmann::json;
+
+namespace {
+
+// The columns of a new table come from the first case that ends ok; at most this many cases are
+// run one after the other to find it (they are rows of the table like any other).
+constexpr std::size_t kProbeLimit = 64;
+
+// How long the collecting thread waits for rows before it looks at the other ranks and reports
+// progress.
+constexpr auto kCollectPeriod = std::chrono::milliseconds(50);
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// What rank 0 decides before the cases run: the columns and the cases already in the table.
+struct Plan {
+  SweepColumns columns;
+  std::vector<std::size_t> done;  // in the table already: resumed rows and the probe's rows
+  std::size_t probed = 0;         // of which run now by the probe
+  std::string error;
+};
+
+json plan_to_json(const Plan& p) {
+  return json{{"columns", p.columns.outputs}, {"done", p.done}, {"probed", p.probed}, {"error", p.error}};
+}
+Plan plan_from_json(const json& j) {
+  Plan p;
+  p.columns.outputs = j.at("columns").get<std::vector<std::vector<std::string>>>();
+  p.done = j.at("done").get<std::vector<std::size_t>>();
+  p.probed = j.at("probed").get<std::size_t>();
+  p.error = j.at("error").get<std::string>();
+  return p;
+}
+
+bool stop_requested(const SweepOptions& o) { return o.stop && o.stop->load(); }
+
+std::filesystem::path keep_dir(const Sweep& s, const SweepOptions& o, std::size_t i) {
+  return o.keep ? o.out_dir / "cases" / s.case_id(i) : std::filesystem::path();
+}
+
+// Rank 0: reads the table to resume, or starts a new one whose columns are those of the first
+// case that ends ok (the probe). Errors are returned in the plan, to be broadcast.
+Plan make_plan(const Sweep& sweep, const SweepOptions& options, const std::filesystem::path& table) {
+  Plan plan;
+  try {
+    std::filesystem::create_directories(options.out_dir);
+    SweepResume resumed;
+    if (options.resume) resumed = resume_sweep_table(sweep, table);
+    std::vector<char> done = resumed.found ? resumed.done : std::vector<char>(sweep.size(), 0);
+    if (resumed.found) {
+      plan.columns = resumed.columns;
+    } else {
+      std::vector<std::pair<std::size_t, SweepCaseResult>> probe;
+      const SweepCaseResult* ok = nullptr;
+      for (std::size_t i = 0; i < sweep.size() && probe.size() < kProbeLimit && !stop_requested(options); ++i) {
+        if (done[i]) continue;
+        probe.emplace_back(i, run_sweep_case(sweep, i, keep_dir(sweep, options, i)));
+        if (probe.back().second.status == SweepCaseResult::Status::Ok) {
+          ok = &probe.back().second;
+          break;
+        }
+      }
+      plan.columns = sweep_columns(sweep, ok);
+      std::string text = csv_line(plan.columns.header(sweep));
+      for (const auto& [i, r] : probe) {
+        text += sweep_row(sweep, i, plan.columns, r);
+        done[i] = 1;
+      }
+      plan.probed = probe.size();
+      write_text_atomic(table, text);
+    }
+    for (std::size_t i = 0; i < sweep.size(); ++i)
+      if (done[i]) plan.done.push_back(i);
+  } catch (const std::exception& e) {
+    plan.error = e.what();
+  }
+  return plan;
+}
+
+// This rank's share of the cases not yet done: every ranks-th case.
+std::vector<std::size_t> share(std::size_t total, const Plan& plan, int rank, int ranks) {
+  std::vector<char> done(total, 0);
+  for (auto i : plan.done) done[i] = 1;
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < total; ++i)
+    if (!done[i] && static_cast<int>(i % ranks) == rank) mine.push_back(i);
+  return mine;
+}
+
+int worker_count(const SweepOptions& options, int ranks, std::size_t cases) {
+  int jobs = options.jobs;
+  if (jobs == 0) {
+    jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    if (ranks > 1) jobs = std::max(1, jobs / std::max(1, options.ranks_on_host));
+  }
+  return static_cast<int>(std::max<std::size_t>(1, std::min<std::size_t>(jobs, cases)));
+}
+
+// Worker threads run the cases and hand whole rows to the collecting thread (the caller's, the
+// only one that writes or sends).
+class WorkerPool {
+ public:
+  WorkerPool(const Sweep& sweep, const SweepOptions& options, const SweepColumns& columns,
+             const std::vector<std::size_t>& pending, int jobs)
+      : jobs_(jobs) {
+    for (int w = 0; w < jobs; ++w)
+      threads_.emplace_back([&, this] {
+        for (;;) {
+          if (abort_ || stop_requested(options)) break;
+          const std::size_t k = next_++;
+          if (k >= pending.size()) break;
+          const std::size_t i = pending[k];
+          const SweepCaseResult r = run_sweep_case(sweep, i, keep_dir(sweep, options, i));
+          const std::string row = sweep_row(sweep, i, columns, r);
+          {
+            std::lock_guard lock(mutex_);
+            batch_.rows += row;
+            ++batch_.count;
+            if (r.status != SweepCaseResult::Status::Ok) ++batch_.failed;
+          }
+          cv_.notify_one();
+        }
+        std::lock_guard lock(mutex_);
+        ++finished_;
+        cv_.notify_one();
+      });
+  }
+  ~WorkerPool() {
+    abort_ = true;
+    join();
+  }
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  struct Batch {
+    std::string rows;
+    std::size_t count = 0, failed = 0;
+    bool all_done = false;  // every worker has ended: this is the last batch
+  };
+  // Waits up to `period` for rows; returns those finished so far.
+  Batch take(std::chrono::milliseconds period) {
+    std::unique_lock lock(mutex_);
+    cv_.wait_for(lock, period, [&] { return !batch_.rows.empty() || finished_ == jobs_; });
+    Batch b = std::move(batch_);
+    batch_ = Batch{};
+    b.all_done = finished_ == jobs_;
+    return b;
+  }
+  void join() {
+    for (auto& t : threads_)
+      if (t.joinable()) t.join();
+  }
+
+ private:
+  int jobs_;
+  std::vector<std::thread> threads_;
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  Batch batch_;
+  int finished_ = 0;
+  std::atomic<std::size_t> next_{0};
+  std::atomic<bool> abort_{false};
+};
+
+// A batch of rows between ranks: "<count> <failed>\n" then the rows.
+std::string encode_batch(const WorkerPool::Batch& b) { return fmt::format("{} {}\n", b.count, b.failed) + b.rows; }
+WorkerPool::Batch decode_batch(const std::string& text) {
+  WorkerPool::Batch b;
+  const auto nl = text.find('\n');
+  std::sscanf(text.c_str(), "%zu %zu", &b.count, &b.failed);
+  if (nl != std::string::npos && nl + 1 < text.size()) b.rows = text.substr(nl + 1);
+  return b;
+}
+
+}  // namespace
+
+void SweepOptions::validate() const {
+  if (out_dir.empty()) throw InputError("", "sweep: the output folder must not be empty");
+  if (jobs < 0) throw InputError("", "sweep: --jobs must be at least 1 (or 0 for all cores)");
+  if (ranks_on_host < 1) throw InputError("", "sweep: the number of processes on this host must be at least 1");
+}
+
+std::string SweepSummary::report() const {
+  return fmt::format("{} cases ({} run now, {} already in the table): {} ok, {} analysis failed, {} bad input; {:.2f} s{}{}; table {}",
+                     cases, ran, skipped, ok, analysis_failed, bad_input, wall_time_s,
+                     processes > 1 ? fmt::format(" on {} processes", processes) : std::string(),
+                     interrupted ? " (interrupted: the table holds the finished cases)" : "", table.string());
+}
+
+int SweepSummary::exit_code() const {
+  if (interrupted) return 130;
+  return analysis_failed + bad_input > 0 ? 1 : 0;
+}
+
+SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepComm* comm) {
+  options.validate();
+  const auto t_start = std::chrono::steady_clock::now();
+  const int rank = comm ? comm->rank() : 0, ranks = comm ? comm->size() : 1;
+  const bool root = rank == 0;
+  const auto table = options.out_dir / "cases.csv";
+
+  // Rank 0 settles the columns and the cases already done, and starts the table.
+  Plan plan;
+  if (root) plan = make_plan(sweep, options, table);
+  if (ranks > 1) {
+    std::string text = root ? plan_to_json(plan).dump() : std::string();
+    comm->broadcast(text);
+    if (!root) plan = plan_from_json(json::parse(text));
+  }
+  if (!plan.error.empty()) throw InputError("", plan.error);
+
+  const std::vector<std::size_t> pending = share(sweep.size(), plan, rank, ranks);
+  SweepProgress progress;
+  progress.total = sweep.size() - plan.done.size();
+  // Opened before the workers start: a table that cannot be appended to ends the sweep first.
+  std::unique_ptr<SweepTableAppender> appender;
+  if (root) appender = std::make_unique<SweepTableAppender>(table);
+
+  WorkerPool pool(sweep, options, plan.columns, pending, worker_count(options, ranks, pending.size()));
+  const auto t_cases = std::chrono::steady_clock::now();
+  int ranks_finished = 0;
+  for (;;) {
+    const WorkerPool::Batch mine = pool.take(kCollectPeriod);
+    if (!root) {
+      if (!mine.rows.empty() || mine.all_done) comm->send(encode_batch(mine), mine.all_done);
+      if (mine.all_done) break;
+      continue;
+    }
+    auto add = [&](const WorkerPool::Batch& b) {
+      if (!b.rows.empty()) appender->append(b.rows);
+      progress.done += b.count;
+      progress.failed += b.failed;
+    };
+    add(mine);
+    std::string remote;
+    bool last = false;
+    while (ranks > 1 && comm->receive(remote, last)) {
+      add(decode_batch(remote));
+      if (last) ++ranks_finished;
+    }
+    progress.elapsed_s = seconds_since(t_cases);
+    if (options.progress) options.progress(progress);
+    if (mine.all_done && ranks_finished == ranks - 1) break;
+  }
+  pool.join();
+
+  SweepSummary summary;
+  summary.cases = sweep.size();
+  summary.skipped = plan.done.size() - plan.probed;
+  summary.ran = progress.done + plan.probed;
+  summary.interrupted = stop_requested(options);
+  summary.processes = ranks;
+  summary.table = table;
+  if (root) {
+    appender.reset();
+    progress.elapsed_s = seconds_since(t_cases);
+    progress.final = true;
+    if (options.progress) options.progress(progress);
+    const SweepTableCounts counts = finish_sweep_table(sweep, table);
+    summary.ok = counts.ok;
+    summary.analysis_failed = counts.analysis_failed;
+    summary.bad_input = counts.bad_input;
+  }
+  summary.wall_time_s = seconds_since(t_start);
+  return summary;
+}
+
+}  // namespace beamfea

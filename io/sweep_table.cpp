@@ -1,0 +1,309 @@
+#include "io/sweep_table.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "io/atomic_file.hpp"
+
+namespace beamfea {
+
+namespace {
+
+// Case ids of a grid are indices; more digits than this cannot be one (and would overflow).
+constexpr std::size_t kMaxGridIdDigits = 18;
+
+std::string without_line_breaks(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  return s;
+}
+
+template <class J>
+std::string cell_text(const J& v) {
+  switch (v.type()) {
+    case J::value_t::null: return "";
+    case J::value_t::boolean: return v.template get<bool>() ? "true" : "false";
+    case J::value_t::string: return without_line_breaks(v.template get<std::string>());
+    case J::value_t::number_integer: return std::to_string(v.template get<std::int64_t>());
+    case J::value_t::number_unsigned: return std::to_string(v.template get<std::uint64_t>());
+    case J::value_t::number_float: return fmt::format("{}", v.template get<double>());  // shortest round trip
+    default: return v.dump();
+  }
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string first_field(const std::string& row) {
+  std::string line = row;
+  if (!line.empty() && line.back() == '\n') line.pop_back();
+  const auto f = csv_split(line);
+  return f.empty() ? "" : f[0];
+}
+
+}  // namespace
+
+std::string csv_cell(const nlohmann::json& v) { return cell_text(v); }
+std::string csv_cell(const ojson& v) { return cell_text(v); }
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) {
+    if (c == '"') q += '"';
+    q += c;
+  }
+  q += '"';
+  return q;
+}
+
+std::vector<std::string> csv_split(const std::string& line) {
+  std::vector<std::string> out;
+  std::string f;
+  bool quoted = false, in_quotes = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (in_quotes) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        f += '"';
+        ++i;
+      } else if (c == '"') {
+        in_quotes = false;
+      } else {
+        f += c;
+      }
+    } else if (c == '"' && f.empty() && !quoted) {
+      in_quotes = quoted = true;
+    } else if (c == ',') {
+      out.push_back(std::move(f));
+      f.clear();
+      quoted = false;
+    } else if (c != '\r') {
+      f += c;
+    }
+  }
+  out.push_back(std::move(f));
+  return out;
+}
+
+std::string csv_line(const std::vector<std::string>& cells) {
+  std::string line;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (i) line += ',';
+    line += csv_field(cells[i]);
+  }
+  line += '\n';
+  return line;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Columns and rows
+
+std::vector<std::string> SweepColumns::header(const Sweep& s) const {
+  std::vector<std::string> h{"case"};
+  h.insert(h.end(), s.parameter_names.begin(), s.parameter_names.end());
+  for (const auto& o : outputs) h.insert(h.end(), o.begin(), o.end());
+  h.insert(h.end(), {"status", "message", "wall_time_s"});
+  return h;
+}
+
+SweepColumns sweep_columns(const Sweep& s, const SweepCaseResult* first_ok) {
+  SweepColumns c;
+  c.outputs.resize(s.outputs.size());
+  for (std::size_t o = 0; o < s.outputs.size(); ++o) {
+    if (first_ok && o < first_ok->outputs.size() && !first_ok->outputs[o].empty())
+      for (const auto& kv : first_ok->outputs[o]) c.outputs[o].push_back(kv.first);
+    else
+      c.outputs[o].push_back(s.outputs[o].name);
+  }
+  return c;
+}
+
+SweepColumns sweep_columns_from_header(const Sweep& s, const std::vector<std::string>& h, const std::string& table) {
+  const std::size_t P = s.parameter_names.size();
+  auto differ = [&](const std::string& why) {
+    return InputError("", "--resume: " + table + " is not a table of this sweep (" + why + "); remove it or use another --out");
+  };
+  if (h.size() < 4 + P || h[0] != "case" || h[h.size() - 3] != "status" || h[h.size() - 2] != "message" ||
+      h.back() != "wall_time_s")
+    throw differ("unexpected columns");
+  for (std::size_t i = 0; i < P; ++i)
+    if (h[1 + i] != s.parameter_names[i]) throw differ("parameter column '" + h[1 + i] + "'");
+  SweepColumns c;
+  std::size_t k = 1 + P;
+  const std::size_t end = h.size() - 3;
+  for (const auto& o : s.outputs) {
+    std::vector<std::string> mine;
+    while (k < end && (h[k] == o.name || h[k].rfind(o.name + "[", 0) == 0 || h[k].rfind(o.name + ".", 0) == 0))
+      mine.push_back(h[k++]);
+    if (mine.empty()) throw differ("no column for output '" + o.name + "'");
+    c.outputs.push_back(std::move(mine));
+  }
+  if (k != end) throw differ("column '" + h[k] + "' is not an output of this sweep");
+  return c;
+}
+
+std::string sweep_row(const Sweep& s, std::size_t index, const SweepColumns& cols, const SweepCaseResult& r) {
+  std::vector<std::string> cells{s.case_id(index)};
+  for (const auto& p : s.parameters(index)) cells.push_back(p.is_null() ? "" : cell_text(p));
+  for (std::size_t o = 0; o < cols.outputs.size(); ++o) {
+    const auto& names = cols.outputs[o];
+    static const std::vector<std::pair<std::string, std::string>> none;
+    const auto& got = o < r.outputs.size() ? r.outputs[o] : none;
+    bool same = got.size() == names.size();
+    for (std::size_t k = 0; same && k < names.size(); ++k) same = got[k].first == names[k];
+    if (same) {
+      for (const auto& g : got) cells.push_back(g.second);
+      continue;
+    }
+    std::unordered_map<std::string, const std::string*> byname;
+    for (const auto& g : got) byname.emplace(g.first, &g.second);
+    for (const auto& n : names) {
+      auto it = byname.find(n);
+      cells.push_back(it == byname.end() ? "" : *it->second);
+    }
+  }
+  cells.push_back(to_string(r.status));
+  cells.push_back(without_line_breaks(r.message));
+  cells.push_back(fmt::format("{:.6f}", r.wall_time_s));
+  return csv_line(cells);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Case ids
+
+SweepCaseIndex::SweepCaseIndex(const Sweep& s) : sweep_(s) {
+  if (s.grid.empty())
+    for (std::size_t i = 0; i < s.list.size(); ++i) ids_.emplace(s.list[i].id, i);
+}
+
+bool SweepCaseIndex::find(const std::string& id, std::size_t& index) const {
+  if (!sweep_.grid.empty()) {
+    if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos || id.size() > kMaxGridIdDigits)
+      return false;
+    index = std::stoull(id);
+    return index < sweep_.size();
+  }
+  auto it = ids_.find(id);
+  if (it == ids_.end()) return false;
+  index = it->second;
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The file
+
+SweepTable read_sweep_table(const std::filesystem::path& path) {
+  SweepTable t;
+  const std::string text = read_text(path);
+  std::size_t pos = 0;
+  bool first = true;
+  while (pos < text.size()) {
+    const auto nl = text.find('\n', pos);
+    if (nl == std::string::npos) {
+      t.partial_tail = true;
+      break;
+    }
+    std::string line = text.substr(pos, nl - pos + 1);
+    pos = nl + 1;
+    if (first) {
+      line.pop_back();
+      t.header = csv_split(line);
+      first = false;
+    } else if (line.size() > 1) {
+      t.rows.push_back(std::move(line));
+    }
+  }
+  return t;
+}
+
+SweepResume resume_sweep_table(const Sweep& s, const std::filesystem::path& table) {
+  SweepResume r;
+  r.done.assign(s.size(), 0);
+  if (!std::filesystem::exists(table)) return r;
+  SweepTable t = read_sweep_table(table);
+  if (t.header.empty()) return r;
+  r.columns = sweep_columns_from_header(s, t.header, table.string());
+  r.found = true;
+  const SweepCaseIndex index(s);
+  for (const auto& row : t.rows) {
+    std::size_t i;
+    if (!index.find(first_field(row), i))
+      throw InputError("", "--resume: " + table.string() + " has a row for case '" + first_field(row) +
+                               "', which is not in this sweep");
+    r.done[i] = 1;
+  }
+  if (t.partial_tail) {  // cannot happen with whole-row writes; repair anyway
+    std::string text = csv_line(t.header);
+    for (const auto& row : t.rows) text += row;
+    write_text_atomic(table, text);
+  }
+  return r;
+}
+
+SweepTableAppender::SweepTableAppender(std::filesystem::path table) : path_(std::move(table)) {
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  if (fd_ < 0) throw Error("cannot append to '" + path_.string() + "'");
+}
+
+SweepTableAppender::~SweepTableAppender() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void SweepTableAppender::append(const std::string& rows) {
+  const char* p = rows.data();
+  std::size_t left = rows.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd_, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw Error("error writing '" + path_.string() + "'");
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+}
+
+SweepTableCounts finish_sweep_table(const Sweep& s, const std::filesystem::path& table) {
+  SweepTable t = read_sweep_table(table);
+  const SweepCaseIndex index(s);
+  std::vector<std::pair<std::size_t, std::string>> rows;
+  std::map<std::size_t, std::size_t> where;
+  for (auto& row : t.rows) {
+    std::size_t i;
+    if (!index.find(first_field(row), i)) continue;
+    auto [it, fresh] = where.emplace(i, rows.size());
+    if (fresh) rows.emplace_back(i, std::move(row));
+    else rows[it->second].second = std::move(row);
+  }
+  std::sort(rows.begin(), rows.end());
+  SweepTableCounts counts;
+  const std::size_t status_col = t.header.size() >= 3 ? t.header.size() - 3 : 0;
+  std::string text = csv_line(t.header);
+  for (const auto& [i, row] : rows) {
+    text += row;
+    std::string line = row;
+    line.pop_back();
+    const auto f = csv_split(line);
+    const std::string status = f.size() > status_col ? f[status_col] : "";
+    if (status == to_string(SweepCaseResult::Status::Ok)) ++counts.ok;
+    else if (status == to_string(SweepCaseResult::Status::BadInput)) ++counts.bad_input;
+    else ++counts.analysis_failed;
+  }
+  write_text_atomic(table, text);
+  return counts;
+}
+
+}  // namespace beamfea
