@@ -323,7 +323,10 @@ AnalysisOutcome run_actuator_allocation(const AnalysisContext& ctx) {
 
 AnalysisType actuator_allocation_analysis() {
   return {"actuator_allocation", check_actuator_allocation, run_actuator_allocation, [](const std::string& id) {
-            return AnalysisFiles{{id + "_stiffness.csv", id + "_links.csv", id + "_ranking.csv"}, {}};
+            // With a load_case also <id>_efforts.csv and <id>_load_case.csv.
+            return AnalysisFiles{{id + "_stiffness.csv", id + "_links.csv", id + "_ranking.csv", id + "_efforts.csv",
+                                  id + "_load_case.csv"},
+                                 {}};
           }};
 }
 
