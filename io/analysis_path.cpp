@@ -7,13 +7,15 @@
 //  "control": {"arc_length": "auto"}                                  the first step from the structure
 //  "stop": {"load_factor": 2.0} | {"node": "D", "dof": "uy", "beyond": -60.0} | {"steps": 300},
 //  "branch_switch": true, "imperfection": {"mode": 1, "amplitude": 0.001},
-//  "stability": true, "save_every": 1, "desired_iterations": 5, "max_cuts": 10}
+//  "stability": true, "save_every": 1, "desired_iterations": 5, "max_cuts": 10,
+//  "frequencies": {"modes": 3, "mass": "consistent" | "lumped"}}     natural frequencies at every step
 //
 // Result analyses.<id>: type, status, termination, completed, free_dofs, control,
 // steps[] {step, load_factor, control, arc_length, iterations, nodes.<tracked>.displacement,
 //          negative_eigenvalues, stable, min_eigenvalue, stiffness, compliance, rank, null_space,
 //          rigid_directions (when stiffness_node), reaction
-//          (imposed motion), step_control (displacement control: "displacement", or "arc_length" through
+//          (imposed motion), frequencies (Hz, with "frequencies"; null and frequencies_failure when the
+//          eigen-solver failed), step_control (displacement control: "displacement", or "arc_length" through
 //          a snap-back of the controlled DOF)}, critical_points[] {type, load_factor, step, control,
 //          negative_before, negative_after, load_work, reaction (imposed motion), branch_switched,
 //          mode.nodes.<id>.displacement},
@@ -47,6 +49,7 @@ constexpr int kMaxSteps = 100000;            // max_steps, stop steps, increment
 constexpr int kMaxDesiredIterations = 100;
 constexpr int kMaxCuts = 100;
 constexpr int kMaxImperfectionMode = 1000;   // as buckling's "modes"
+constexpr int kMaxFrequencyModes = 1000;     // as modal's "modes"
 
 int dof_of(const nlohmann::json& v, const std::string& p) {
   const std::string name = json_in::string(v, p, "dof");
@@ -59,7 +62,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
   PathOptions o;
   json_in::expect_keys(spec, p, {"id", "type", "description", "control", "stop", "max_steps", "track", "stiffness_node",
                                  "branch_switch", "stability", "desired_iterations", "max_cuts", "imperfection",
-                                 "save_every", "load_case"});
+                                 "save_every", "load_case", "frequencies"});
   const auto& c = json_in::object(json_in::require(spec, p, "control", "path analysis"), child(p, "control"), "path control");
   const std::string pc = child(p, "control");
   json_in::expect_keys(c, pc, {"load_factor", "to", "node", "dof", "arc_length", "min", "max", "increments"});
@@ -129,6 +132,20 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
                             kMaxImperfectionMode);
     o.imperfection_amplitude = json_in::number(json_in::require(im, pi, "amplitude", "imperfection"), child(pi, "amplitude"), "imperfection amplitude");
   }
+  if (spec.contains("frequencies")) {
+    const std::string pf = child(p, "frequencies");
+    const auto& f = json_in::object(spec["frequencies"], pf, "path frequencies");
+    json_in::expect_keys(f, pf, {"modes", "mass"});
+    o.frequency_modes = f.contains("modes") ? json_in::integer_in(f["modes"], child(pf, "modes"), "frequencies modes", 1,
+                                                                  kMaxFrequencyModes)
+                                            : 1;
+    if (f.contains("mass")) {
+      const std::string kind = json_in::string(f["mass"], child(pf, "mass"), "frequencies mass");
+      if (kind != "consistent" && kind != "lumped")
+        throw InputError(child(pf, "mass"), "path frequencies: unknown mass '" + kind + "' (expected consistent or lumped)");
+      o.frequency_mass = kind == "lumped" ? MassKind::Lumped : MassKind::Consistent;
+    }
+  }
   if (o.branch_switch && o.control != PathControl::ArcLength)
     throw InputError(child(p, "branch_switch"), "branch switching needs arc-length control");
   return o;
@@ -152,6 +169,18 @@ void check_path(const Model& model, const nlohmann::json& spec, const std::strin
     if (f.size() == 0 || !(f.cwiseAbs().maxCoeff() > 0.0))
       throw InputError(child(p, "control"), "path: the model has no loads to scale; add \"loads\", or use displacement "
                                             "control ({\"node\", \"dof\", \"to\"}) to impose a motion");
+  }
+  if (o.frequency_modes > map.free_size())
+    throw InputError(child(child(p, "frequencies"), "modes"),
+                     fmt::format("path frequencies: {} modes asked for, but the model has only {} free DOFs",
+                                 o.frequency_modes, map.free_size()));
+  if (o.frequency_modes > 0) {
+    bool has_mass = !model.masses.empty();
+    for (const auto& e : model.elements)
+      if (e.type == MemberType::Beam && model.materials[e.material].density > 0.0) has_mass = true;
+    if (!has_mass)
+      throw InputError(child(p, "frequencies"), "path frequencies: the model has no mass (give the materials a "
+                                                "\"density\" or add \"masses\")");
   }
   if (o.imperfection_mode > 0 && o.imperfection_mode > map.free_size())
     throw InputError(child(child(p, "imperfection"), "mode"),
@@ -225,6 +254,10 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
       j["rigid_directions"] = rd;
     }
     if (imposed) j["reaction"] = s.reaction;
+    if (o.frequency_modes > 0) {
+      j["frequencies"] = s.frequencies_failure.empty() ? to_json(s.frequencies) : ojson(nullptr);
+      if (!s.frequencies_failure.empty()) j["frequencies_failure"] = s.frequencies_failure;
+    }
     // Displacement control: "arc_length" on the steps taken through a snap-back of the controlled DOF.
     if (o.control == PathControl::Displacement) j["step_control"] = control_name(s.step_control);
     steps.push_back(j);
@@ -253,6 +286,7 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
     std::ostringstream csv;
     csv << "step,load_factor,control,arc_length,iterations,negative_eigenvalues,stable,min_eigenvalue";
     if (imposed) csv << ",reaction";
+    for (int k = 0; k < o.frequency_modes; ++k) csv << ",f" << k + 1;
     for (int n : o.track)
       for (const char* d : kDofNames) csv << "," << model.nodes[n].id << "_" << d;
     csv << "\n";
@@ -260,6 +294,8 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
       csv << fmt::format("{},{:.17g},{:.17g},{:.17g},{},{},{},{:.17g}", s.step, s.load_factor, s.control, s.arc_length,
                          s.iterations, s.negative_eigenvalues, s.stable ? 1 : 0, s.min_eigenvalue);
       if (imposed) csv << fmt::format(",{:.17g}", s.reaction);
+      for (int k = 0; k < o.frequency_modes; ++k)  // empty cells where fewer (or none) were found
+        csv << (k < s.frequencies.size() ? fmt::format(",{:.17g}", s.frequencies[k]) : std::string(","));
       for (const auto& t : s.track)
         for (int k = 0; k < 6; ++k) csv << fmt::format(",{:.17g}", t[k]);
       csv << "\n";

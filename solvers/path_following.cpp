@@ -14,6 +14,7 @@
 #include "solvers/path/predictor.hpp"
 #include "solvers/path/stability.hpp"
 #include "solvers/path/step_control.hpp"
+#include "solvers/path/vibration.hpp"
 
 namespace beamfea {
 
@@ -58,6 +59,14 @@ int record(PathResult& res, const PathOptions& o, const Model& original, const P
       ps.node_stiffness = stab.node_stiffness(c, disp ? stab.analyse(c, false, false) : st, o.stiffness_node);
       if (ps.node_stiffness->ok) ps.stiffness = ps.node_stiffness->K;
     }
+  }
+  if (o.frequency_modes > 0) {
+    // Vibrations about the state: the controlled DOF is held only by an imposed motion (no loads).
+    const bool hold = o.control == PathControl::Displacement && !P.has_loads;
+    const PathFrequencies f =
+        path_frequencies(P, c, constrained_tangent(P, c, hold), {o.frequency_modes, o.frequency_mass});
+    if (f.ok) ps.frequencies = f.frequencies;
+    else ps.frequencies_failure = f.message;
   }
   ps.state = c.state;
   ps.end_forces = P.ns.evaluate(c.state, Eigen::VectorXd::Zero(P.ns.reference_map().raw_size()), false).end_forces;

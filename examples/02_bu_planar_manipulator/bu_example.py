@@ -36,6 +36,7 @@ POSES = {"P1": 1.1, "P2": 1.2, "P3": 1.3, "P4": 1.4, "P5": 1.5}
 R_SEC, NU = 0.02, 0.3
 I_SEC = math.pi * R_SEC**4 / 4
 E_MOD = 1.0 / I_SEC  # EI_z = 1
+PAYLOAD = 0.1  # a force on P along -y, in units of k_act / m (the "payload" load case)
 
 
 def circle_intersections(c1, r1, c2, r2):
@@ -104,11 +105,15 @@ def model(poses):
         "joints": joints,
         # Ground: J1a and J6b; J6 joins link J5J6 (J6a) to the ground (J6b).
         "supports": [{"node": "J1a", "fix": "all"}, {"node": "J6b", "fix": "all"}],
+        # A payload on the platform (the machine works in a vertical plane, y up).
+        "load_cases": [{"id": "payload", "loads": [{"node": "P", "force": [0.0, -PAYLOAD, 0.0]}]}],
         "analyses": [
             dict(common, id="paper", schemes=[["J1", "J2", "J3"], ["J1", "J2", "J6"]]),
             dict(common, id="all"),
             dict(common, id="all_terms", structural_terms=["axial", "shear", "torsion", "bending"],
                  schemes=[["J1", "J2", "J3"], ["J1", "J2", "J6"]]),
+            # What the payload does to each scheme: motor torques, sag, loaded stiffness (K + K_g).
+            dict(common, id="payload", schemes=[["J1", "J2", "J3"], ["J1", "J2", "J6"]], load_case="payload"),
         ],
     }
 
@@ -183,6 +188,29 @@ def main():
         tables["all"].append({"rank": r["rank"], "scheme": r["scheme"], "worst_total_y": r["worst_value"],
                               "worst_pose": r["worst_pose"],
                               "poses": {p["pose"]: p["components"] for p in s["poses"]}})
+    md.append(f"\n## Payload {PAYLOAD} k_act/m on P along -y (load_case \"payload\")\n")
+    md.append("| scheme | pose | motor torques (k_act rad) | max abs(tau + J^T W) | uy total | uy actuated | "
+              "K_y total unloaded | K_y total loaded |")
+    md.append("|---|---|---|---|---|---|---|---|")
+    tables["payload"] = {}
+    for s in res["payload"]["schemes"]:
+        rows = []
+        for p in s["poses"]:
+            tau = np.array([e["effort"] for e in p["actuator_efforts"]])
+            J = np.array(p["actuated"]["J"])
+            W = np.array([0.0, 0.0, -PAYLOAD])  # [Mz, Fx, Fy] in the order of "directions"
+            check = float(np.abs(tau + J.T @ W).max())
+            # The frozen structures are statically determinate in the plane: statics of J exactly.
+            if not check < 1e-9 * PAYLOAD:
+                raise SystemExit(f"motor torques of {s['scheme']} at {p['pose']} differ from -J^T W by {check:.2e}")
+            d = p["platform_displacement"]
+            k0, k1 = p["components"]["total"]["uy"], p["loaded_stiffness"]["components"]["total"]["uy"]
+            md.append(f"| {s['scheme']} | {p['pose']} | " + " ".join(f"{t:+.4f}" for t in tau) +
+                      f" | {check:.1e} | {d['total']['uy']:+.4f} | {d['actuated']['uy']:+.4f} | {k0:.4f} | {k1:.4f} |")
+            rows.append({"pose": p["pose"], "efforts": tau.tolist(), "jacobian_check": check,
+                         "uy_total": d["total"]["uy"], "uy_actuated": d["actuated"]["uy"],
+                         "K_y_total": k0, "K_y_total_loaded": k1})
+        tables["payload"][s["scheme"]] = rows
     with open(os.path.join(OUT, "tables.json"), "w") as f:
         json.dump(tables, f, indent=1, default=lambda a: a.tolist())  # NumPy arrays as lists
     with open(os.path.join(OUT, "tables.md"), "w") as f:

@@ -18,6 +18,7 @@ void PathOptions::validate(const Model& model) const {
   if (stop_beyond && (stop_node < 0 || stop_node >= nn)) throw Error("PathOptions: stop 'beyond' needs a node");
   for (int n : track)
     if (n < 0 || n >= nn) throw Error("PathOptions: tracked node out of range");
+  if (frequency_modes < 0) throw Error("PathOptions: frequency_modes must not be negative");
   newton.validate();
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/model.hpp"
+#include "elements/beam_mass.hpp"
 #include "solvers/kinsol_solver.hpp"
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/nonlinear_structure.hpp"
@@ -45,6 +46,10 @@ struct PathOptions {
   int imperfection_mode = 0;
   double imperfection_amplitude = 0.0;
   std::vector<int> track;           // nodes whose displacements are recorded
+  // Natural frequencies about every converged state (solvers/path/vibration.hpp): the lowest
+  // `frequency_modes` (0: none) with the mass `frequency_mass`.
+  int frequency_modes = 0;
+  MassKind frequency_mass = MassKind::Consistent;
   KinsolOptions newton;
   std::function<void(const std::string&)> progress;  // may be empty
   void validate(const Model& model) const;
@@ -68,6 +73,10 @@ struct PathStep {
   std::optional<CondensedStiffness> node_stiffness;
   NonlinearState state;
   std::vector<Vec12> end_forces;
+  // frequency_modes > 0: the lowest natural frequencies about this state (Hz, ascending; negative
+  // where omega^2 < 0: unstable), and why they are missing when the eigen-solver failed.
+  Eigen::VectorXd frequencies;
+  std::string frequencies_failure;
 };
 
 enum class CriticalPointType { LimitPoint, Bifurcation };

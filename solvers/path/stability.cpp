@@ -65,8 +65,7 @@ SparseMatrix null_space(const Eigen::MatrixXd& C0, int n) {
   return Z;
 }
 
-StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_control, bool want_mode) {
-  const PathEquilibrium& P = eq_;
+StabilityAnalysis constrained_tangent(const PathEquilibrium& P, const Converged& c, bool with_control) {
   StabilityAnalysis out;
   StepSpec s;
   s.kind = StepKind::Load;
@@ -86,6 +85,11 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_contr
   out.Z = null_space(P.constraint_matrix(c.state, with_control), P.nf);
   out.K = SparseMatrix(out.Z.transpose() * Kff * out.Z);
   out.p = out.Z.transpose() * P.load_pattern(c.state);
+  return out;
+}
+
+StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_control, bool want_mode) {
+  StabilityAnalysis out = constrained_tangent(eq_, c, with_control);
   SparseMatrix S = SparseMatrix(0.5 * (out.K + SparseMatrix(out.K.transpose())));
   const int n = static_cast<int>(S.rows());
   if (n == 0) return out;

@@ -37,6 +37,12 @@ struct StabilityAnalysis {
 // Null-space basis Z (n x (n - rank)) of C by Gauss-Jordan elimination with full pivoting.
 SparseMatrix null_space(const Eigen::MatrixXd& C, int n);
 
+// The converged tangent restricted to the admissible variations (eqs. 19-21): Z, Z^T K_ff Z (not
+// symmetrised) and Z^T p_free, at the state's load factor (closures' multipliers included). What
+// the stability analysis and the frequencies along a path (solvers/path/vibration.hpp) work on.
+// with_control: the controlled DOF is held too.
+StabilityAnalysis constrained_tangent(const PathEquilibrium& P, const Converged& c, bool with_control);
+
 class StabilityAnalyzer {
  public:
   explicit StabilityAnalyzer(const PathEquilibrium& eq) : eq_(eq) {}

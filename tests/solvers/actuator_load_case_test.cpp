@@ -221,3 +221,86 @@ TEST(ActuatorLoadCase, LoadedStiffnessOfAColumnOnASpringMatchesTheExactBeamColum
 
 }  // namespace
 }  // namespace beamfea
+
+namespace beamfea {
+namespace {
+
+// Five-bar (a closed loop): bases A1 = (-0.3, 0), A2 = (0.3, 0), proximal links l1 = 0.5 driven
+// at the bases, distal links l2 = 0.7 meeting at the platform point P = (0.05, 0.8) in a passive
+// revolute joint; elbows outward. Closed-form velocity kinematics: from |P - B_i| = l2,
+// (P - B_i) . (dP - dB_i) = 0 with dB_i = dq_i z x (B_i - A_i), so A dP = D dq with rows
+// A_i = (P - B_i)^T and D_ii = (P - B_i) . (z x (B_i - A_i)): J = A^-1 D (derived here from the
+// loop-closure constraints). The frozen structure (bases clamped) is determinate in the plane: the
+// efforts are exactly -J^T F for a platform force F.
+struct FiveBar {
+  Eigen::Vector2d A1{-0.3, 0.0}, A2{0.3, 0.0}, P{0.05, 0.8}, B1, B2;
+  double l1 = 0.5, l2 = 0.7;
+  FiveBar() {
+    auto elbow = [&](const Eigen::Vector2d& A, bool left) {
+      const double d = (P - A).norm(), a = (l1 * l1 - l2 * l2 + d * d) / (2 * d), h = std::sqrt(l1 * l1 - a * a);
+      const Eigen::Vector2d m = A + a * (P - A) / d, n = Eigen::Vector2d(-(P - A).y(), (P - A).x()) / d;
+      const Eigen::Vector2d p = m + h * n, q = m - h * n;
+      return (p.x() < q.x()) == left ? p : q;
+    };
+    B1 = elbow(A1, true);
+    B2 = elbow(A2, false);
+  }
+  Eigen::Matrix2d jacobian() const {
+    Eigen::Matrix2d A, D = Eigen::Matrix2d::Zero();
+    const Eigen::Vector2d B[2] = {B1, B2}, Ab[2] = {A1, A2};
+    for (int i = 0; i < 2; ++i) {
+      A.row(i) = (P - B[i]).transpose();
+      const Eigen::Vector2d r = B[i] - Ab[i];
+      D(i, i) = (P - B[i]).dot(Eigen::Vector2d(-r.y(), r.x()));  // z x r
+    }
+    return A.inverse() * D;
+  }
+  json model() const {
+    auto xyz = [](const Eigen::Vector2d& p) { return json{p.x(), p.y(), 0.0}; };
+    auto beam = [](const char* id, const char* a, const char* b) {
+      return json{{"id", id}, {"type", "beam"}, {"nodes", {a, b}}, {"material", "steel"}, {"section", "s"},
+                  {"orientation", {0, 0, 1}}, {"divisions", 2}};
+    };
+    auto rev = [](const char* id, const char* a, const char* b) {
+      return json{{"id", id}, {"type", "revolute"}, {"nodes", {a, b}}, {"axes", {{0, 0, 1}}}};
+    };
+    return {{"nodes", {{{"id", "G1"}, {"xyz", xyz(A1)}}, {{"id", "A1"}, {"xyz", xyz(A1)}}, {{"id", "B1a"}, {"xyz", xyz(B1)}},
+                       {{"id", "B1b"}, {"xyz", xyz(B1)}}, {{"id", "P1"}, {"xyz", xyz(P)}}, {{"id", "G2"}, {"xyz", xyz(A2)}},
+                       {{"id", "A2"}, {"xyz", xyz(A2)}}, {{"id", "B2a"}, {"xyz", xyz(B2)}}, {{"id", "B2b"}, {"xyz", xyz(B2)}},
+                       {{"id", "P2"}, {"xyz", xyz(P)}}}},
+            {"materials", {{{"id", "steel"}, {"E", kE}, {"nu", kNu}}}},
+            {"sections", {{{"id", "s"}, {"shape", "circle"}, {"r", kR}}}},
+            {"elements", {beam("L1", "A1", "B1a"), beam("D1", "B1b", "P1"), beam("L2", "A2", "B2a"), beam("D2", "B2b", "P2")}},
+            {"joints", {rev("Q1", "G1", "A1"), rev("E1", "B1a", "B1b"), rev("Q2", "G2", "A2"), rev("E2", "B2a", "B2b"),
+                        rev("JP", "P1", "P2")}},
+            {"supports", {{{"node", "G1"}, {"fix", "all"}}, {{"node", "G2"}, {"fix", "all"}}}},
+            {"load_cases", {{{"id", "tool"}, {"loads", {{{"node", "P1"}, {"force", {kFx, kFy, 0}}}}}}}}};
+  }
+};
+
+TEST(ActuatorLoadCase, FiveBarEffortsAreMinusJacobianTransposeTimesThePlatformForce) {
+  const FiveBar fb;
+  const Model model = read_model(fb.model());
+  AllocationOptions o;
+  o.platform_node = model.find_node("P1");
+  o.directions = {0, 1};
+  o.candidates = {{model.find_joint("Q1"), 0}, {model.find_joint("Q2"), 0}};
+  o.actuator_stiffness = {2e3, 2e3};
+  const Eigen::Matrix2d J = fb.jacobian();
+  // beamfea's own Jacobian (rigid links, constraints alone) against the closed form.
+  const ActuatedStiffness a = actuated_stiffness(model, o, {0, 1});
+  ASSERT_TRUE(a.jacobian_ok) << a.jacobian_message;
+  EXPECT_LT((a.J - J).cwiseAbs().maxCoeff(), 1e-9 * J.cwiseAbs().maxCoeff());
+  const SchemeLoadResponse r = scheme_load_response(model, o, {0, 1}, model.loads_of("tool"));
+  ASSERT_TRUE(r.efforts_ok) << r.efforts_message;
+  const Eigen::Vector2d tau = -J.transpose() * Eigen::Vector2d(kFx, kFy);
+  for (int i = 0; i < 2; ++i) EXPECT_NEAR(r.efforts[i], tau[i], kEffortTolerance * tau.norm()) << "actuator " << i;
+  // Springs with rigid links: the platform moves by J q, q = -K_I^-1 tau.
+  const Eigen::Vector2d u = J * (-tau / 2e3);
+  ASSERT_TRUE(r.actuated.ok) << r.actuated.message;
+  EXPECT_NEAR(r.actuated.platform[0], u[0], 1e-9 * u.norm());
+  EXPECT_NEAR(r.actuated.platform[1], u[1], 1e-9 * u.norm());
+}
+
+}  // namespace
+}  // namespace beamfea
