@@ -103,3 +103,36 @@ def test_unknown_load_case_is_an_input_error_naming_its_pointer():
         beamfea.run(beam([{"id": "lin", "type": "linear_static", "load_case": "wind"}]))
     assert e.value.pointer == "/analyses/0/load_case"
     assert "wind" in str(e.value)
+
+
+def test_actuator_allocation_with_a_load_case_reports_the_motor_torques():
+    """A planar 2R arm (links 1 and 1, straight along x) holding a tip mass under gravity -y: the
+    motors hold m g x 2 and m g x 1 (moments about their axes); the rigid-link sag with unit
+    springs is 2 q_A + q_B, q = -tau (docs/analyses/actuator-allocation.md, "With a load case")."""
+    m, g = 3.0, 9.81
+    model = {
+        "nodes": [{"id": "G", "xyz": [0, 0, 0]}, {"id": "A", "xyz": [0, 0, 0]}, {"id": "B1", "xyz": [1, 0, 0]},
+                  {"id": "B2", "xyz": [1, 0, 0]}, {"id": "P", "xyz": [2, 0, 0]}],
+        "materials": [{"id": "m", "E": 2.1e11, "nu": 0.3}],
+        "sections": [{"id": "s", "shape": "circle", "r": 0.02}],
+        "elements": [{"id": "L1", "type": "beam", "nodes": ["A", "B1"], "material": "m", "section": "s"},
+                     {"id": "L2", "type": "beam", "nodes": ["B2", "P"], "material": "m", "section": "s"}],
+        "joints": [{"id": "JA", "type": "revolute", "nodes": ["G", "A"], "axes": [[0, 0, 1]]},
+                   {"id": "JB", "type": "revolute", "nodes": ["B1", "B2"], "axes": [[0, 0, 1]]}],
+        "supports": [{"node": "G", "fix": "all"}],
+        "masses": [{"node": "P", "mass": m}],
+        "load_cases": [{"id": "payload", "gravity": [0, -g, 0]}],
+        "analyses": [{"id": "alloc", "type": "actuator_allocation", "platform_node": "P",
+                      "candidate_joints": ["JA", "JB"], "actuators": 2, "actuator_stiffness": 1.0,
+                      "directions": ["rz", "uy"], "load_case": "payload",
+                      "rank_by": {"stiffness": "loaded_total", "direction": "uy"}}],
+    }
+    res = beamfea.run(model)["analyses"]["alloc"]
+    assert res["load_case"] == "payload"
+    pose = res["schemes"][0]["poses"][0]
+    efforts = [e["effort"] for e in pose["actuator_efforts"]]
+    assert efforts == pytest.approx([2 * m * g, 1 * m * g], rel=REL)
+    assert pose["platform_displacement"]["actuated"]["uy"] == pytest.approx(-(2 * 2 * m * g + 1 * m * g), rel=REL)
+    # The weight across the horizontal arm: the loaded stiffness is reported, finite, per direction.
+    assert np.isfinite(pose["loaded_stiffness"]["components"]["total"]["uy"])
+    assert res["ranking"][0]["status"] == "ok"
