@@ -119,26 +119,26 @@ int worker_count(const SweepOptions& options, int ranks, std::size_t cases) {
 }
 
 // Worker threads run the cases and hand whole rows to the collecting thread (the caller's, the
-// only one that writes or sends).
+// only one that writes or sends). With one worker on one process there is no thread at all: the
+// collecting thread runs the cases itself, inline, in take() (no hand-off, no wake-ups per case).
 class WorkerPool {
  public:
   WorkerPool(const Sweep& sweep, const SweepOptions& options, const SweepColumns& columns,
-             const std::vector<std::size_t>& pending, int jobs)
-      : jobs_(jobs) {
-    for (int w = 0; w < jobs; ++w)
-      threads_.emplace_back([&, this] {
+             const std::vector<std::size_t>& pending, int jobs, bool run_inline)
+      : sweep_(sweep), options_(options), columns_(columns), pending_(pending), jobs_(run_inline ? 0 : jobs) {
+    for (int w = 0; w < jobs_; ++w)
+      threads_.emplace_back([this] {
         for (;;) {
-          if (abort_ || stop_requested(options)) break;
+          if (abort_ || stop_requested(options_)) break;
           const std::size_t k = next_++;
-          if (k >= pending.size()) break;
-          const std::size_t i = pending[k];
-          const SweepCaseResult r = run_sweep_case(sweep, i, keep_dir(sweep, options, i));
-          const std::string row = sweep_row(sweep, i, columns, r);
+          if (k >= pending_.size()) break;
+          Batch one;
+          run_one(pending_[k], one);
           {
             std::lock_guard lock(mutex_);
-            batch_.rows += row;
-            ++batch_.count;
-            if (r.status != SweepCaseResult::Status::Ok) ++batch_.failed;
+            batch_.rows += one.rows;
+            batch_.count += one.count;
+            batch_.failed += one.failed;
           }
           cv_.notify_one();
         }
@@ -159,8 +159,17 @@ class WorkerPool {
     std::size_t count = 0, failed = 0;
     bool all_done = false;  // every worker has ended: this is the last batch
   };
-  // Waits up to `period` for rows; returns those finished so far.
+  // Waits up to `period` for rows (inline: runs cases for up to `period`); returns those finished
+  // so far.
   Batch take(std::chrono::milliseconds period) {
+    if (jobs_ == 0) {
+      Batch b;
+      const auto t0 = std::chrono::steady_clock::now();
+      while (next_ < pending_.size() && !stop_requested(options_) && std::chrono::steady_clock::now() - t0 < period)
+        run_one(pending_[next_++], b);
+      b.all_done = next_ >= pending_.size() || stop_requested(options_);
+      return b;
+    }
     std::unique_lock lock(mutex_);
     cv_.wait_for(lock, period, [&] { return !batch_.rows.empty() || finished_ == jobs_; });
     Batch b = std::move(batch_);
@@ -174,7 +183,18 @@ class WorkerPool {
   }
 
  private:
-  int jobs_;
+  void run_one(std::size_t i, Batch& into) const {
+    const SweepCaseResult r = run_sweep_case(sweep_, i, keep_dir(sweep_, options_, i));
+    into.rows += sweep_row(sweep_, i, columns_, r);
+    ++into.count;
+    if (r.status != SweepCaseResult::Status::Ok) ++into.failed;
+  }
+
+  const Sweep& sweep_;
+  const SweepOptions& options_;
+  const SweepColumns& columns_;
+  const std::vector<std::size_t>& pending_;
+  int jobs_;  // worker threads; 0: the cases run inline in take()
   std::vector<std::thread> threads_;
   std::mutex mutex_;
   std::condition_variable cv_;
@@ -238,7 +258,8 @@ SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepCom
   std::unique_ptr<SweepTableAppender> appender;
   if (root) appender = std::make_unique<SweepTableAppender>(table);
 
-  WorkerPool pool(sweep, options, plan.columns, pending, worker_count(options, ranks, pending.size()));
+  const int workers = worker_count(options, ranks, pending.size());
+  WorkerPool pool(sweep, options, plan.columns, pending, workers, workers == 1 && ranks == 1);
   const auto t_cases = std::chrono::steady_clock::now();
   int ranks_finished = 0;
   for (;;) {
