@@ -13,16 +13,6 @@ namespace {
 ojson number_or_null(double v) { return std::isfinite(v) ? ojson(v) : ojson(nullptr); }
 std::string csv_number(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : std::string(); }
 
-ojson matrix(const Eigen::MatrixXd& m) {
-  ojson a = ojson::array();
-  for (Eigen::Index i = 0; i < m.rows(); ++i) {
-    ojson row = ojson::array();
-    for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(m(i, j));
-    a.push_back(row);
-  }
-  return a;
-}
-
 ojson six(const Vec6& v) {
   ojson o;
   for (int k = 0; k < 6; ++k) o[kDofNames[k]] = v[k];
@@ -78,7 +68,7 @@ void write_load_response(const Model& model, const AllocationOptions& o, const s
   ojson ks, kmsg, co;
   for (int w = 0; w < 3; ++w) {
     const auto& m = model_of(r, w);
-    ks[kModels[w]] = m.stiffness_ok ? matrix(m.K_loaded) : ojson(nullptr);
+    ks[kModels[w]] = m.stiffness_ok ? matrix_to_json(m.K_loaded) : ojson(nullptr);
     kmsg[kModels[w]] = m.stiffness_message;
     ojson v;
     for (int d = 0; d < nd; ++d) v[kDofNames[o.directions[d]]] = number_or_null(comp[w][d]);

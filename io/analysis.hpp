@@ -118,6 +118,9 @@ ojson to_json(const Vec3& v);
 ojson to_json(const Vec6& v);
 ojson to_json(const Eigen::VectorXd& v);
 ojson to_json(const Mat6& m);
+// Any dense matrix as an array of rows (a named function: Eigen expressions would make a to_json
+// overload ambiguous).
+ojson matrix_to_json(const Eigen::MatrixXd& m);
 // Appends key: value to a JSON object without searching its keys (ordered_json's operator[] and
 // emplace search linearly, so an object of n ids built by them costs O(n^2): 12.5 s at 2e5 DOFs).
 // The caller guarantees the key is new (ids are unique within a collection of the model).

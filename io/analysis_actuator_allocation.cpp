@@ -36,16 +36,6 @@ namespace {
 using json = nlohmann::json;
 using namespace allocation_spec;
 
-ojson matrix_json(const Eigen::MatrixXd& m) {
-  ojson a = ojson::array();
-  for (Eigen::Index i = 0; i < m.rows(); ++i) {
-    ojson row = ojson::array();
-    for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(m(i, j));
-    a.push_back(row);
-  }
-  return a;
-}
-
 // A number for JSON/CSV: NaN for "not available".
 ojson num(double v) { return std::isfinite(v) ? ojson(v) : ojson(nullptr); }
 std::string csv_num(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : std::string(); }
@@ -163,12 +153,12 @@ AnalysisOutcome run_actuator_allocation(const AnalysisContext& ctx) {
       const auto& A = r.actuated_stiffness;
       ojson ka;
       ka["jacobian_message"] = A.jacobian_message;
-      if (A.jacobian_ok) ka["J"] = matrix_json(A.J);
+      if (A.jacobian_ok) ka["J"] = matrix_to_json(A.J);
       if (A.J.rows() == A.J.cols() && A.jacobian_ok) ka["det_J"] = A.det_J;
       ka["form"] = A.form;
-      if (A.ok()) ka["K_jacobian"] = matrix_json(A.K_jacobian);
+      if (A.ok()) ka["K_jacobian"] = matrix_to_json(A.K_jacobian);
       ka["condensed_message"] = A.condensed_message;
-      if (A.condensed_ok) ka["K_condensed"] = matrix_json(A.K_condensed);
+      if (A.condensed_ok) ka["K_condensed"] = matrix_to_json(A.K_condensed);
       if (A.ok() && A.condensed_ok)
         ka["jacobian_vs_condensed"] = (A.K_jacobian - A.K_condensed).cwiseAbs().maxCoeff() /
                                       std::max(A.K_condensed.cwiseAbs().maxCoeff(), 1e-300);
@@ -182,13 +172,13 @@ AnalysisOutcome run_actuator_allocation(const AnalysisContext& ctx) {
         ks["mechanism"] = modes;
       }
       if (S.ok) {
-        ks["C_fea"] = matrix_json(S.C_fea);
-        if (S.K_fea.size()) ks["K_fea"] = matrix_json(S.K_fea);
+        ks["C_fea"] = matrix_to_json(S.C_fea);
+        if (S.K_fea.size()) ks["K_fea"] = matrix_to_json(S.K_fea);
         ojson vf;
-        for (int t = 0; t < kStructuralTermCount; ++t) vf[to_string(static_cast<StructuralTerm>(t))] = matrix_json(S.C_terms[t]);
+        for (int t = 0; t < kStructuralTermCount; ++t) vf[to_string(static_cast<StructuralTerm>(t))] = matrix_to_json(S.C_terms[t]);
         ks["C_virtual_force"] = vf;
-        ks["C"] = matrix_json(S.C);
-        ks["K"] = matrix_json(S.C.inverse());
+        ks["C"] = matrix_to_json(S.C);
+        ks["K"] = matrix_to_json(S.C.inverse());
         ks["virtual_force_vs_fea"] = S.fea_mismatch;
         worst_mismatch = std::max(worst_mismatch, S.fea_mismatch);
         ojson links = ojson::array();
@@ -220,8 +210,8 @@ AnalysisOutcome run_actuator_allocation(const AnalysisContext& ctx) {
       ojson tot;
       tot["message"] = r.total.message;
       if (r.total.eq19.size()) tot["eq19"] = to_json(r.total.eq19);
-      if (r.total.ok) tot["K_series"] = matrix_json(r.total.K_series);
-      if (r.total.fea_ok) tot["K_fea"] = matrix_json(r.total.K_fea);
+      if (r.total.ok) tot["K_series"] = matrix_to_json(r.total.K_series);
+      if (r.total.fea_ok) tot["K_fea"] = matrix_to_json(r.total.K_fea);
       po["total"] = tot;
       std::array<Eigen::VectorXd, kComponentCount> comp;
       {

@@ -3,13 +3,12 @@
 // Result analyses.<id>: type, status, message, free_dofs, load_factors (ascending),
 // modes[] {mode, load_factor, nodes.<id>.displacement (6, normalised: largest translation 1)},
 // vtk (the .pvd) and files DIR/<id>_mode<k>.vtu, DIR/<id>.pvd (time = mode number).
-#include <fmt/format.h>
 
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
+#include "io/mode_shapes_vtk.hpp"
 #include "io/json_util.hpp"
 #include "io/load_reader.hpp"
-#include "io/vtk_writer.hpp"
 #include "solvers/buckling.hpp"
 
 namespace beamfea {
@@ -53,32 +52,9 @@ AnalysisOutcome run_buckling(const AnalysisContext& ctx) {
   }
   out.result["modes"] = modes;
   if (!ctx.out_dir.empty() && ctx.write_vtk) {
-    // Modes drawn at an amplitude of 10 % of the model size; ParaView steps through them as times
-    // (Warp By Vector on "mode_shape" with a scale factor animates one mode).
-    const double scale = 0.1 * model.length_scale();
-    std::vector<std::pair<double, std::string>> entries;
-    for (std::size_t k = 0; k < r.modes.size(); ++k) {
-      VtkFrame f;
-      std::vector<double> mx, my, mz;
-      for (std::size_t n = 0; n < model.nodes.size(); ++n) {
-        const Vec3 d = r.modes[k].segment<3>(6 * n);
-        f.displacement.push_back(scale * d);
-        f.rotation.push_back(scale * Vec3(r.modes[k].segment<3>(6 * n + 3)));
-        mx.push_back(d.x());
-        my.push_back(d.y());
-        mz.push_back(d.z());
-      }
-      f.node_scalars["mode_x"] = mx;
-      f.node_scalars["mode_y"] = my;
-      f.node_scalars["mode_z"] = mz;
-      f.field_data["mode"] = static_cast<double>(k + 1);
-      f.field_data["load_factor"] = r.load_factors[static_cast<Eigen::Index>(k)];
-      f.field_data["scale"] = scale;
-      const std::string file = fmt::format("{}_mode{}.vtu", ctx.id, k + 1);
-      write_vtu((ctx.out_dir / file).string(), model, f);
-      entries.emplace_back(static_cast<double>(k + 1), file);
-    }
-    write_pvd((ctx.out_dir / (ctx.id + ".pvd")).string(), entries);
+    // Modes are normalised already (largest translation 1): the writer draws them at 10 % of the
+    // model size, load factors as field data.
+    const double scale = write_mode_shapes(model, ctx.out_dir, ctx.id, r.modes, "load_factor", r.load_factors);
     out.result["vtk"] = ctx.id + ".pvd";
     out.result["vtk_scale"] = scale;
   }

@@ -122,4 +122,14 @@ ojson to_json(const Mat6& m) {
   return a;
 }
 
+ojson matrix_to_json(const Eigen::MatrixXd& m) {
+  ojson a = ojson::array();
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    ojson row = ojson::array();
+    for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(m(i, j));
+    a.push_back(row);
+  }
+  return a;
+}
+
 }  // namespace beamfea
