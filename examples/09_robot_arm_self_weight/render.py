@@ -1,7 +1,7 @@
 # Renders the arm's sag under the service load case and its bending-moment diagram with ParaView.
 #   beamfea run model.json --out ../../out/09_robot_arm_self_weight
 #   xvfb-run -a pvbatch render.py ../../out/09_robot_arm_self_weight
-# writes sag.png and moment.png next to this script.
+# writes sag.png, moment.png and mode1.png next to this script.
 import os
 import sys
 
@@ -94,4 +94,21 @@ bar2.TitleColor = [0, 0, 0]
 bar2.LabelColor = [0, 0, 0]
 b1.SetScalarBarVisibility(v2, True)
 finish(v2, os.path.join(here, "moment.png"), (0.45, 0.55), 0.6)
-print("wrote", os.path.join(here, "sag.png"), "and", os.path.join(here, "moment.png"))
+# 3. The first vibration mode (analysis "modes"): the .vtu's displacement is the mode drawn at
+# 10 % of the model size (results.json: vtk_scale); undeformed in grey.
+mode = XMLUnstructuredGridReader(FileName=[os.path.join(out, "modes_mode1.vtu")])
+mode.UpdatePipeline()
+v3 = view_setup("First vibration mode, %.2f Hz (shape at 10 %% of the model size)" % mode.FieldData["frequency"].GetRange()[0])
+m0 = Show(tube(mode, 0.012), v3)
+m0.DiffuseColor = [0.75, 0.75, 0.75]
+m0.Opacity = 0.5
+m0.ColorArrayName = ['POINTS', '']
+mw = WarpByVector(Input=mode)
+mw.Vectors = ["POINTS", "displacement"]
+mw.ScaleFactor = 1.0
+m1 = Show(tube(mw, 0.015), v3)
+ColorBy(m1, ("POINTS", "displacement", "Magnitude"))
+lut3 = GetColorTransferFunction("displacement")
+lut3.ApplyPreset("Viridis (matplotlib)", True)
+finish(v3, os.path.join(here, "mode1.png"), (0.62, 0.35), 0.45)
+print("wrote", os.path.join(here, "sag.png"), os.path.join(here, "moment.png"), "and", os.path.join(here, "mode1.png"))
