@@ -23,15 +23,21 @@ inline constexpr int kMaxRunModes = 4;
   std::abort();
 }
 
+// `v` lowered to `cap` when it is a larger number (a smaller value, or a wrong type that the
+// checks must reject, stays as it is).
+inline void cap_at(nlohmann::json& v, int cap) {
+  if (v.is_number() && !(v.get<double>() <= cap)) v = cap;
+}
+
 // Caps the costly options so that one case runs in milliseconds.
 inline void bound(nlohmann::json& doc) {
   auto it = doc.find("analyses");
   if (it == doc.end() || !it->is_array()) return;
   for (auto& a : *it) {
     if (!a.is_object()) continue;
-    if (a.contains("max_steps")) a["max_steps"] = kMaxRunPathSteps;
-    else if (a.value("type", "") == "path") a["max_steps"] = kMaxRunPathSteps;
-    if (a.contains("modes")) a["modes"] = kMaxRunModes;
+    if (a.contains("max_steps")) cap_at(a["max_steps"], kMaxRunPathSteps);
+    else if (a.contains("type") && a["type"] == "path") a["max_steps"] = kMaxRunPathSteps;
+    if (a.contains("modes")) cap_at(a["modes"], kMaxRunModes);
   }
 }
 
