@@ -1,7 +1,8 @@
 #include "io/sweep.hpp"
 
 // The sweep file: reading and checking it (axes, cases, patches, outputs) and the documents of
-// its cases. Running the cases and writing the table are in io/sweep.cpp.
+// its cases. One case runs in io/sweep.cpp, the table is io/sweep_table.cpp, the loop app/.
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -389,8 +390,19 @@ Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
     }
   }
 
-  // Column names must be unique.
+  // Column names must be unique, and one line each in the table's header (read back line by
+  // line by --resume): no control characters.
+  auto one_line = [](const std::string& name) {
+    return std::none_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; });
+  };
   std::set<std::string> names{"case", "status", "message", "wall_time_s"};
+  for (std::size_t i = 0; i < s.parameter_names.size(); ++i)
+    if (!one_line(s.parameter_names[i]))
+      throw InputError(s.grid.empty() ? "/cases" : child(child("/grid", i), "name"),
+                       "parameter name with a line break or another control character: it names a column of the table");
+  for (std::size_t i = 0; i < s.outputs.size(); ++i)
+    if (!one_line(s.outputs[i].name))
+      throw InputError(child("/outputs", i), "output name with a line break or another control character: it names a column of the table");
   for (std::size_t i = 0; i < s.parameter_names.size(); ++i)
     if (!names.insert(s.parameter_names[i]).second)
       throw InputError(s.grid.empty() ? "/cases" : child(child("/grid", i), "name"),

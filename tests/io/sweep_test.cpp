@@ -58,6 +58,11 @@ TEST(SweepFile, BadSweepFilesNameTheEntry) {
   EXPECT_EQ(pointer_of(read({{"cases", {json::object()}}, {"outputs", {"analyses.nope.x"}}})), "/outputs/0");
   EXPECT_EQ(pointer_of(read({{"cases", {json::object()}}, {"output", out}})), "/output");
   EXPECT_EQ(pointer_of(read({{"cases", {json{{"id", "a/b"}}}}})), "/cases/0/id");
+  // Column names are one line each in the table's header (found by the rule of fuzz_sweep).
+  EXPECT_EQ(pointer_of(read({{"cases", {json::object()}}, {"outputs", {json{{"name", "v\nw"}, {"path", out[0]}}}}})),
+            "/outputs/0");
+  EXPECT_EQ(pointer_of(read({{"grid", {json{{"name", "P\r"}, {"pointer", "/loads/0/force/1"}, {"values", {1}}}}}})),
+            "/grid/0/name");
 }
 
 // One case in process, and its row: the tip deflection of the cantilever, v = P L^3 / (3 E Iz)
