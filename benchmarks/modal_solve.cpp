@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "frame_models.hpp"
 #include "core/model.hpp"
 #include "solvers/linear_static.hpp"
 #include "solvers/modal.hpp"
@@ -51,69 +52,10 @@ double load_average() {
   return one;
 }
 
-// The frame of bench_frame_solve (same dimensions, sections, supports and loads).
-struct Dims {
-  int nx = 1, ny = 1, nz = 1;
-  long elements() const { return long(nz) * (long(nx + 1) * (ny + 1) + long(nx) * (ny + 1) + long(nx + 1) * ny); }
-};
-
-Dims choose_dims(long target) {
-  Dims best;
-  long best_err = -1;
-  for (int nx = 1; nx <= 4000; ++nx)
-    for (int dy = 0; dy <= 1; ++dy)
-      for (int dz = -1; dz <= 1; ++dz) {
-        Dims d{nx, nx + dy, nx + dz};
-        if (d.nz < 1) continue;
-        const long err = std::labs(d.elements() - target);
-        if (best_err < 0 || err < best_err) {
-          best_err = err;
-          best = d;
-        }
-      }
-  return best;
-}
-
-beamfea::Model make_frame(const Dims& d) {
-  using namespace beamfea;
-  Model m;
-  m.materials.push_back({"steel", 2.1e11, 8.1e10, 7850.0});
-  m.sections.push_back({"column", 1.49e-2, 2.517e-4, 0.8563e-4, 1.85e-6, 0.0, 0.0});
-  m.sections.push_back({"beam", 8.45e-3, 2.313e-4, 1.318e-5, 5.1e-7, 0.0, 0.0});
-  auto node = [&](int i, int j, int k) { return i + (d.nx + 1) * (j + (d.ny + 1) * k); };
-  for (int k = 0; k <= d.nz; ++k)
-    for (int j = 0; j <= d.ny; ++j)
-      for (int i = 0; i <= d.nx; ++i)
-        m.nodes.push_back({std::to_string(m.nodes.size()), Vec3(6.0 * i, 6.0 * j, 3.5 * k), -1});
-  auto element = [&](int a, int b, int section, const Vec3& orientation) {
-    Element e;
-    e.id = std::to_string(m.elements.size());
-    e.type = MemberType::Beam;
-    e.nodes = {a, b};
-    e.material = 0;
-    e.section = section;
-    e.orientation = orientation;
-    m.elements.push_back(std::move(e));
-  };
-  for (int k = 1; k <= d.nz; ++k) {
-    for (int j = 0; j <= d.ny; ++j)
-      for (int i = 0; i <= d.nx; ++i) element(node(i, j, k - 1), node(i, j, k), 0, Vec3::UnitX());
-    for (int j = 0; j <= d.ny; ++j)
-      for (int i = 0; i < d.nx; ++i) element(node(i, j, k), node(i + 1, j, k), 1, Vec3::UnitZ());
-    for (int j = 0; j < d.ny; ++j)
-      for (int i = 0; i <= d.nx; ++i) element(node(i, j, k), node(i, j + 1, k), 1, Vec3::UnitZ());
-  }
-  for (int j = 0; j <= d.ny; ++j)
-    for (int i = 0; i <= d.nx; ++i) {
-      Support s;
-      s.node = node(i, j, 0);
-      s.fixed.fill(true);
-      m.supports.push_back(s);
-    }
-  for (int n = (d.nx + 1) * (d.ny + 1); n < static_cast<int>(m.nodes.size()); ++n)
-    m.loads.push_back({n, Vec3(1e3, 0.5e3, -10e3), Vec3::Zero()});
-  return m;
-}
+// The frame of bench_frame_solve (benchmarks/frame_models.hpp) with steel's density.
+using beamfea::bench::choose_dims;
+using beamfea::bench::Dims;
+constexpr double kSteelDensity = 7850.0;
 
 }  // namespace
 
@@ -137,7 +79,7 @@ int main(int argc, char** argv) {
   fmt::print("|---|---|---|---|---|---|---|---|---|\n");
   for (long target : sizes) {
     const Dims d = choose_dims(target);
-    const beamfea::Model m = make_frame(d);
+    const beamfea::Model m = beamfea::bench::make_frame(d, kSteelDensity);
     fmt::print(stderr, "{}x{}x{} bays, {} elements: linear...\n", d.nx, d.ny, d.nz, m.elements.size());
     Stopwatch sl;
     const beamfea::LinearStaticResult lin = beamfea::solve_linear_static(m);

@@ -24,41 +24,15 @@
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
+#include "bench_models.hpp"
 
 using json = nlohmann::json;
 using namespace beamfea;
 
 namespace {
 
-json material_and_section() {
-  return {{"materials", {json{{"id", "al"}, {"E", 70e9}, {"nu", 0.33}}}},
-          {"sections", {json{{"id", "link"}, {"shape", "rectangle"}, {"b", 0.02}, {"h", 0.04}}}}};
-}
-
-// The chain of bench_sweep_rate: three links of 0.3 m, 2 elements each, revolute actuator joints.
-json chain() {
-  json m = material_and_section();
-  m["nodes"] = json::array();
-  m["elements"] = json::array();
-  m["joints"] = json::array();
-  m["nodes"].push_back({{"id", "G"}, {"xyz", {0, 0, 0}}});
-  std::string prev = "G";
-  for (int l = 1; l <= 3; ++l) {
-    const double x0 = 0.3 * (l - 1), x1 = 0.3 * l;
-    const std::string s = fmt::format("L{}s", l), e = l == 3 ? "T" : fmt::format("L{}e", l);
-    m["nodes"].push_back({{"id", s}, {"xyz", {x0, 0, 0}}});
-    m["nodes"].push_back({{"id", e}, {"xyz", {x1, 0, 0}}});
-    m["joints"].push_back({{"id", fmt::format("q{}", l)}, {"type", "revolute"}, {"nodes", {prev, s}},
-                           {"axes", {{0, 0, 1}}}, {"stiffness", {2000.0}}});
-    m["elements"].push_back({{"id", fmt::format("link{}", l)}, {"type", "beam"}, {"nodes", {s, e}},
-                             {"material", "al"}, {"section", "link"}, {"divisions", 2}});
-    prev = e;
-  }
-  m["supports"] = {json{{"node", "G"}, {"fix", "all"}}};
-  m["loads"] = {json{{"node", "T"}, {"force", {0, -10.0, 0}}}};
-  m["analyses"] = {json{{"id", "K"}, {"type", "stiffness"}, {"node", "T"}}};
-  return m;
-}
+using beamfea::bench::chain;  // the chain of bench_sweep_rate (63 DOFs)
+using beamfea::bench::material_and_section;
 
 // A cantilever of `m` elements (banded K, 6 m DOFs).
 json cantilever(int m) {

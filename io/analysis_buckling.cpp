@@ -45,10 +45,9 @@ AnalysisOutcome run_buckling(const AnalysisContext& ctx) {
   out.result["load_factors"] = to_json(r.load_factors);
   ojson modes = ojson::array();
   for (std::size_t k = 0; k < r.modes.size(); ++k) {
-    ojson nodes = ojson::object();
-    for (std::size_t n = 0; n < model.nodes.size(); ++n)
-      append_new_key(nodes, model.nodes[n].id, ojson{{"displacement", to_json(Vec6(r.modes[k].segment<6>(6 * n)))}});
-    modes.push_back(ojson{{"mode", k + 1}, {"load_factor", r.load_factors[static_cast<Eigen::Index>(k)]}, {"nodes", nodes}});
+    modes.push_back(ojson{{"mode", k + 1},
+                          {"load_factor", r.load_factors[static_cast<Eigen::Index>(k)]},
+                          {"nodes", mode_nodes_json(model, r.modes[k])}});
   }
   out.result["modes"] = modes;
   if (!ctx.out_dir.empty() && ctx.write_vtk) {

@@ -87,16 +87,12 @@ AnalysisOutcome run_modal(const AnalysisContext& ctx) {
   out.result["effective_mass_sum"] = eff_sum;
   ojson modes = ojson::array();
   for (Eigen::Index k = 0; k < count; ++k) {
-    ojson nodes = ojson::object();
-    const auto& u = r.modes[static_cast<std::size_t>(k)];
-    for (std::size_t n = 0; n < model.nodes.size(); ++n)
-      nodes[model.nodes[n].id] = ojson{{"displacement", to_json(Vec6(u.segment<6>(6 * static_cast<Eigen::Index>(n))))}};
     modes.push_back(ojson{{"mode", k + 1},
                           {"frequency", r.frequencies[k]},
                           {"kind", to_string(r.kinds[static_cast<std::size_t>(k)])},
                           {"participation", to_json(Vec6(r.participation.row(k).transpose()))},
                           {"effective_mass", to_json(Vec6(r.effective_mass.row(k).transpose()))},
-                          {"nodes", nodes}});
+                          {"nodes", mode_nodes_json(model, r.modes[static_cast<std::size_t>(k)])}});
   }
   out.result["modes"] = modes;
   if (!ctx.out_dir.empty() && ctx.write_vtk) {

@@ -7,6 +7,13 @@
 
 namespace beamfea {
 
+ojson mode_nodes_json(const Model& model, const Eigen::VectorXd& u) {
+  ojson nodes = ojson::object();
+  for (std::size_t n = 0; n < model.nodes.size(); ++n)
+    append_new_key(nodes, model.nodes[n].id, ojson{{"displacement", to_json(Vec6(u.segment<6>(6 * static_cast<Eigen::Index>(n))))}});
+  return nodes;
+}
+
 double write_mode_shapes(const Model& model, const std::filesystem::path& dir, const std::string& id,
                          const std::vector<Eigen::VectorXd>& modes, const std::string& value_name,
                          const Eigen::VectorXd& values) {

@@ -1,13 +1,18 @@
 #pragma once
-// VTK output of a series of mode shapes (buckling, vibration): DIR/<id>_mode<k>.vtu and
-// DIR/<id>.pvd with time = mode number, so that ParaView's time control steps through them.
+// Output of a series of mode shapes (buckling, vibration): the results' node map of one mode, and
+// the VTK series DIR/<id>_mode<k>.vtu and DIR/<id>.pvd with time = mode number, so that
+// ParaView's time control steps through them.
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "core/model.hpp"
+#include "io/analysis.hpp"
 
 namespace beamfea {
+
+// {"<node id>": {"displacement": [6 values of the raw mode u]}, ...} in the model's node order.
+ojson mode_nodes_json(const Model& model, const Eigen::VectorXd& u);
 
 // Writes the modes (raw displacement vectors), each normalised to a largest node translation of
 // 1 and drawn at `scale` = 10 % of the model size; the unscaled normalised mode is point data

@@ -8,7 +8,7 @@
 #include "solvers/buckling.hpp"
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/path_following.hpp"
-#include "nl_models.hpp"
+#include "path_models.hpp"
 
 #include <cstdlib>
 #include <iostream>
@@ -145,19 +145,7 @@ TEST(PathFollowing, CantileverRollsIntoAFullCircle) {
 // E = 720 the same frame has P = 1.85). The path passes the first limit point, the snap-back (the
 // vertical displacement of the load point turns back) and the second limit point (negative load).
 TEST(PathFollowing, LeesFrameThroughBothLimitPointsAndSnapBack) {
-  json d;
-  d["nodes"] = json::array({{{"id", "A"}, {"xyz", {0, 0, 0}}}, {{"id", "C"}, {"xyz", {0, 120, 0}}},
-                            {{"id", "P"}, {"xyz", {24, 120, 0}}}, {{"id", "B"}, {"xyz", {120, 120, 0}}}});
-  d["materials"] = json::array({{{"id", "m"}, {"E", 7.2e6}, {"G", 2.769e6}}});
-  d["sections"] = json::array({{{"id", "s"}, {"A", 6.0}, {"Iy", 200.0}, {"Iz", 2.0}, {"J", 200.0}}});
-  d["elements"] = json::array({{{"id", "col"}, {"type", "beam"}, {"nodes", {"A", "C"}}, {"material", "m"}, {"section", "s"},
-                                {"orientation", {0, 0, 1}}, {"divisions", 10}},
-                               {{"id", "b1"}, {"type", "beam"}, {"nodes", {"C", "P"}}, {"material", "m"}, {"section", "s"},
-                                {"orientation", {0, 0, 1}}, {"divisions", 2}},
-                               {{"id", "b2"}, {"type", "beam"}, {"nodes", {"P", "B"}}, {"material", "m"}, {"section", "s"},
-                                {"orientation", {0, 0, 1}}, {"divisions", 8}}});
-  d["supports"] = json::array({fix("A", {"ux", "uy", "uz", "rx", "ry"}), fix("B", {"ux", "uy", "uz", "rx", "ry"})});
-  d["loads"] = json::array({load("P", 0, -1e4, 0)});  // lambda in units of 1e4
+  const json d = lees_frame(1e4);  // lambda in units of 1e4 (tests/solvers/path_models.hpp)
   const Model m = read_model(d);
   PathOptions o;
   o.control = PathControl::ArcLength;
