@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "solvers/dense_condensation.hpp"
 
 namespace beamfea {
 
@@ -150,29 +151,7 @@ Eigen::MatrixXd SparseFactor::solve(const Eigen::MatrixXd& B) const {
 bool condense_dense(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz, const FactorOptions& options) {
   const Eigen::Index n = K.rows();
   if (n == 0 || n > options.dense_max_dofs || A.cols() != n || A.rows() == 0) return false;
-  // Jacobi scaling as in SparseFactor::factorize: S K S, so that the condition estimate does not
-  // depend on units; A K^-1 A^T = (A S) (S K S)^-1 (A S)^T.
-  Eigen::VectorXd s(n);
-  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
-  for (int j = 0; j < K.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(K, j); it; ++it)
-      if (it.row() >= j) D(it.row(), j) = it.value();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (!(D(i, i) > 0.0)) return false;
-    s[i] = 1.0 / std::sqrt(D(i, i));
-  }
-  D = s.asDiagonal() * D * s.asDiagonal();  // lower triangle only, as LLT reads it
-  const Eigen::LLT<Eigen::MatrixXd> llt(D);
-  if (llt.info() != Eigen::Success || rcond_of(llt) < options.singular_rcond) return false;
-  // C = (A S) L^-T L^-1 (A S)^T = W^T W with W = L^-1 (A S)^T.
-  Eigen::MatrixXd W = (A * s.asDiagonal()).transpose();
-  llt.matrixL().solveInPlace(W);
-  const Eigen::MatrixXd C = W.transpose() * W;
-  const Eigen::LLT<Eigen::MatrixXd> lc(C);
-  if (lc.info() != Eigen::Success || rcond_of(lc) < options.singular_rcond) return false;
-  Kz = lc.solve(Eigen::MatrixXd::Identity(C.rows(), C.cols()));
-  Kz = 0.5 * (Kz + Kz.transpose()).eval();
-  return Kz.allFinite();
+  return condense_dense(Eigen::MatrixXd(K), A, Kz, options);  // solvers/dense_condensation.cpp
 }
 
 }  // namespace beamfea
