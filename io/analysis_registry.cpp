@@ -88,7 +88,19 @@ const char* to_string(AnalysisTermination t) {
 
 std::string AnalysisOutcome::brief_report() const { return std::string(to_string(termination)) + ": " + message; }
 
+namespace {
+bool all_finite(const ojson& v) {
+  if (v.is_number_float()) return std::isfinite(v.get<double>());
+  if (v.is_array() || v.is_object())
+    for (const auto& x : v)
+      if (!all_finite(x)) return false;
+  return true;
+}
+}  // namespace
+
 std::string first_non_finite(const ojson& v, const std::string& path) {
+  // The paths are built only when there is something to name (a result has thousands of numbers).
+  if (all_finite(v)) return "";
   if (v.is_number_float()) return std::isfinite(v.get<double>()) ? "" : (path.empty() ? "(value)" : path);
   if (v.is_array()) {
     for (std::size_t i = 0; i < v.size(); ++i)

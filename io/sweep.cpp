@@ -20,11 +20,24 @@ constexpr std::size_t kMaxIndexDigits = 9;
 
 // An output value flattened into (column name, cell) pairs: name[i][j] for arrays, name.key for
 // objects.
-void flatten(const ojson& v, const std::string& name, std::vector<std::pair<std::string, std::string>>& out) {
+// `name` is the caller's buffer: suffixes are appended and taken off again (no string per level).
+void flatten(const ojson& v, std::string& name, std::vector<std::pair<std::string, std::string>>& out) {
+  const std::size_t length = name.size();
   if (v.is_array()) {
-    for (std::size_t i = 0; i < v.size(); ++i) flatten(v[i], name + "[" + std::to_string(i) + "]", out);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      name += '[';
+      name += std::to_string(i);
+      name += ']';
+      flatten(v[i], name, out);
+      name.resize(length);
+    }
   } else if (v.is_object()) {
-    for (const auto& [k, x] : v.items()) flatten(x, name + "." + k, out);
+    for (const auto& [k, x] : v.items()) {
+      name += '.';
+      name += k;
+      flatten(x, name, out);
+      name.resize(length);
+    }
   } else {
     out.emplace_back(name, csv_cell(v));
   }
@@ -74,8 +87,10 @@ SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std:
     const RunReport report = run_document(model, doc, opt);
     std::string missing;
     for (std::size_t o = 0; o < sweep.outputs.size(); ++o) {
-      if (const ojson* v = find_path(report.results, sweep.outputs[o])) flatten(*v, sweep.outputs[o].name, r.outputs[o]);
-      else missing += (missing.empty() ? "" : ", ") + sweep.outputs[o].name;
+      if (const ojson* v = find_path(report.results, sweep.outputs[o])) {
+        std::string name = sweep.outputs[o].name;
+        flatten(*v, name, r.outputs[o]);
+      } else missing += (missing.empty() ? "" : ", ") + sweep.outputs[o].name;
     }
     if (report.failed) {
       r.status = SweepCaseResult::Status::AnalysisFailed;

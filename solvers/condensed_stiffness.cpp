@@ -199,14 +199,19 @@ CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn
     out.ok = true;
     return out;
   }
-  const Eigen::MatrixXd Ur = U.leftCols(r);
-  const Eigen::MatrixXd A = Ur.transpose() * S.asDiagonal() * Tn;
+  // At most six rows: fixed-capacity matrices (no heap, products by coefficients rather than GEMM).
+  using Rows6 = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+  const Rows6 Ur = U.leftCols(r);
+  Eigen::MatrixXd A(r, Tn.cols());
+  A.noalias() = (Ur.transpose() * S.asDiagonal()).lazyProduct(Tn);
   Eigen::MatrixXd Kz;
   if (!condense_rows(K, A, Kz)) return out;
   // Free directions of the node: the null space of K_z.
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Kz);
+  const Small Kzs = Kz;
+  Eigen::SelfAdjointEigenSolver<Small> es(Kzs);
   const double big = es.eigenvalues().cwiseAbs().maxCoeff();
-  Eigen::VectorXd inv = Eigen::VectorXd::Zero(r);
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> inv = Eigen::VectorXd::Zero(r);
   for (int i = 0; i < r; ++i) {
     const double ev = es.eigenvalues()[i];
     if (big > 0.0 && std::abs(ev) > options.rank_tolerance * big) {
@@ -215,12 +220,12 @@ CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn
       out.null_space.push_back(reproducible_direction(S.cwiseInverse().asDiagonal() * Ur * es.eigenvectors().col(i)));
     }
   }
-  const Eigen::MatrixXd Cz = es.eigenvectors() * inv.asDiagonal() * es.eigenvectors().transpose();
+  const Small Cz = es.eigenvectors() * inv.asDiagonal() * es.eigenvectors().transpose();
   const Mat6 Sinv = S.cwiseInverse().asDiagonal();
   out.compliance = Sinv * Ur * Cz * Ur.transpose() * Sinv;
   out.compliance = 0.5 * (out.compliance + out.compliance.transpose()).eval();
   if (r == 6) {
-    out.K = S.asDiagonal() * Ur * Kz * Ur.transpose() * S.asDiagonal();  // K_c itself
+    out.K = S.asDiagonal() * Ur * Kzs * Ur.transpose() * S.asDiagonal();  // K_c itself
   } else {
     // Restricted node: the pseudo-inverse of the compliance in the components [ux .. rz] (as the
     // loaded stiffness of a chain with fewer than six joints has always been reported).

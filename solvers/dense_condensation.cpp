@@ -71,7 +71,7 @@ bool condense_dense(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::M
       for (Eigen::Index i = k + 1; i <= w.last[k]; ++i) x[i] -= lk[i] * xk;
     }
   }
-  w.C.noalias() = w.W.transpose() * w.W;
+  w.C.noalias() = w.W.transpose().lazyProduct(w.W);  // r x r, r <= a few: no GEMM blocking
   const Eigen::LLT<Eigen::MatrixXd> lc(w.C);
   if (lc.info() != Eigen::Success || cholesky_rcond(lc.matrixLLT()) < options.singular_rcond) return false;
   Kz = lc.solve(Eigen::MatrixXd::Identity(r, r));
