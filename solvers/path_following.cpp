@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "solvers/blas_threads.hpp"
 #include "solvers/buckling.hpp"
 #include "solvers/corotated_member_loads.hpp"
 #include "solvers/path/critical_points.hpp"
@@ -107,6 +108,8 @@ bool stopped(PathResult& res, const PathOptions& o, const Model& original, const
 
 PathResult follow_path(const Model& original, const PathOptions& o) {
   o.validate(original);
+  // Small factorisations every few milliseconds: one BLAS thread (solvers/blas_threads.hpp).
+  const SingleBlasThread one_blas_thread;
   PathResult res;
   const Model model = o.imperfection_mode > 0 ? imperfect_model(original, o.imperfection_mode, o.imperfection_amplitude)
                                               : original;
