@@ -117,17 +117,26 @@ void append_new_key(ojson& object, const std::string& key, ojson value) {
   static_cast<ojson::object_t::Container&>(map).emplace_back(key, std::move(value));
 }
 
-ojson to_json(const Vec3& v) { return ojson::array({v[0], v[1], v[2]}); }
-ojson to_json(const Vec6& v) {
+ojson object_with_capacity(std::size_t n) {
+  ojson o = ojson::object();
+  static_cast<ojson::object_t::Container&>(o.get_ref<ojson::object_t&>()).reserve(n);
+  return o;
+}
+
+namespace {
+// An array of the n numbers at p, allocated once (push_back would grow it 1, 2, 4, 8).
+ojson number_array(const double* p, std::size_t n) {
   ojson a = ojson::array();
-  for (int i = 0; i < 6; ++i) a.push_back(v[i]);
+  auto& v = a.get_ref<ojson::array_t&>();
+  v.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) v.emplace_back(p[i]);
   return a;
 }
-ojson to_json(const Eigen::VectorXd& v) {
-  ojson a = ojson::array();
-  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(v[i]);
-  return a;
-}
+}  // namespace
+
+ojson to_json(const Vec3& v) { return number_array(v.data(), 3); }
+ojson to_json(const Vec6& v) { return number_array(v.data(), 6); }
+ojson to_json(const Eigen::VectorXd& v) { return number_array(v.data(), static_cast<std::size_t>(v.size())); }
 ojson to_json(const Mat6& m) {
   ojson a = ojson::array();
   for (int i = 0; i < 6; ++i) a.push_back(to_json(Vec6(m.row(i).transpose())));

@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/CholmodSupport>
 #include <Eigen/UmfPackSupport>
+#include <algorithm>
 #include <cmath>
 
 #include "core/errors.hpp"
@@ -30,6 +31,13 @@ namespace {
 class Cholesky : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
  public:
   double rcond() { return m_cholmodFactor ? cholmod_rcond(m_cholmodFactor, &this->cholmod()) : 0.0; }
+  // METIS alone, or CHOLMOD's default trials (nmethods = 0: AMD, then METIS if AMD's fill is poor).
+  void metis_only(bool on) {
+    cholmod_common& c = this->cholmod();
+    c.nmethods = on ? 1 : 0;
+    c.method[0].ordering = on ? CHOLMOD_METIS : CHOLMOD_GIVEN;  // GIVEN: cholmod_defaults' value
+    c.postorder = 1;
+  }
 };
 
 // CHOLMOD's estimate for L L^T (cholmod_rcond): (min |L_ii| / max |L_ii|)^2.
@@ -59,6 +67,40 @@ SparseMatrix scaled(const SparseMatrix& K, const Eigen::VectorXd& s) {
   SparseMatrix A = K;
   for (int j = 0; j < A.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(A, j); it; ++it) it.valueRef() *= s[it.row()] * s[j];
+  return A;
+}
+
+SparseMatrix scaled_lower(const SparseMatrix& K, const Eigen::VectorXd& s) {
+  const Eigen::Index n = K.outerSize();
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  const double* value = K.valuePtr();
+  const int* nnz = K.innerNonZeroPtr();  // null when K is compressed
+  // Rows are sorted within a column: the lower part of column j starts at the first row >= j.
+  std::vector<int> first(n), count(n);
+  Eigen::Index total = 0;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const int* b = inner + outer[j];
+    const int* e = b + (nnz ? nnz[j] : outer[j + 1] - outer[j]);
+    first[j] = static_cast<int>(std::lower_bound(b, e, static_cast<int>(j)) - inner);
+    count[j] = static_cast<int>(e - inner) - first[j];
+    total += count[j];
+  }
+  SparseMatrix A(K.rows(), K.cols());
+  A.resizeNonZeros(total);
+  int* a_outer = A.outerIndexPtr();
+  int* a_inner = A.innerIndexPtr();
+  double* a_value = A.valuePtr();
+  a_outer[0] = 0;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const int start = a_outer[j];
+    for (int k = 0; k < count[j]; ++k) {
+      const int p = first[j] + k;
+      a_inner[start + k] = inner[p];
+      a_value[start + k] = value[p] * s[inner[p]] * s[j];
+    }
+    a_outer[j + 1] = start + count[j];
+  }
   return A;
 }
 
@@ -96,8 +138,10 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
       return rcond_ >= options.singular_rcond ? FactorStatus::Ok : FactorStatus::NotPositiveDefinite;
     }
   }
-  const SparseMatrix A = scaled(K, s_);
+  // CHOLMOD reads the lower triangle only (Eigen::Lower): the scaled copy is of that half.
+  const SparseMatrix A = scaled_lower(K, s_);
   if (!impl_->analysed || impl_->rows != n || impl_->nnz != A.nonZeros()) {
+    impl_->llt.metis_only(n >= kMetisOnlyMinDofs);
     impl_->llt.analyzePattern(A);
     if (impl_->llt.info() != Eigen::Success) {
       impl_->analysed = false;
@@ -121,11 +165,12 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
     return FactorStatus::NotPositiveDefinite;
   }
   if (!options.allow_lu) return FactorStatus::NotPositiveDefinite;
+  const SparseMatrix full = scaled(K, s_);  // UMFPACK needs both triangles
   if (!impl_->lu_analysed) {
-    impl_->lu.analyzePattern(A);
+    impl_->lu.analyzePattern(full);
     impl_->lu_analysed = true;
   }
-  impl_->lu.factorize(A);
+  impl_->lu.factorize(full);
   lu_ok_ = impl_->lu.info() == Eigen::Success;
   return lu_ok_ ? FactorStatus::NotPositiveDefinite : FactorStatus::Singular;
 }
