@@ -68,15 +68,17 @@ StabilityAnalysis constrained_tangent(const PathEquilibrium& P, const Converged&
   StabilityAnalysis out;
   // The tangent at the state, as the predictor sees it (evaluated once per state).
   const NonlinearStructure::Evaluation& ev = P.evaluation_at(c);
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(static_cast<std::size_t>(ev.tangent.nonZeros()));
+  // Restriction to the free coordinates, column by column: gen_to_free is increasing on the free
+  // gens, so the rows and columns stay in order (no triplets, no sort).
+  SparseMatrix Kff(P.nf, P.nf);
+  Kff.reserve(ev.tangent.nonZeros());
   for (int j = 0; j < ev.tangent.outerSize(); ++j) {
     if (P.gen_to_free[j] < 0) continue;
+    Kff.startVec(P.gen_to_free[j]);
     for (SparseMatrix::InnerIterator it(ev.tangent, j); it; ++it)
-      if (P.gen_to_free[it.row()] >= 0) t.emplace_back(P.gen_to_free[it.row()], P.gen_to_free[j], it.value());
+      if (P.gen_to_free[it.row()] >= 0) Kff.insertBack(P.gen_to_free[it.row()], P.gen_to_free[j]) = it.value();
   }
-  SparseMatrix Kff(P.nf, P.nf);
-  Kff.setFromTriplets(t.begin(), t.end());
+  Kff.finalize();
   const Eigen::MatrixXd C = P.constraint_matrix(c.state, with_control);
   out.Z = null_space(C, P.nf);
   if (C.rows() == 0) {  // Z = I
