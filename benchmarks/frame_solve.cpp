@@ -494,7 +494,7 @@ int run_all(const char* self, const Options& o) {
                tm(r, "t_lib_factor"), sci(r, "rcond"), str(r, "skip"));
 
   fmt::print("\n### The whole linear static analysis against the numeric factorisation\n\n");
-  fmt::print("| free DOFs | numeric | solve_linear_static | ratio (wall) | ratio (CPU) | u vs staged |\n");
+  fmt::print("| free DOFs | numeric | solve_linear_static | ratio (wall) | ratio (CPU) | u vs SparseFactor |\n");
   fmt::print("|---:|---:|---:|---:|---:|---:|\n");
   for (const auto& r : recs)
     fmt::print("| {} | {} | {} | {} | {} | {} |\n", str(r, "dofs"), tmc(r, "numeric"), tmc(r, "linear_static"),
