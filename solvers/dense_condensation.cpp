@@ -34,6 +34,23 @@ bool cholesky_in_place(Eigen::MatrixXd& A, std::vector<int>& last) {
   return true;
 }
 
+void cholesky_solve_in_place(const Eigen::MatrixXd& L, const std::vector<int>& last, Eigen::Ref<Eigen::VectorXd> x) {
+  const Eigen::Index n = L.rows();
+  for (Eigen::Index k = 0; k < n; ++k) {  // L y = x
+    const double* lk = L.col(k).data();
+    const double xk = x[k] / lk[k];
+    x[k] = xk;
+    if (xk != 0.0)
+      for (Eigen::Index i = k + 1; i <= last[k]; ++i) x[i] -= lk[i] * xk;
+  }
+  for (Eigen::Index k = n; k-- > 0;) {  // L^T x = y
+    const double* lk = L.col(k).data();
+    double xk = x[k];
+    for (Eigen::Index i = k + 1; i <= last[k]; ++i) xk -= lk[i] * x[i];
+    x[k] = xk / lk[k];
+  }
+}
+
 double cholesky_rcond(const Eigen::MatrixXd& L) {
   if (L.rows() == 0) return 1.0;
   const auto d = L.diagonal().cwiseAbs();

@@ -21,6 +21,10 @@ namespace beamfea {
 // definite, A is left part-way.
 bool cholesky_in_place(Eigen::MatrixXd& A, std::vector<int>& last);
 
+// x = (L L^T)^-1 x for the factor of cholesky_in_place (forward and back substitution within each
+// column's extent).
+void cholesky_solve_in_place(const Eigen::MatrixXd& L, const std::vector<int>& last, Eigen::Ref<Eigen::VectorXd> x);
+
 // CHOLMOD's reciprocal condition estimate of L L^T (cholmod_rcond): (min L_ii / max L_ii)^2.
 double cholesky_rcond(const Eigen::MatrixXd& L);
 

@@ -40,18 +40,13 @@ class Cholesky : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> 
   }
 };
 
-// CHOLMOD's estimate for L L^T (cholmod_rcond): (min |L_ii| / max |L_ii|)^2.
-double rcond_of(const Eigen::LLT<Eigen::MatrixXd>& llt) {
-  const auto d = llt.matrixLLT().diagonal().cwiseAbs();
-  if (d.size() == 0) return 1.0;
-  const double lo = d.minCoeff(), hi = d.maxCoeff();
-  return hi > 0.0 ? (lo / hi) * (lo / hi) : 0.0;
-}
 }  // namespace
 
 struct SparseFactor::Impl {
-  Eigen::LLT<Eigen::MatrixXd> dense;
-  Eigen::MatrixXd dense_a;  // kept between factorisations: no allocation while the size stays
+  // The dense factor (solvers/dense_condensation.hpp), kept between factorisations: no
+  // allocation while the size stays.
+  Eigen::MatrixXd dense_l;
+  std::vector<int> dense_last;
   Cholesky llt;
   Eigen::UmfPackLU<SparseMatrix> lu;
   Eigen::Index rows = -1, nnz = -1;
@@ -124,16 +119,16 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
   // the caller diagnoses it (and CHOLMOD is never handed an empty column).
   if (!unrestrained_.empty()) return FactorStatus::NotPositiveDefinite;
   if (n > 0 && n <= options.dense_max_dofs) {
-    // Small system: dense Cholesky of S K S (lower triangle, as CHOLMOD reads it). A failure
-    // falls through to the sparse path below, which decides as before (CHOLMOD, then LU).
-    Eigen::MatrixXd& D = impl_->dense_a;
+    // Small system: dense Cholesky of S K S (lower triangle, as CHOLMOD reads it), skipping the
+    // zeros of the matrix (solvers/dense_condensation.hpp). A failure falls through to the sparse
+    // path below, which decides as before (CHOLMOD, then LU).
+    Eigen::MatrixXd& D = impl_->dense_l;
     D.setZero(n, n);
     for (int j = 0; j < K.outerSize(); ++j)
       for (SparseMatrix::InnerIterator it(K, j); it; ++it)
         if (it.row() >= j) D(it.row(), j) = it.value() * s_[it.row()] * s_[j];
-    impl_->dense.compute(D);
-    if (impl_->dense.info() == Eigen::Success) {
-      rcond_ = rcond_of(impl_->dense);
+    if (cholesky_in_place(D, impl_->dense_last)) {
+      rcond_ = cholesky_rcond(D);
       cholesky_ok_ = dense_ok_ = true;
       return rcond_ >= options.singular_rcond ? FactorStatus::Ok : FactorStatus::NotPositiveDefinite;
     }
@@ -179,7 +174,11 @@ Eigen::VectorXd SparseFactor::solve(const Eigen::VectorXd& b) const {
   if (s_.size() == 0) return Eigen::VectorXd(0);
   if (!cholesky_ok_ && !lu_ok_) throw Error("SparseFactor::solve: no valid factorisation");
   const Eigen::VectorXd sb = s_.cwiseProduct(b);
-  if (dense_ok_) return s_.cwiseProduct(impl_->dense.solve(sb));
+  if (dense_ok_) {
+    Eigen::VectorXd x = sb;
+    cholesky_solve_in_place(impl_->dense_l, impl_->dense_last, x);
+    return s_.cwiseProduct(x);
+  }
   const Eigen::VectorXd y = cholesky_ok_ ? Eigen::VectorXd(impl_->llt.solve(sb)) : Eigen::VectorXd(impl_->lu.solve(sb));
   return s_.cwiseProduct(y);
 }
@@ -188,7 +187,11 @@ Eigen::MatrixXd SparseFactor::solve(const Eigen::MatrixXd& B) const {
   if (s_.size() == 0) return Eigen::MatrixXd(0, B.cols());
   if (!cholesky_ok_ && !lu_ok_) throw Error("SparseFactor::solve: no valid factorisation");
   const Eigen::MatrixXd SB = s_.asDiagonal() * B;
-  if (dense_ok_) return s_.asDiagonal() * impl_->dense.solve(SB);
+  if (dense_ok_) {
+    Eigen::MatrixXd X = SB;
+    for (Eigen::Index c = 0; c < X.cols(); ++c) cholesky_solve_in_place(impl_->dense_l, impl_->dense_last, X.col(c));
+    return s_.asDiagonal() * X;
+  }
   const Eigen::MatrixXd Y = cholesky_ok_ ? Eigen::MatrixXd(impl_->llt.solve(SB)) : Eigen::MatrixXd(impl_->lu.solve(SB));
   return s_.asDiagonal() * Y;
 }
