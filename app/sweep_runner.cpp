@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <thread>
 #include <vector>
@@ -73,10 +74,11 @@ Plan make_plan(const Sweep& sweep, const SweepOptions& options, const std::files
       plan.columns = resumed.columns;
     } else {
       std::vector<std::pair<std::size_t, SweepCaseResult>> probe;
+      SweepCaseDocument documents(sweep);
       const SweepCaseResult* ok = nullptr;
       for (std::size_t i = 0; i < sweep.size() && probe.size() < kProbeLimit && !stop_requested(options); ++i) {
         if (done[i]) continue;
-        probe.emplace_back(i, run_sweep_case(sweep, i, keep_dir(sweep, options, i)));
+        probe.emplace_back(i, run_sweep_case(sweep, i, keep_dir(sweep, options, i), &documents));
         if (probe.back().second.status == SweepCaseResult::Status::Ok) {
           ok = &probe.back().second;
           break;
@@ -126,14 +128,16 @@ class WorkerPool {
   WorkerPool(const Sweep& sweep, const SweepOptions& options, const SweepColumns& columns,
              const std::vector<std::size_t>& pending, int jobs, bool run_inline)
       : sweep_(sweep), options_(options), columns_(columns), pending_(pending), jobs_(run_inline ? 0 : jobs) {
+    if (jobs_ == 0) inline_documents_.emplace(sweep_);
     for (int w = 0; w < jobs_; ++w)
       threads_.emplace_back([this] {
+        SweepCaseDocument documents(sweep_);  // this worker's, reused case after case
         for (;;) {
           if (abort_ || stop_requested(options_)) break;
           const std::size_t k = next_++;
           if (k >= pending_.size()) break;
           Batch one;
-          run_one(pending_[k], one);
+          run_one(pending_[k], one, documents);
           {
             std::lock_guard lock(mutex_);
             batch_.rows += one.rows;
@@ -166,7 +170,7 @@ class WorkerPool {
       Batch b;
       const auto t0 = std::chrono::steady_clock::now();
       while (next_ < pending_.size() && !stop_requested(options_) && std::chrono::steady_clock::now() - t0 < period)
-        run_one(pending_[next_++], b);
+        run_one(pending_[next_++], b, *inline_documents_);
       b.all_done = next_ >= pending_.size() || stop_requested(options_);
       return b;
     }
@@ -183,8 +187,8 @@ class WorkerPool {
   }
 
  private:
-  void run_one(std::size_t i, Batch& into) const {
-    const SweepCaseResult r = run_sweep_case(sweep_, i, keep_dir(sweep_, options_, i));
+  void run_one(std::size_t i, Batch& into, SweepCaseDocument& documents) const {
+    const SweepCaseResult r = run_sweep_case(sweep_, i, keep_dir(sweep_, options_, i), &documents);
     into.rows += sweep_row(sweep_, i, columns_, r);
     ++into.count;
     if (r.status != SweepCaseResult::Status::Ok) ++into.failed;
@@ -195,6 +199,7 @@ class WorkerPool {
   const SweepColumns& columns_;
   const std::vector<std::size_t>& pending_;
   int jobs_;  // worker threads; 0: the cases run inline in take()
+  std::optional<SweepCaseDocument> inline_documents_;  // the inline cases' document
   std::vector<std::thread> threads_;
   std::mutex mutex_;
   std::condition_variable cv_;

@@ -35,7 +35,7 @@
 //
 // Usage: bench_frame_solve [--sizes 1000,10000,100000,1000000] [--stories S] [--repeat R]
 //                          [--max-gflop G] [--max-simplicial-gflop G] [--mem-margin-gb M]
-//                          [--library-path-max-s T]
+//                          [--library-path-max-s T] [--ordering default|amd|metis|nesdis]
 // Output: Markdown tables on stdout, progress on stderr.
 #include <fmt/format.h>
 #include <sys/resource.h>
@@ -59,6 +59,7 @@
 #include "core/assembly.hpp"
 #include "core/dof_map.hpp"
 #include "core/model.hpp"
+#include "solvers/linear_static.hpp"
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
 #include "frame_models.hpp"
@@ -151,7 +152,17 @@ struct Options {
   double max_simplicial_gflop = 60.0;   // run SimplicialLDLT only below this (CHOLMOD's count)
   double mem_margin_gb = 3.0;           // memory left to others when deciding to factorise
   double library_path_max_s = 90.0;     // run SparseFactor too when the numeric stage took less
+  std::string ordering = "default";     // staged CHOLMOD's ordering: default (its trials), amd, metis, nesdis
 };
+
+// Restricts CHOLMOD to one ordering ("default" leaves its own trials: AMD, then METIS when AMD's
+// fill looks poor, keeping the better).
+void set_ordering(cholmod_common& c, const std::string& name) {
+  if (name == "default") return;
+  c.nmethods = 1;
+  c.method[0].ordering = name == "amd" ? CHOLMOD_AMD : name == "metis" ? CHOLMOD_METIS : CHOLMOD_NESDIS;
+  c.postorder = 1;
+}
 
 double num_or(const std::map<std::string, std::string>& r, const std::string& k) {
   auto it = r.find(k);
@@ -226,6 +237,7 @@ int run_single(long target, const Options& o) {
   Eigen::VectorXd uf;  // free displacements from the staged CHOLMOD factorisation
   {
     Cholmod llt;
+    set_ordering(llt.common(), o.ordering);
     t0 = Stopwatch();
     llt.analyzePattern(A);
     stage("symbolic", t0);
@@ -287,6 +299,12 @@ int run_single(long target, const Options& o) {
     const Eigen::VectorXd ul = factor.solve(f);
     put("lib_vs_staged", (ul - uf).norm() / uf.norm());
     uf = ul;
+    // The whole library analysis as `beamfea run` calls it (DofMap, elements, assembly, scaling,
+    // analysis, factorisation, solve, reactions, end forces), against the numeric stage above.
+    t0 = Stopwatch();
+    const LinearStaticResult lin = solve_linear_static(model);
+    stage("linear_static", t0);
+    put("linear_static_vs_staged", (lin.u - map.expand(uf, up)).norm() / map.expand(uf, up).norm());
   }
   // Checks, with the reactions as solve_linear_static computes them.
   {
@@ -358,7 +376,7 @@ Record run_child(const char* self, long size, const Options& o, long& maxrss_kb,
                                 "--max-gflop", fmt::format("{}", o.max_gflop), "--max-simplicial-gflop",
                                 fmt::format("{}", o.max_simplicial_gflop), "--mem-margin-gb",
                                 fmt::format("{}", o.mem_margin_gb), "--library-path-max-s",
-                                fmt::format("{}", o.library_path_max_s)};
+                                fmt::format("{}", o.library_path_max_s), "--ordering", o.ordering};
   int fd[2];
   if (pipe(fd) != 0) throw std::runtime_error("pipe failed");
   const pid_t pid = fork();
@@ -475,6 +493,14 @@ int run_all(const char* self, const Options& o) {
                has(r, "t_numeric") ? fmt::format("{:.1f}", num(r, "gflop") / num(r, "t_numeric")) : "-",
                tm(r, "t_lib_factor"), sci(r, "rcond"), str(r, "skip"));
 
+  fmt::print("\n### The whole linear static analysis against the numeric factorisation\n\n");
+  fmt::print("| free DOFs | numeric | solve_linear_static | ratio (wall) | ratio (CPU) | u vs SparseFactor |\n");
+  fmt::print("|---:|---:|---:|---:|---:|---:|\n");
+  for (const auto& r : recs)
+    fmt::print("| {} | {} | {} | {} | {} | {} |\n", str(r, "dofs"), tmc(r, "numeric"), tmc(r, "linear_static"),
+               ratio(num(r, "t_linear_static"), num(r, "t_numeric")), ratio(num(r, "c_linear_static"), num(r, "c_numeric")),
+               sci(r, "linear_static_vs_staged"));
+
   fmt::print("\n### Baselines (same process)\n\n");
   fmt::print("| free DOFs | assembly 1 (pattern) | of which end() | setFromTriplets | assembly 2 (reuse) | setFromTriplets / reuse (CPU) | assembly 1 / "
              "setFromTriplets (CPU) | CHOLMOD sym+num | SimplicialLDLT sym+num | LDLT / CHOLMOD | nnz(L) LDLT / CHOLMOD | "
@@ -529,10 +555,17 @@ int main(int argc, char** argv) {
     else if (a == "--max-simplicial-gflop") o.max_simplicial_gflop = std::atof(next().c_str());
     else if (a == "--mem-margin-gb") o.mem_margin_gb = std::atof(next().c_str());
     else if (a == "--library-path-max-s") o.library_path_max_s = std::atof(next().c_str());
+    else if (a == "--ordering") {
+      o.ordering = next();
+      if (o.ordering != "default" && o.ordering != "amd" && o.ordering != "metis" && o.ordering != "nesdis") {
+        fmt::print(stderr, "--ordering: default, amd, metis or nesdis\n");
+        return 2;
+      }
+    }
     else {
       fmt::print(stderr,
                  "usage: {} [--sizes N1,N2,...] [--stories S] [--repeat R] [--max-gflop G] "
-                 "[--max-simplicial-gflop G] [--mem-margin-gb M] [--library-path-max-s T] [--single N]\n",
+                 "[--max-simplicial-gflop G] [--mem-margin-gb M] [--library-path-max-s T] [--ordering O] [--single N]\n",
                  argv[0]);
       return a == "--help" || a == "-h" ? 0 : 2;
     }

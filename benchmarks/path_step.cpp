@@ -12,9 +12,18 @@
 //   min eig    lowest eigenvalue of the Jacobi-scaled symmetrised tangent (solvers/eigen_lowest.hpp:
 //              dense below 200 DOFs, Spectra shift-invert with CHOLMOD above)
 //   step       one whole arc-length step of follow_path (predictor, KINSOL Newton iterations,
-//              stability), the average over `steps` steps of a run; "no stab." the same without the
-//              stability analysis (inertia, lowest eigenvalue) at each step
-// Usage: bench_path_step [--sizes 2,4,8,12] [--stories S] [--steps K]
+//              stability, the record of the step): the least of the times between the progress
+//              lines of consecutive steps (steady state: setup, linearised buckling of the scales and
+//              the first step excluded); "no stab." the same without the stability analysis
+//   ratio      step / (assembly + LU factor), with and without stability: the median of the ratios of
+//              each step to one assembly + LU measured right after it (paired)
+// Times are CPU seconds of the calling thread (CLOCK_THREAD_CPUTIME_ID), the least of `reps`
+// repetitions for the stages: the machine is shared, wall clock is not a measure there. The last
+// column, process CPU / thread CPU over the runs, shows CPU that other threads burn (OpenBLAS's
+// workers spinning between factorisations). The solvers' BLAS-thread hook is installed as the
+// program installs it (follow_path runs with one BLAS thread); the stages run with the BLAS's
+// threads unless OPENBLAS_NUM_THREADS=1 (the honest setting for thread CPU figures).
+// Usage: bench_path_step [--sizes 2,4,8,12] [--stories S] [--steps K] [--reps R]
 //        bench_path_step --classic [--arc auto|DS] [--max-steps N]
 //   --classic [--arch-elements N]: the deep arch (80 elements, unit load) to its first limit point and Lee's frame (P = 1)
 //   to its second limit point, under arc length ("auto" or a given first step DS), the stop one step
@@ -24,15 +33,24 @@
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/UmfPackSupport>
-#include <chrono>
+#include <algorithm>
+#include <cmath>
 #include <ctime>
+#include <functional>
 #include <cstdlib>
 #include <cstring>
+#include <time.h>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <dlfcn.h>
+
 #include "solvers/eigen_lowest.hpp"
+#if __has_include("solvers/blas_threads.hpp")  // (the bench also builds against older trees)
+#include "solvers/blas_threads.hpp"
+#define BEAMFEA_BLAS_HOOK 1
+#endif
 #include "solvers/nonlinear_structure.hpp"
 #include "solvers/path_following.hpp"
 // The benchmark models of the path tests (JSON written as users write them).
@@ -83,8 +101,65 @@ Model frame(int n, int storeys) {
   return m;
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+double cpu_clock(clockid_t id) {
+  timespec ts{};
+  clock_gettime(id, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+double thread_cpu() { return cpu_clock(CLOCK_THREAD_CPUTIME_ID); }
+double process_cpu() { return cpu_clock(CLOCK_PROCESS_CPUTIME_ID); }
+
+// The least of repeated timings: on a shared machine the others only add (cache and memory
+// bandwidth taken by other processes inflate even the thread's own CPU time).
+double least(const std::vector<double>& v) { return v.empty() ? NAN : *std::min_element(v.begin(), v.end()); }
+
+double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// A path of `steps` arc-length steps: the least thread CPU time of a steady step (between the
+// progress lines of consecutive steps, from the second on), and the median of the paired ratios
+// step / (assembly + LU), `reference` (one assembly and one LU) being measured right after each step
+// (inside the progress line, its time taken out of the next step's): a slow phase of the shared
+// machine slows both sides of a ratio. Also Newton iterations per step, and the process and
+// thread CPU of the whole run.
+struct PathRun {
+  double step = NAN, ratio = NAN, iterations = 0.0, process = 0.0, thread = 0.0;
+};
+PathRun time_path(const Model& m, int steps, bool stability, const std::function<double()>& reference) {
+  PathOptions o;
+  o.control = PathControl::ArcLength;
+  o.arc_length = 0.05;
+  o.max_steps = steps;
+  o.stability = stability;
+  std::vector<double> marks, refs;
+  double taken_out = 0.0;  // thread CPU spent measuring the reference
+  o.progress = [&](const std::string& line) {
+    if (line.rfind("step ", 0) != 0 || line.find("load factor") == std::string::npos) return;
+    const double t = thread_cpu();
+    marks.push_back(t - taken_out);
+    refs.push_back(reference());
+    taken_out += thread_cpu() - t;
+  };
+  PathRun out;
+  const double p0 = process_cpu(), t0 = thread_cpu();
+  const PathResult r = follow_path(m, o);
+  out.process = process_cpu() - p0 - taken_out;  // (the reference runs on this thread)
+  out.thread = thread_cpu() - t0 - taken_out;
+  std::vector<double> d, q;
+  for (std::size_t i = 1; i < marks.size(); ++i) {
+    d.push_back(marks[i] - marks[i - 1]);
+    q.push_back(d.back() / refs[i]);
+  }
+  out.step = least(d);
+  out.ratio = median(q);
+  long its = 0;
+  for (const auto& s : r.steps) its += s.iterations;
+  out.iterations = static_cast<double>(its) / std::max<int>(1, static_cast<int>(r.steps.size()) - 1);
+  return out;
 }
 
 // One classic benchmark: steps to the `nth` critical point, its load, CPU seconds. The run is ended
@@ -130,6 +205,21 @@ void classic(const char* name, const Model& m, const char* track, double P, int 
 }  // namespace
 
 int main(int argc, char** argv) {
+#ifdef BEAMFEA_BLAS_HOOK
+  // As the program does (cli/main.cpp): the solvers' BLAS-thread hook on OpenBLAS.
+  {
+    using Set = void (*)(int);
+    using Get = int (*)();
+    const auto set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    const auto get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    if (set && get)
+      install_blas_threads_hook([set, get](int threads) {
+        const int previous = get();
+        if (threads != previous) set(threads);
+        return previous;
+      });
+  }
+#endif
   for (int i = 1; i < argc; ++i)
     if (!std::strcmp(argv[i], "--classic")) {
       bool autostep = true;
@@ -149,7 +239,7 @@ int main(int argc, char** argv) {
       return 0;
     }
   std::vector<int> sizes{2, 4, 8, 12};
-  int storeys = 3, steps = 3;
+  int storeys = 3, steps = 6, reps = 5;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
       sizes.clear();
@@ -159,11 +249,14 @@ int main(int argc, char** argv) {
     } else if (!std::strcmp(argv[i], "--stories") && i + 1 < argc) {
       storeys = std::atoi(argv[++i]);
     } else if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) {
-      steps = std::atoi(argv[++i]);
+      steps = std::max(3, std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) {
+      reps = std::max(1, std::atoi(argv[++i]));
     }
   }
-  fmt::print("| bays | storeys | free DOFs | assembly [ms] | LU factor [ms] | LDL' inertia [ms] | min eig [ms] | step [ms] | step, no stab. [ms] | Newton it./step |\n");
-  fmt::print("|---|---|---|---|---|---|---|---|---|---|\n");
+  fmt::print("| bays | storeys | free DOFs | assembly [ms] | LU factor [ms] | LDL' inertia [ms] | min eig [ms] | step [ms] | "
+             "step, no stab. [ms] | step / (asm + LU) | no stab. / (asm + LU) | Newton it./step | process / thread CPU |\n");
+  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int n : sizes) {
     const Model m = frame(n, storeys);
     const NonlinearStructure ns(m);
@@ -176,14 +269,13 @@ int main(int argc, char** argv) {
         g2f[i] = static_cast<int>(free.size());
         free.push_back(i);
       }
-    const int reps = 3;
-    double t_asm = 0, t_lu = 0, t_ldl = 0;
+    std::vector<double> t_asm, t_lu, t_ldl, t_eig;
     SparseMatrix K;
     Eigen::UmfPackLU<SparseMatrix> lu;
     Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
     int negative = 0;
     for (int r = 0; r < reps; ++r) {
-      auto t0 = std::chrono::steady_clock::now();
+      double t0 = thread_cpu();
       const auto ev = ns.evaluate(s0, f, true);
       std::vector<Eigen::Triplet<double>> t;
       for (int j = 0; j < ev.tangent.outerSize(); ++j)
@@ -192,48 +284,45 @@ int main(int argc, char** argv) {
             if (g2f[it.row()] >= 0) t.emplace_back(g2f[it.row()], g2f[j], it.value());
       K.resize(static_cast<int>(free.size()), static_cast<int>(free.size()));
       K.setFromTriplets(t.begin(), t.end());
-      t_asm += seconds_since(t0);
+      t_asm.push_back(thread_cpu() - t0);
       if (r == 0) {
         lu.analyzePattern(K);
         ldlt.analyzePattern(K);
       }
-      t0 = std::chrono::steady_clock::now();
+      t0 = thread_cpu();
       lu.factorize(K);
-      t_lu += seconds_since(t0);
-      t0 = std::chrono::steady_clock::now();
+      t_lu.push_back(thread_cpu() - t0);
+      t0 = thread_cpu();
       const SparseMatrix S = SparseMatrix(0.5 * (K + SparseMatrix(K.transpose())));
       ldlt.factorize(S);
       negative = static_cast<int>((ldlt.vectorD().array() < 0).count());
-      t_ldl += seconds_since(t0);
-    }
-    double t_eig = 0.0;
-    {
-      const SparseMatrix S = SparseMatrix(0.5 * (K + SparseMatrix(K.transpose())));
-      Eigen::VectorXd sc = S.diagonal().cwiseAbs().cwiseSqrt().cwiseInverse();
+      t_ldl.push_back(thread_cpu() - t0);
+      const Eigen::VectorXd sc = S.diagonal().cwiseAbs().cwiseSqrt().cwiseInverse();
       const SparseMatrix A = SparseMatrix(sc.asDiagonal() * S * sc.asDiagonal());
-      const auto t0 = std::chrono::steady_clock::now();
+      t0 = thread_cpu();
       const EigenPairs ep = lowest_eigenpairs(A, 1, -1e-6);
-      t_eig = seconds_since(t0);
+      t_eig.push_back(thread_cpu() - t0);
       (void)ep;
     }
-    PathOptions o;
-    o.control = PathControl::ArcLength;
-    o.arc_length = 0.05;
-    o.max_steps = steps;
-    auto t0 = std::chrono::steady_clock::now();
-    const PathResult r = follow_path(m, o);
-    const double t_run = seconds_since(t0);
-    o.stability = false;
-    t0 = std::chrono::steady_clock::now();
-    const PathResult r2 = follow_path(m, o);
-    const double t_run2 = seconds_since(t0);
-    long its = 0;
-    for (const auto& s : r.steps) its += s.iterations;
-    const int done = std::max<int>(1, static_cast<int>(r.steps.size()) - 1);
-    const int done2 = std::max<int>(1, static_cast<int>(r2.steps.size()) - 1);
-    fmt::print("| {}x{} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} |\n", n, n, storeys,
-               free.size(), 1e3 * t_asm / reps, 1e3 * t_lu / reps, 1e3 * t_ldl / reps, 1e3 * t_eig, 1e3 * t_run / done,
-               1e3 * t_run2 / done2, static_cast<double>(its) / done);
+    const double a = least(t_asm), l = least(t_lu);
+    // One assembly and one LU, as the stages above (paired with each path step).
+    const auto reference = [&] {
+      const double t0 = thread_cpu();
+      const auto ev = ns.evaluate(s0, f, true);
+      std::vector<Eigen::Triplet<double>> t;
+      for (int j = 0; j < ev.tangent.outerSize(); ++j)
+        if (g2f[j] >= 0)
+          for (SparseMatrix::InnerIterator it(ev.tangent, j); it; ++it)
+            if (g2f[it.row()] >= 0) t.emplace_back(g2f[it.row()], g2f[j], it.value());
+      K.setFromTriplets(t.begin(), t.end());
+      lu.factorize(K);
+      return thread_cpu() - t0;
+    };
+    const PathRun with = time_path(m, steps, true, reference), without = time_path(m, steps, false, reference);
+    fmt::print("| {}x{} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.1f} | {:.2f} |\n", n,
+               n, storeys, free.size(), 1e3 * a, 1e3 * l, 1e3 * least(t_ldl), 1e3 * least(t_eig), 1e3 * with.step,
+               1e3 * without.step, with.ratio, without.ratio, with.iterations,
+               (with.process + without.process) / (with.thread + without.thread));
     std::fflush(stdout);
     if (negative != 0) fmt::print(stderr, "warning: {} negative eigenvalues at the reference state\n", negative);
   }

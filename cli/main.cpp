@@ -4,6 +4,8 @@
 //   beamfea sweep sweep.json --out DIR   many cases, one table DIR/cases.csv (cli/sweep_command.cpp)
 // Exit codes: 0 success, 1 an analysis failed, 2 bad input (DIR left as it was).
 #include <CLI/CLI.hpp>
+#include <dlfcn.h>
+
 #include <iostream>
 
 #include "cli/sweep_command.hpp"
@@ -11,12 +13,27 @@
 #include "core/version.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
+#include "solvers/blas_threads.hpp"
 
 namespace {
 
 int report_error(const std::exception& e, int code) {
   std::cerr << "beamfea: error: " << e.what() << "\n";
   return code;
+}
+
+// The solvers' BLAS-thread hook (solvers/blas_threads.hpp) on OpenBLAS, when it is the BLAS loaded.
+void install_openblas_threads_hook() {
+  using Set = void (*)(int);
+  using Get = int (*)();
+  const auto set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  const auto get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  if (!set || !get) return;
+  beamfea::install_blas_threads_hook([set, get](int threads) {
+    const int previous = get();
+    if (threads != previous) set(threads);
+    return previous;
+  });
 }
 
 }  // namespace
@@ -49,6 +66,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
 
+  install_openblas_threads_hook();
   if (*sweep->app) return beamfea::cli::run_sweep_command(*sweep);
   // Bad input (InputError, ModelError from validation) is exit 2 and writes nothing; anything
   // that escapes a run after validation is exit 1.

@@ -125,6 +125,10 @@ ojson matrix_to_json(const Eigen::MatrixXd& m);
 // emplace search linearly, so an object of n ids built by them costs O(n^2): 12.5 s at 2e5 DOFs).
 // The caller guarantees the key is new (ids are unique within a collection of the model).
 void append_new_key(ojson& object, const std::string& key, ojson value);
+// An empty object with room for n keys: appending then never reallocates, which matters because
+// ordered_json's (const key, value) pairs are copied, not moved, when its vector grows (a deep
+// copy of every subtree already in the object).
+ojson object_with_capacity(std::size_t n);
 
 // Registered analyses (io/analysis_*.cpp).
 AnalysisType linear_static_analysis();

@@ -39,7 +39,7 @@ ojson mechanism_json(const Model& model, const std::vector<ZeroEnergyMode>& mode
 // ends (first element's end 1, last element's end 2), and the section forces at stations along it.
 ojson element_json(const Model& model, const LinearStaticResult& r, int interior_stations) {
   const std::vector<Vec12>& end_forces = r.end_forces;
-  ojson out = ojson::object();
+  ojson out = object_with_capacity(model.members.size());
   for (std::size_t mi = 0; mi < model.members.size(); ++mi) {
     const auto& mem = model.members[mi];
     const Vec12& first = end_forces[mem.elements.front()];
@@ -51,19 +51,21 @@ ojson element_json(const Model& model, const LinearStaticResult& r, int interior
     o["end_forces"] = ojson::array({to_json(Vec6(ends.head<6>())), to_json(Vec6(ends.tail<6>()))});
     o["section_forces"] = ojson::array({to_json(Vec6(s.head<6>())), to_json(Vec6(s.tail<6>()))});
     if (mem.type == MemberType::Beam) {
+      const auto stations = member_stations(model, static_cast<int>(mi), end_forces, r.element_loads, interior_stations);
       ojson st = ojson::array();
-      for (const auto& x : member_stations(model, static_cast<int>(mi), end_forces, r.element_loads, interior_stations))
-        st.push_back(ojson{{"x", x.x}, {"forces", to_json(x.forces)}});
-      o["stations"] = st;
+      st.get_ref<ojson::array_t&>().reserve(stations.size());
+      for (const auto& x : stations) st.push_back(ojson{{"x", x.x}, {"forces", to_json(x.forces)}});
+      o["stations"] = std::move(st);
     }
     if (mem.elements.size() > 1) {
       ojson segs = ojson::array();
+      segs.get_ref<ojson::array_t&>().reserve(mem.elements.size());
       for (int e : mem.elements) {
         const Vec12& f = end_forces[e];
         segs.push_back(ojson{{"id", model.elements[e].id},
                              {"end_forces", ojson::array({to_json(Vec6(f.head<6>())), to_json(Vec6(f.tail<6>()))})}});
       }
-      o["segments"] = segs;
+      o["segments"] = std::move(segs);
     }
     append_new_key(out, mem.id, std::move(o));
   }
@@ -108,16 +110,16 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
     out.result["mechanism"] = mechanism_json(model, r.modes);
     return out;
   }
-  ojson nodes = ojson::object();
+  ojson nodes = object_with_capacity(model.nodes.size());
   for (std::size_t n = 0; n < model.nodes.size(); ++n) {
     ojson o;
     o["displacement"] = to_json(Vec6(r.u.segment<6>(6 * n)));
     if (r.supported[n]) o["reaction"] = to_json(r.reactions[n]);
     append_new_key(nodes, model.nodes[n].id, std::move(o));
   }
-  out.result["nodes"] = nodes;
+  out.result["nodes"] = std::move(nodes);
   out.result["elements"] = element_json(model, r, stations);
-  ojson joints = ojson::object();
+  ojson joints = object_with_capacity(model.joints.size());
   int offset = 6 * static_cast<int>(model.nodes.size());
   for (std::size_t j = 0; j < model.joints.size(); ++j) {
     const int nc = model.joints[j].coordinates();
@@ -126,7 +128,7 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
                          {"reaction", to_json(r.joint_forces[j])}});
     offset += nc;
   }
-  out.result["joints"] = joints;
+  out.result["joints"] = std::move(joints);
   out.result["statically_indeterminate"] = r.statically_indeterminate;
   if (!ctx.out_dir.empty() && ctx.write_vtk) {
     VtkFrame f;

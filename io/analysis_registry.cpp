@@ -88,7 +88,19 @@ const char* to_string(AnalysisTermination t) {
 
 std::string AnalysisOutcome::brief_report() const { return std::string(to_string(termination)) + ": " + message; }
 
+namespace {
+bool all_finite(const ojson& v) {
+  if (v.is_number_float()) return std::isfinite(v.get<double>());
+  if (v.is_array() || v.is_object())
+    for (const auto& x : v)
+      if (!all_finite(x)) return false;
+  return true;
+}
+}  // namespace
+
 std::string first_non_finite(const ojson& v, const std::string& path) {
+  // The paths are built only when there is something to name (a result has thousands of numbers).
+  if (all_finite(v)) return "";
   if (v.is_number_float()) return std::isfinite(v.get<double>()) ? "" : (path.empty() ? "(value)" : path);
   if (v.is_array()) {
     for (std::size_t i = 0; i < v.size(); ++i)
@@ -105,17 +117,26 @@ void append_new_key(ojson& object, const std::string& key, ojson value) {
   static_cast<ojson::object_t::Container&>(map).emplace_back(key, std::move(value));
 }
 
-ojson to_json(const Vec3& v) { return ojson::array({v[0], v[1], v[2]}); }
-ojson to_json(const Vec6& v) {
+ojson object_with_capacity(std::size_t n) {
+  ojson o = ojson::object();
+  static_cast<ojson::object_t::Container&>(o.get_ref<ojson::object_t&>()).reserve(n);
+  return o;
+}
+
+namespace {
+// An array of the n numbers at p, allocated once (push_back would grow it 1, 2, 4, 8).
+ojson number_array(const double* p, std::size_t n) {
   ojson a = ojson::array();
-  for (int i = 0; i < 6; ++i) a.push_back(v[i]);
+  auto& v = a.get_ref<ojson::array_t&>();
+  v.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) v.emplace_back(p[i]);
   return a;
 }
-ojson to_json(const Eigen::VectorXd& v) {
-  ojson a = ojson::array();
-  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(v[i]);
-  return a;
-}
+}  // namespace
+
+ojson to_json(const Vec3& v) { return number_array(v.data(), 3); }
+ojson to_json(const Vec6& v) { return number_array(v.data(), 6); }
+ojson to_json(const Eigen::VectorXd& v) { return number_array(v.data(), static_cast<std::size_t>(v.size())); }
 ojson to_json(const Mat6& m) {
   ojson a = ojson::array();
   for (int i = 0; i < 6; ++i) a.push_back(to_json(Vec6(m.row(i).transpose())));

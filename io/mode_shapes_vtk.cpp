@@ -8,7 +8,7 @@
 namespace beamfea {
 
 ojson mode_nodes_json(const Model& model, const Eigen::VectorXd& u) {
-  ojson nodes = ojson::object();
+  ojson nodes = object_with_capacity(model.nodes.size());
   for (std::size_t n = 0; n < model.nodes.size(); ++n)
     append_new_key(nodes, model.nodes[n].id, ojson{{"displacement", to_json(Vec6(u.segment<6>(6 * static_cast<Eigen::Index>(n))))}});
   return nodes;

@@ -20,11 +20,24 @@ constexpr std::size_t kMaxIndexDigits = 9;
 
 // An output value flattened into (column name, cell) pairs: name[i][j] for arrays, name.key for
 // objects.
-void flatten(const ojson& v, const std::string& name, std::vector<std::pair<std::string, std::string>>& out) {
+// `name` is the caller's buffer: suffixes are appended and taken off again (no string per level).
+void flatten(const ojson& v, std::string& name, std::vector<std::pair<std::string, std::string>>& out) {
+  const std::size_t length = name.size();
   if (v.is_array()) {
-    for (std::size_t i = 0; i < v.size(); ++i) flatten(v[i], name + "[" + std::to_string(i) + "]", out);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      name += '[';
+      name += std::to_string(i);
+      name += ']';
+      flatten(v[i], name, out);
+      name.resize(length);
+    }
   } else if (v.is_object()) {
-    for (const auto& [k, x] : v.items()) flatten(x, name + "." + k, out);
+    for (const auto& [k, x] : v.items()) {
+      name += '.';
+      name += k;
+      flatten(x, name, out);
+      name.resize(length);
+    }
   } else {
     out.emplace_back(name, csv_cell(v));
   }
@@ -60,12 +73,63 @@ const char* to_string(SweepCaseResult::Status s) {
   return "?";
 }
 
-SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir) {
+bool SweepCaseDocument::set(const json::json_pointer& p, const json& value) {
+  try {
+    if (!doc_.contains(p)) return false;
+    json& slot = doc_.at(p);
+    saved_.emplace_back(&p, std::move(slot));
+    slot = value;
+    return true;
+  } catch (const json::exception&) {
+    return false;  // Sweep::document names the error
+  }
+}
+
+void SweepCaseDocument::restore() {
+  if (fresh_) {
+    doc_ = sweep_->base;
+    fresh_ = false;
+  } else {
+    for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) doc_.at(*it->first) = std::move(it->second);
+  }
+  saved_.clear();
+}
+
+const json& SweepCaseDocument::apply(std::size_t index) {
+  restore();
+  bool in_place = true;
+  auto set_all = [&](const std::vector<json::json_pointer>& pointers, const json& value) {
+    for (const auto& p : pointers)
+      if (in_place) in_place = set(p, value);
+  };
+  if (!sweep_->grid.empty()) {
+    for (std::size_t a = 0; a < sweep_->grid.size() && in_place; ++a) {
+      const auto& axis = sweep_->grid[a];
+      if (!axis.patches.empty()) in_place = false;
+      else set_all(axis.pointers, axis.values[sweep_->grid_value(index, a)]);
+    }
+  } else {
+    for (const auto& c : sweep_->list[index].changes) {
+      if (!c.patch.is_null()) in_place = false;
+      else set_all(c.pointers, c.value);
+    }
+  }
+  if (!in_place) {
+    restore();
+    doc_ = sweep_->document(index);
+    fresh_ = true;
+  }
+  return doc_;
+}
+
+SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir,
+                               SweepCaseDocument* documents) {
   const auto t0 = std::chrono::steady_clock::now();
   SweepCaseResult r;
   r.outputs.resize(sweep.outputs.size());
   try {
-    const json doc = sweep.document(index);
+    json copy;
+    const json& doc = documents ? documents->apply(index) : (copy = sweep.document(index));
     const Model model = load_and_check(doc);
     RunOptions opt;
     opt.out_dir = keep_dir;
@@ -74,8 +138,10 @@ SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std:
     const RunReport report = run_document(model, doc, opt);
     std::string missing;
     for (std::size_t o = 0; o < sweep.outputs.size(); ++o) {
-      if (const ojson* v = find_path(report.results, sweep.outputs[o])) flatten(*v, sweep.outputs[o].name, r.outputs[o]);
-      else missing += (missing.empty() ? "" : ", ") + sweep.outputs[o].name;
+      if (const ojson* v = find_path(report.results, sweep.outputs[o])) {
+        std::string name = sweep.outputs[o].name;
+        flatten(*v, name, r.outputs[o]);
+      } else missing += (missing.empty() ? "" : ", ") + sweep.outputs[o].name;
     }
     if (report.failed) {
       r.status = SweepCaseResult::Status::AnalysisFailed;

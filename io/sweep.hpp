@@ -80,6 +80,28 @@ struct Sweep {
   std::vector<SweepChange> changes(std::size_t index) const;
   // The case's document: the base with the case's changes applied (throws InputError).
   nlohmann::json document(std::size_t index) const;
+  // Grid case `index`: the index of its value on `axis` (last axis fastest).
+  std::size_t grid_value(std::size_t index, std::size_t axis) const;
+};
+
+// A worker's copy of the base document that each case changes in place and puts back afterwards:
+// a case that sets values the base already has copies only those values, not the whole document
+// (a small model's sweep spends as long copying the document as analysing it). Cases with
+// patches, or pointers the base lacks, get a fresh copy (Sweep::document) as before.
+class SweepCaseDocument {
+ public:
+  explicit SweepCaseDocument(const Sweep& sweep) : sweep_(&sweep), doc_(sweep.base) {}
+  // The case's document (throws InputError as Sweep::document); valid until the next call.
+  const nlohmann::json& apply(std::size_t index);
+
+ private:
+  bool set(const nlohmann::json::json_pointer& p, const nlohmann::json& value);
+  void restore();
+
+  const Sweep* sweep_;
+  nlohmann::json doc_;
+  std::vector<std::pair<const nlohmann::json::json_pointer*, nlohmann::json>> saved_;  // values to put back
+  bool fresh_ = false;  // doc_ is a case's fresh copy: the base is copied back on the next call
 };
 
 // Reads a sweep document; relative "base" paths are resolved against `directory`.
@@ -99,6 +121,8 @@ struct SweepCaseResult {
 const char* to_string(SweepCaseResult::Status s);
 
 // Runs one case in process. keep_dir non-empty: results.json and VTK files written there.
-SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir = {});
+// `documents` (may be null): the calling worker's SweepCaseDocument, reused from case to case.
+SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir = {},
+                               SweepCaseDocument* documents = nullptr);
 
 }  // namespace beamfea

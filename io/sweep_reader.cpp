@@ -226,6 +226,11 @@ std::vector<SweepChange> Sweep::changes(std::size_t index) const {
   return out;
 }
 
+std::size_t Sweep::grid_value(std::size_t index, std::size_t axis) const {
+  for (std::size_t a = grid.size(); a-- > axis + 1;) index /= grid[a].values.size();
+  return index % grid[axis].values.size();
+}
+
 json Sweep::document(std::size_t index) const {
   json doc = base;
   for (const auto& c : changes(index)) {

@@ -1,5 +1,7 @@
 #include "io/sweep_table.hpp"
 
+#include <string_view>
+
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <unistd.h>
@@ -46,26 +48,67 @@ std::string read_text(const std::filesystem::path& path) {
   return ss.str();
 }
 
-std::string first_field(const std::string& row) {
-  std::string line = row;
-  if (!line.empty() && line.back() == '\n') line.pop_back();
-  const auto f = csv_split(line);
-  return f.empty() ? "" : f[0];
+// Field k of a CSV row (its final line break ignored), as csv_split(row)[k] ("" past the last field),
+// without splitting the other fields: finishing a table reads two fields of every row.
+std::string csv_field_at(std::string_view line, std::size_t k) {
+  if (!line.empty() && line.back() == '\n') line.remove_suffix(1);
+  std::string f;
+  std::size_t field = 0;
+  bool quoted = false, in_quotes = false, has = false;  // has: the current field has text
+  auto put = [&](char c) {
+    has = true;
+    if (field == k) f += c;
+  };
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (in_quotes) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        put('"');
+        ++i;
+      } else if (c == '"') {
+        in_quotes = false;
+      } else {
+        put(c);
+      }
+    } else if (c == '"' && !has && !quoted) {
+      in_quotes = quoted = true;
+    } else if (c == ',') {
+      if (field == k) return f;
+      ++field;
+      quoted = has = false;
+    } else if (c != '\r') {
+      put(c);
+    }
+  }
+  return field == k ? f : std::string();
 }
+
+std::string first_field(const std::string& row) { return csv_field_at(row, 0); }
 
 }  // namespace
 
 std::string csv_cell(const nlohmann::json& v) { return cell_text(v); }
 std::string csv_cell(const ojson& v) { return cell_text(v); }
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) {
-    if (c == '"') q += '"';
-    q += c;
+namespace {
+// Appends s to line as a CSV field (csv_field) without a copy of it.
+void append_csv_field(std::string& line, const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) {
+    line += s;
+    return;
   }
-  q += '"';
+  line += '"';
+  for (char c : s) {
+    if (c == '"') line += '"';
+    line += c;
+  }
+  line += '"';
+}
+}  // namespace
+
+std::string csv_field(const std::string& s) {
+  std::string q;
+  append_csv_field(q, s);
   return q;
 }
 
@@ -102,7 +145,7 @@ std::string csv_line(const std::vector<std::string>& cells) {
   std::string line;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     if (i) line += ',';
-    line += csv_field(cells[i]);
+    append_csv_field(line, cells[i]);
   }
   line += '\n';
   return line;
@@ -156,8 +199,16 @@ SweepColumns sweep_columns_from_header(const Sweep& s, const std::vector<std::st
 }
 
 std::string sweep_row(const Sweep& s, std::size_t index, const SweepColumns& cols, const SweepCaseResult& r) {
-  std::vector<std::string> cells{s.case_id(index)};
-  for (const auto& p : s.parameters(index)) cells.push_back(p.is_null() ? "" : cell_text(p));
+  // Written field by field into the line (csv_line's format), without a vector of cell copies.
+  std::string line;
+  bool first = true;
+  auto add = [&](const std::string& cell) {
+    if (!first) line += ',';
+    first = false;
+    append_csv_field(line, cell);
+  };
+  add(s.case_id(index));
+  for (const auto& p : s.parameters(index)) add(p.is_null() ? "" : cell_text(p));
   for (std::size_t o = 0; o < cols.outputs.size(); ++o) {
     const auto& names = cols.outputs[o];
     static const std::vector<std::pair<std::string, std::string>> none;
@@ -165,20 +216,21 @@ std::string sweep_row(const Sweep& s, std::size_t index, const SweepColumns& col
     bool same = got.size() == names.size();
     for (std::size_t k = 0; same && k < names.size(); ++k) same = got[k].first == names[k];
     if (same) {
-      for (const auto& g : got) cells.push_back(g.second);
+      for (const auto& g : got) add(g.second);
       continue;
     }
     std::unordered_map<std::string, const std::string*> byname;
     for (const auto& g : got) byname.emplace(g.first, &g.second);
     for (const auto& n : names) {
       auto it = byname.find(n);
-      cells.push_back(it == byname.end() ? "" : *it->second);
+      add(it == byname.end() ? std::string() : *it->second);
     }
   }
-  cells.push_back(to_string(r.status));
-  cells.push_back(without_line_breaks(r.message));
-  cells.push_back(fmt::format("{:.6f}", r.wall_time_s));
-  return csv_line(cells);
+  add(to_string(r.status));
+  add(without_line_breaks(r.message));
+  add(fmt::format("{:.6f}", r.wall_time_s));
+  line += '\n';
+  return line;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -294,10 +346,7 @@ SweepTableCounts finish_sweep_table(const Sweep& s, const std::filesystem::path&
   std::string text = csv_line(t.header);
   for (const auto& [i, row] : rows) {
     text += row;
-    std::string line = row;
-    line.pop_back();
-    const auto f = csv_split(line);
-    const std::string status = f.size() > status_col ? f[status_col] : "";
+    const std::string status = csv_field_at(row, status_col);
     if (status == to_string(SweepCaseResult::Status::Ok)) ++counts.ok;
     else if (status == to_string(SweepCaseResult::Status::BadInput)) ++counts.bad_input;
     else ++counts.analysis_failed;

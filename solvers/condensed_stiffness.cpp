@@ -5,8 +5,11 @@
 #include <Eigen/UmfPackSupport>
 #include <fmt/format.h>
 
+#include <type_traits>
+
 #include "core/assembly.hpp"
 #include "core/errors.hpp"
+#include "solvers/dense_condensation.hpp"
 #include "solvers/initial_stress.hpp"
 #include "solvers/linear_static.hpp"
 #include "solvers/sparse_factor.hpp"
@@ -115,10 +118,9 @@ Vec6 reproducible_direction(Vec6 v) {
   return v[k] < 0 ? Vec6(-v) : v;
 }
 
-// K_z = -M of the saddle point [K A^T; A 0][X; M] = [0; I] for dense rows A (r x n); false when singular.
-bool condense_rows(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz) {
-  // Small model, K positive definite, well-posed rows: dense Schur complement (solvers/sparse_factor.hpp).
-  if (condense_dense(K, A, Kz)) return true;
+// K_z = -M of the saddle point [K A^T; A 0][X; M] = [0; I] for dense rows A (r x n) by UMFPACK;
+// false when singular.
+bool saddle_point_lu(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz) {
   const int n = static_cast<int>(K.rows()), r = static_cast<int>(A.rows());
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(K.nonZeros() + 2 * A.size());
@@ -146,10 +148,35 @@ bool condense_rows(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::Matri
   return true;
 }
 
+// The same, first by the dense Schur complement (small model, K positive definite, well-posed rows:
+// solvers/dense_condensation.hpp), else by the saddle point.
+bool condense_rows(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz) {
+  return condense_dense(K, A, Kz) || saddle_point_lu(K, A, Kz);
+}
+bool condense_rows(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz) {
+  return condense_dense(K, A, Kz) || saddle_point_lu(SparseMatrix(K.sparseView()), A, Kz);
+}
+
+template <class Matrix>
+CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
+                                      double L, const CondensedStiffnessOptions& options);
+
 }  // namespace
 
 CondensedStiffness node_compliance(const SparseMatrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
                                    double L, const CondensedStiffnessOptions& options) {
+  return node_compliance_of(K, Tn, col_scale, L, options);
+}
+CondensedStiffness node_compliance(const Eigen::MatrixXd& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
+                                   double L, const CondensedStiffnessOptions& options) {
+  return node_compliance_of(K, Tn, col_scale, L, options);
+}
+
+namespace {
+
+template <class Matrix>
+CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
+                                      double L, const CondensedStiffnessOptions& options) {
   options.validate();
   CondensedStiffness out;
   Vec6 S;
@@ -172,14 +199,19 @@ CondensedStiffness node_compliance(const SparseMatrix& K, const Eigen::MatrixXd&
     out.ok = true;
     return out;
   }
-  const Eigen::MatrixXd Ur = U.leftCols(r);
-  const Eigen::MatrixXd A = Ur.transpose() * S.asDiagonal() * Tn;
+  // At most six rows: fixed-capacity matrices (no heap, products by coefficients rather than GEMM).
+  using Rows6 = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+  const Rows6 Ur = U.leftCols(r);
+  Eigen::MatrixXd A(r, Tn.cols());
+  A.noalias() = (Ur.transpose() * S.asDiagonal()).lazyProduct(Tn);
   Eigen::MatrixXd Kz;
   if (!condense_rows(K, A, Kz)) return out;
   // Free directions of the node: the null space of K_z.
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Kz);
+  const Small Kzs = Kz;
+  Eigen::SelfAdjointEigenSolver<Small> es(Kzs);
   const double big = es.eigenvalues().cwiseAbs().maxCoeff();
-  Eigen::VectorXd inv = Eigen::VectorXd::Zero(r);
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> inv = Eigen::VectorXd::Zero(r);
   for (int i = 0; i < r; ++i) {
     const double ev = es.eigenvalues()[i];
     if (big > 0.0 && std::abs(ev) > options.rank_tolerance * big) {
@@ -188,12 +220,12 @@ CondensedStiffness node_compliance(const SparseMatrix& K, const Eigen::MatrixXd&
       out.null_space.push_back(reproducible_direction(S.cwiseInverse().asDiagonal() * Ur * es.eigenvectors().col(i)));
     }
   }
-  const Eigen::MatrixXd Cz = es.eigenvectors() * inv.asDiagonal() * es.eigenvectors().transpose();
+  const Small Cz = es.eigenvectors() * inv.asDiagonal() * es.eigenvectors().transpose();
   const Mat6 Sinv = S.cwiseInverse().asDiagonal();
   out.compliance = Sinv * Ur * Cz * Ur.transpose() * Sinv;
   out.compliance = 0.5 * (out.compliance + out.compliance.transpose()).eval();
   if (r == 6) {
-    out.K = S.asDiagonal() * Ur * Kz * Ur.transpose() * S.asDiagonal();  // K_c itself
+    out.K = S.asDiagonal() * Ur * Kzs * Ur.transpose() * S.asDiagonal();  // K_c itself
   } else {
     // Restricted node: the pseudo-inverse of the compliance in the components [ux .. rz] (as the
     // loaded stiffness of a chain with fewer than six joints has always been reported).
@@ -212,8 +244,9 @@ CondensedStiffness node_compliance(const SparseMatrix& K, const Eigen::MatrixXd&
   return out;
 }
 
-CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const SparseMatrix& K, int node,
-                                    const CondensedStiffnessOptions& options) {
+template <class Matrix>
+CondensedStiffness condense_to_node_of(const Model& model, const DofMap& map, const Matrix& K, int node,
+                                       const CondensedStiffnessOptions& options) {
   options.validate();
   const int n = map.free_size();
   Eigen::MatrixXd Tn = Eigen::MatrixXd::Zero(6, n);
@@ -228,7 +261,8 @@ CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const
   }
   CondensedStiffness out = node_compliance(K, Tn, col_scale, L, options);
   if (!out.ok) {
-    out.modes = zero_energy_modes(model, map, K, 12);
+    if constexpr (std::is_same_v<Matrix, SparseMatrix>) out.modes = zero_energy_modes(model, map, K, 12);
+    else out.modes = zero_energy_modes(model, map, SparseMatrix(K.sparseView()), 12);
     out.message = "holding node '" + model.nodes[node].id + "' still leaves a mechanism; " + describe_mechanism(out.modes);
     return out;
   }
@@ -237,9 +271,30 @@ CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const
   return out;
 }
 
+}  // namespace
+
+CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const SparseMatrix& K, int node,
+                                    const CondensedStiffnessOptions& options) {
+  return condense_to_node_of(model, map, K, node, options);
+}
+CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const Eigen::MatrixXd& K, int node,
+                                    const CondensedStiffnessOptions& options) {
+  return condense_to_node_of(model, map, K, node, options);
+}
+
 CondensedStiffness linear_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options) {
   const DofMap map(model);
   const LinearStructure structure(model);
+  if (map.free_size() <= kDenseMaxDofs) {
+    // Small model: assembled into a dense matrix and condensed by the dense Schur complement.
+    DenseAssembler dense(map);
+    dense.begin();
+    structure.assemble(map, dense);
+    dense.end();
+    CondensedStiffness out = condense_to_node(model, map, dense.K_ff(), node, options);
+    out.statically_indeterminate = map.redundant_constraints();
+    return out;
+  }
   SystemAssembler assembler(map);
   assembler.begin();
   structure.assemble(map, assembler);

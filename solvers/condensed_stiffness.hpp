@@ -65,9 +65,14 @@ RawCondensation condense_to_raw_dofs(const DofMap& map, const SparseMatrix& K, c
 // (message empty) when holding the node's movable directions still leaves a mechanism.
 CondensedStiffness node_compliance(const SparseMatrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
                                    double L, const CondensedStiffnessOptions& options = {});
+// The same for a dense K (small models: solvers/dense_condensation.hpp).
+CondensedStiffness node_compliance(const Eigen::MatrixXd& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
+                                   double L, const CondensedStiffnessOptions& options = {});
 
 // Condensed stiffness of `node` for the reduced matrix K (free x free) of `map`.
 CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const SparseMatrix& K, int node,
+                                    const CondensedStiffnessOptions& options = {});
+CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const Eigen::MatrixXd& K, int node,
                                     const CondensedStiffnessOptions& options = {});
 
 // Rank, null space and scaled eigenvalues of a 6x6 node stiffness (length scale L).

@@ -41,24 +41,27 @@ class ShiftInvert {
   Eigen::SparseLU<SparseMatrix> lu_;
   bool use_lu_ = false;
 };
-}  // namespace
-
-EigenPairs lowest_eigenpairs(const SparseMatrix& A, int count, double shift) {
-  EigenPairs out;
-  const Eigen::Index n = A.rows();
-  count = static_cast<int>(std::min<Eigen::Index>(count, n));
-  if (count <= 0) return out;
-  if (n <= 200 || count >= n - 1) {
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(A)};
-    out.values = es.eigenvalues().head(count);
-    out.vectors = es.eigenvectors().leftCols(count);
-    return out;
+// The operator of lowest_eigenpairs_of_inverse: A^-1 as given (the shift is always zero).
+class GivenInverse {
+ public:
+  using Scalar = double;
+  GivenInverse(Eigen::Index n, const InverseOp& f) : n_(n), f_(f) {}
+  Eigen::Index rows() const { return n_; }
+  Eigen::Index cols() const { return n_; }
+  void set_shift(const double& sigma) {
+    if (sigma != 0.0) throw Error("eigen-solver: a given inverse takes no shift");
   }
-  ShiftInvert op(A);
-  const int ncv = static_cast<int>(std::min<Eigen::Index>(n, std::max(2 * count + 1, 20)));
-  Spectra::SymEigsShiftSolver<ShiftInvert> eigs(op, count, ncv, shift);
-  eigs.init();
-  eigs.compute(Spectra::SortRule::LargestMagn, 1000, 1e-10);
+  void perform_op(const double* x_in, double* y_out) const { f_(x_in, y_out); }
+
+ private:
+  Eigen::Index n_;
+  const InverseOp& f_;
+};
+
+// Eigenpairs of the solver sorted by ascending eigenvalue.
+template <class Solver>
+EigenPairs ascending(Solver& eigs, Eigen::Index n) {
+  EigenPairs out;
   out.converged = eigs.info() == Spectra::CompInfo::Successful;
   Eigen::VectorXd v = eigs.eigenvalues();
   Eigen::MatrixXd V = eigs.eigenvectors();
@@ -72,6 +75,46 @@ EigenPairs lowest_eigenpairs(const SparseMatrix& A, int count, double shift) {
     out.vectors.col(i) = V.col(idx[i]);
   }
   return out;
+}
+
+// Lanczos basis size: twice the wanted count plus one, at least 20 (Spectra's advice), at most n.
+int lanczos_size(Eigen::Index n, int count) {
+  return static_cast<int>(std::min<Eigen::Index>(n, std::max(2 * count + 1, 20)));
+}
+constexpr int kMaxRestarts = 1000;
+constexpr double kEigenTolerance = 1e-10;  // Spectra's relative tolerance on the Ritz values
+}  // namespace
+
+EigenPairs lowest_eigenpairs_of_inverse(Eigen::Index n, const InverseOp& inverse, int count, const Eigen::VectorXd* start) {
+  count = static_cast<int>(std::min<Eigen::Index>(count, n - 1));
+  if (count <= 0) return {};
+  GivenInverse op(n, inverse);
+  Spectra::SymEigsShiftSolver<GivenInverse> eigs(op, count, lanczos_size(n, count), 0.0);
+  if (start && start->size() == n && start->squaredNorm() > 0.0) {
+    eigs.init(start->data());
+  } else {
+    eigs.init();
+  }
+  eigs.compute(Spectra::SortRule::LargestMagn, kMaxRestarts, kEigenTolerance);
+  return ascending(eigs, n);
+}
+
+EigenPairs lowest_eigenpairs(const SparseMatrix& A, int count, double shift) {
+  EigenPairs out;
+  const Eigen::Index n = A.rows();
+  count = static_cast<int>(std::min<Eigen::Index>(count, n));
+  if (count <= 0) return out;
+  if (n <= 200 || count >= n - 1) {
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(A)};
+    out.values = es.eigenvalues().head(count);
+    out.vectors = es.eigenvectors().leftCols(count);
+    return out;
+  }
+  ShiftInvert op(A);
+  Spectra::SymEigsShiftSolver<ShiftInvert> eigs(op, count, lanczos_size(n, count), shift);
+  eigs.init();
+  eigs.compute(Spectra::SortRule::LargestMagn, kMaxRestarts, kEigenTolerance);
+  return ascending(eigs, n);
 }
 
 }  // namespace beamfea

@@ -68,6 +68,10 @@ struct KinsolSolver::Impl {
   const JacobianFn* jacobian = nullptr;
   std::exception_ptr error;
   Eigen::VectorXd u_tmp, f_tmp;
+  // The last residual evaluated (the returned iterate's, unless KINSOL stopped elsewhere): the final
+  // report reuses it instead of evaluating the residual once more.
+  Eigen::VectorXd last_u, last_f;
+  bool last_valid = false;
 
   int factorize() {
     J.makeCompressed();
@@ -93,6 +97,9 @@ struct KinsolSolver::Impl {
       (*self->residual)(self->u_tmp, self->f_tmp);
       if (!self->f_tmp.allFinite()) return 1;  // recoverable: KINSOL backtracks where it can
       view(f) = self->f_tmp;
+      self->last_u = self->u_tmp;
+      self->last_f = self->f_tmp;
+      self->last_valid = true;
       return 0;
     } catch (...) {
       self->error = std::current_exception();
@@ -189,6 +196,7 @@ KinsolSummary KinsolSolver::solve(Eigen::VectorXd& u, const Eigen::VectorXd& fsc
   im.residual = &residual;
   im.jacobian = &jacobian;
   im.error = nullptr;
+  im.last_valid = false;
 
   Context ctx;
   Vector vu(n, ctx.ctx), vus(n, ctx.ctx), vfs(n, ctx.ctx);
@@ -249,7 +257,8 @@ KinsolSummary KinsolSolver::solve(Eigen::VectorXd& u, const Eigen::VectorXd& fsc
   u = view(vu.v);
   // The max norm of the scaled residual at the returned point.
   Eigen::VectorXd F(n);
-  residual(u, F);
+  if (im.last_valid && im.last_u.size() == n && im.last_u == u) F = im.last_f;
+  else residual(u, F);
   sum.residual_norm = F.size() ? (F.cwiseProduct(fscale)).cwiseAbs().maxCoeff() : 0.0;
   switch (flag) {
     case KIN_SUCCESS:

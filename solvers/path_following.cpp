@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "solvers/blas_threads.hpp"
 #include "solvers/buckling.hpp"
 #include "solvers/corotated_member_loads.hpp"
 #include "solvers/path/critical_points.hpp"
@@ -69,7 +70,8 @@ int record(PathResult& res, const PathOptions& o, const Model& original, const P
     else ps.frequencies_failure = f.message;
   }
   ps.state = c.state;
-  ps.end_forces = P.ns.evaluate(c.state, Eigen::VectorXd::Zero(P.ns.reference_map().raw_size()), false).end_forces;
+  // The evaluation at the state, shared with the stability analysis and the next predictor.
+  ps.end_forces = P.evaluation_at(c).end_forces;
   // Plus the member loads' fixed-end forces in the co-rotated frames (dead loads), as linear_static.
   const auto fe = corotated_fixed_end_forces(original, original.default_loads(), c.state.x, c.state.R, c.lambda);
   for (std::size_t e = 0; e < fe.size(); ++e) ps.end_forces[e] += fe[e];
@@ -106,6 +108,8 @@ bool stopped(PathResult& res, const PathOptions& o, const Model& original, const
 
 PathResult follow_path(const Model& original, const PathOptions& o) {
   o.validate(original);
+  // Small factorisations every few milliseconds: one BLAS thread (solvers/blas_threads.hpp).
+  const SingleBlasThread one_blas_thread;
   PathResult res;
   const Model model = o.imperfection_mode > 0 ? imperfect_model(original, o.imperfection_mode, o.imperfection_amplitude)
                                               : original;

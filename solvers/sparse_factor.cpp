@@ -3,9 +3,11 @@
 #include <Eigen/Cholesky>
 #include <Eigen/CholmodSupport>
 #include <Eigen/UmfPackSupport>
+#include <algorithm>
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "solvers/dense_condensation.hpp"
 
 namespace beamfea {
 
@@ -29,20 +31,22 @@ namespace {
 class Cholesky : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
  public:
   double rcond() { return m_cholmodFactor ? cholmod_rcond(m_cholmodFactor, &this->cholmod()) : 0.0; }
+  // METIS alone, or CHOLMOD's default trials (nmethods = 0: AMD, then METIS if AMD's fill is poor).
+  void metis_only(bool on) {
+    cholmod_common& c = this->cholmod();
+    c.nmethods = on ? 1 : 0;
+    c.method[0].ordering = on ? CHOLMOD_METIS : CHOLMOD_GIVEN;  // GIVEN: cholmod_defaults' value
+    c.postorder = 1;
+  }
 };
 
-// CHOLMOD's estimate for L L^T (cholmod_rcond): (min |L_ii| / max |L_ii|)^2.
-double rcond_of(const Eigen::LLT<Eigen::MatrixXd>& llt) {
-  const auto d = llt.matrixLLT().diagonal().cwiseAbs();
-  if (d.size() == 0) return 1.0;
-  const double lo = d.minCoeff(), hi = d.maxCoeff();
-  return hi > 0.0 ? (lo / hi) * (lo / hi) : 0.0;
-}
 }  // namespace
 
 struct SparseFactor::Impl {
-  Eigen::LLT<Eigen::MatrixXd> dense;
-  Eigen::MatrixXd dense_a;  // kept between factorisations: no allocation while the size stays
+  // The dense factor (solvers/dense_condensation.hpp), kept between factorisations: no
+  // allocation while the size stays.
+  Eigen::MatrixXd dense_l;
+  std::vector<int> dense_last;
   Cholesky llt;
   Eigen::UmfPackLU<SparseMatrix> lu;
   Eigen::Index rows = -1, nnz = -1;
@@ -58,6 +62,40 @@ SparseMatrix scaled(const SparseMatrix& K, const Eigen::VectorXd& s) {
   SparseMatrix A = K;
   for (int j = 0; j < A.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(A, j); it; ++it) it.valueRef() *= s[it.row()] * s[j];
+  return A;
+}
+
+SparseMatrix scaled_lower(const SparseMatrix& K, const Eigen::VectorXd& s) {
+  const Eigen::Index n = K.outerSize();
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  const double* value = K.valuePtr();
+  const int* nnz = K.innerNonZeroPtr();  // null when K is compressed
+  // Rows are sorted within a column: the lower part of column j starts at the first row >= j.
+  std::vector<int> first(n), count(n);
+  Eigen::Index total = 0;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const int* b = inner + outer[j];
+    const int* e = b + (nnz ? nnz[j] : outer[j + 1] - outer[j]);
+    first[j] = static_cast<int>(std::lower_bound(b, e, static_cast<int>(j)) - inner);
+    count[j] = static_cast<int>(e - inner) - first[j];
+    total += count[j];
+  }
+  SparseMatrix A(K.rows(), K.cols());
+  A.resizeNonZeros(total);
+  int* a_outer = A.outerIndexPtr();
+  int* a_inner = A.innerIndexPtr();
+  double* a_value = A.valuePtr();
+  a_outer[0] = 0;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const int start = a_outer[j];
+    for (int k = 0; k < count[j]; ++k) {
+      const int p = first[j] + k;
+      a_inner[start + k] = inner[p];
+      a_value[start + k] = value[p] * s[inner[p]] * s[j];
+    }
+    a_outer[j + 1] = start + count[j];
+  }
   return A;
 }
 
@@ -81,22 +119,24 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
   // the caller diagnoses it (and CHOLMOD is never handed an empty column).
   if (!unrestrained_.empty()) return FactorStatus::NotPositiveDefinite;
   if (n > 0 && n <= options.dense_max_dofs) {
-    // Small system: dense Cholesky of S K S (lower triangle, as CHOLMOD reads it). A failure
-    // falls through to the sparse path below, which decides as before (CHOLMOD, then LU).
-    Eigen::MatrixXd& D = impl_->dense_a;
+    // Small system: dense Cholesky of S K S (lower triangle, as CHOLMOD reads it), skipping the
+    // zeros of the matrix (solvers/dense_condensation.hpp). A failure falls through to the sparse
+    // path below, which decides as before (CHOLMOD, then LU).
+    Eigen::MatrixXd& D = impl_->dense_l;
     D.setZero(n, n);
     for (int j = 0; j < K.outerSize(); ++j)
       for (SparseMatrix::InnerIterator it(K, j); it; ++it)
         if (it.row() >= j) D(it.row(), j) = it.value() * s_[it.row()] * s_[j];
-    impl_->dense.compute(D);
-    if (impl_->dense.info() == Eigen::Success) {
-      rcond_ = rcond_of(impl_->dense);
+    if (cholesky_in_place(D, impl_->dense_last)) {
+      rcond_ = cholesky_rcond(D);
       cholesky_ok_ = dense_ok_ = true;
       return rcond_ >= options.singular_rcond ? FactorStatus::Ok : FactorStatus::NotPositiveDefinite;
     }
   }
-  const SparseMatrix A = scaled(K, s_);
+  // CHOLMOD reads the lower triangle only (Eigen::Lower): the scaled copy is of that half.
+  const SparseMatrix A = scaled_lower(K, s_);
   if (!impl_->analysed || impl_->rows != n || impl_->nnz != A.nonZeros()) {
+    impl_->llt.metis_only(n >= kMetisOnlyMinDofs);
     impl_->llt.analyzePattern(A);
     if (impl_->llt.info() != Eigen::Success) {
       impl_->analysed = false;
@@ -120,11 +160,12 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
     return FactorStatus::NotPositiveDefinite;
   }
   if (!options.allow_lu) return FactorStatus::NotPositiveDefinite;
+  const SparseMatrix full = scaled(K, s_);  // UMFPACK needs both triangles
   if (!impl_->lu_analysed) {
-    impl_->lu.analyzePattern(A);
+    impl_->lu.analyzePattern(full);
     impl_->lu_analysed = true;
   }
-  impl_->lu.factorize(A);
+  impl_->lu.factorize(full);
   lu_ok_ = impl_->lu.info() == Eigen::Success;
   return lu_ok_ ? FactorStatus::NotPositiveDefinite : FactorStatus::Singular;
 }
@@ -133,7 +174,11 @@ Eigen::VectorXd SparseFactor::solve(const Eigen::VectorXd& b) const {
   if (s_.size() == 0) return Eigen::VectorXd(0);
   if (!cholesky_ok_ && !lu_ok_) throw Error("SparseFactor::solve: no valid factorisation");
   const Eigen::VectorXd sb = s_.cwiseProduct(b);
-  if (dense_ok_) return s_.cwiseProduct(impl_->dense.solve(sb));
+  if (dense_ok_) {
+    Eigen::VectorXd x = sb;
+    cholesky_solve_in_place(impl_->dense_l, impl_->dense_last, x);
+    return s_.cwiseProduct(x);
+  }
   const Eigen::VectorXd y = cholesky_ok_ ? Eigen::VectorXd(impl_->llt.solve(sb)) : Eigen::VectorXd(impl_->lu.solve(sb));
   return s_.cwiseProduct(y);
 }
@@ -142,7 +187,11 @@ Eigen::MatrixXd SparseFactor::solve(const Eigen::MatrixXd& B) const {
   if (s_.size() == 0) return Eigen::MatrixXd(0, B.cols());
   if (!cholesky_ok_ && !lu_ok_) throw Error("SparseFactor::solve: no valid factorisation");
   const Eigen::MatrixXd SB = s_.asDiagonal() * B;
-  if (dense_ok_) return s_.asDiagonal() * impl_->dense.solve(SB);
+  if (dense_ok_) {
+    Eigen::MatrixXd X = SB;
+    for (Eigen::Index c = 0; c < X.cols(); ++c) cholesky_solve_in_place(impl_->dense_l, impl_->dense_last, X.col(c));
+    return s_.asDiagonal() * X;
+  }
   const Eigen::MatrixXd Y = cholesky_ok_ ? Eigen::MatrixXd(impl_->llt.solve(SB)) : Eigen::MatrixXd(impl_->lu.solve(SB));
   return s_.asDiagonal() * Y;
 }
@@ -150,29 +199,7 @@ Eigen::MatrixXd SparseFactor::solve(const Eigen::MatrixXd& B) const {
 bool condense_dense(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz, const FactorOptions& options) {
   const Eigen::Index n = K.rows();
   if (n == 0 || n > options.dense_max_dofs || A.cols() != n || A.rows() == 0) return false;
-  // Jacobi scaling as in SparseFactor::factorize: S K S, so that the condition estimate does not
-  // depend on units; A K^-1 A^T = (A S) (S K S)^-1 (A S)^T.
-  Eigen::VectorXd s(n);
-  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
-  for (int j = 0; j < K.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(K, j); it; ++it)
-      if (it.row() >= j) D(it.row(), j) = it.value();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (!(D(i, i) > 0.0)) return false;
-    s[i] = 1.0 / std::sqrt(D(i, i));
-  }
-  D = s.asDiagonal() * D * s.asDiagonal();  // lower triangle only, as LLT reads it
-  const Eigen::LLT<Eigen::MatrixXd> llt(D);
-  if (llt.info() != Eigen::Success || rcond_of(llt) < options.singular_rcond) return false;
-  // C = (A S) L^-T L^-1 (A S)^T = W^T W with W = L^-1 (A S)^T.
-  Eigen::MatrixXd W = (A * s.asDiagonal()).transpose();
-  llt.matrixL().solveInPlace(W);
-  const Eigen::MatrixXd C = W.transpose() * W;
-  const Eigen::LLT<Eigen::MatrixXd> lc(C);
-  if (lc.info() != Eigen::Success || rcond_of(lc) < options.singular_rcond) return false;
-  Kz = lc.solve(Eigen::MatrixXd::Identity(C.rows(), C.cols()));
-  Kz = 0.5 * (Kz + Kz.transpose()).eval();
-  return Kz.allFinite();
+  return condense_dense(Eigen::MatrixXd(K), A, Kz, options);  // solvers/dense_condensation.cpp
 }
 
 }  // namespace beamfea

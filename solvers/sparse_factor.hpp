@@ -24,9 +24,19 @@ enum class FactorStatus {
 const char* to_string(FactorStatus s);
 
 // Up to this many DOFs a dense Cholesky replaces CHOLMOD (same scaling, same reciprocal
-// condition estimate): below it CHOLMOD's analysis and supernodal bookkeeping cost more than the
-// n^3/3 flops. Chosen by measurement (bench_small_factor, docs/performance.md "Small models").
+// condition estimate; the factor skips the zeros of the matrix, solvers/dense_condensation.hpp).
+// Measured (bench_small_models, docs/performance.md "Small models"): dense is at least 2.2x faster
+// than CHOLMOD up to 160 DOFs on every model tried; the crossover is near 290 DOFs for 3-D fill
+// and above 360 for a banded matrix. Not raised: beyond 160 the dense factor's (unpermuted)
+// condition estimate would decide singularity for models CHOLMOD decides today.
 inline constexpr int kDenseMaxDofs = 160;
+
+// From this many DOFs CHOLMOD orders by METIS alone. Its default tries AMD first and METIS when
+// AMD's fill looks poor (flops/nnz(L) >= 500), keeping the better; on the frames measured from
+// 2e4 DOFs up (cubes of 21,504 and 97,344 DOFs, a 3-storey building of 95,922) it always ended
+// with METIS, so the AMD trial (a fifth of the analysis at 97,344 DOFs) was spent for nothing.
+// Below, AMD alone is usually chosen and cheaper than METIS (docs/performance.md, "Orderings").
+inline constexpr int kMetisOnlyMinDofs = 20000;
 
 struct FactorOptions {
   double singular_rcond = 1e-13;  // below this (scaled) the matrix is treated as singular
@@ -93,6 +103,9 @@ class PatternMemory {
 
 // S K S for S = scaling.
 SparseMatrix scaled(const SparseMatrix& K, const Eigen::VectorXd& s);
+// The lower triangle (diagonal included) of S K S, compressed: what CHOLMOD reads of a symmetric
+// matrix, in half the memory and time of the full copy.
+SparseMatrix scaled_lower(const SparseMatrix& K, const Eigen::VectorXd& s);
 
 // Condensation onto constraint rows: for K (n x n, symmetric positive definite) and dense rows A
 // (r x n), Kz = (A K^-1 A^T)^-1, which is minus the multiplier block M of the saddle point

@@ -1,5 +1,8 @@
 #include "solvers/structure.hpp"
 
+#include <array>
+#include <span>
+
 #include "core/errors.hpp"
 #include "solvers/member_loading.hpp"
 
@@ -41,20 +44,39 @@ std::array<int, 12> LinearStructure::element_dofs(const DofMap& map, int element
   return d;
 }
 
-void LinearStructure::assemble(const DofMap& map, SystemAssembler& assembler) const {
+template <class Assembler>
+void LinearStructure::assemble_into(const DofMap& map, Assembler& assembler) const {
   for (std::size_t e = 0; e < beams_.size(); ++e) {
     if (!beams_[e]) continue;
     const auto dofs = element_dofs(map, static_cast<int>(e));
     assembler.add(dofs, beams_[e]->stiffness());
   }
+  // A joint has at most 6 coordinates: its stiffness and DOF list stay on the stack.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> Kj;
+  std::array<int, 6> dofs{};
   for (std::size_t j = 0; j < model_->joints.size(); ++j) {
     const auto& jt = model_->joints[j];
     if (!jt.has_stiffness()) continue;
-    std::vector<int> dofs(jt.coordinates());
-    for (int q = 0; q < jt.coordinates(); ++q) dofs[q] = map.raw_joint(static_cast<int>(j), q);
-    assembler.add(dofs, jt.stiffness_as_matrix());
+    const int nq = jt.coordinates();
+    if (nq > 6) {  // not a joint the reader makes; kept general
+      std::vector<int> many(nq);
+      for (int q = 0; q < nq; ++q) many[q] = map.raw_joint(static_cast<int>(j), q);
+      assembler.add(many, jt.stiffness_as_matrix());
+      continue;
+    }
+    if (jt.stiffness_matrix.size() > 0) {
+      Kj = jt.stiffness_matrix;
+    } else {
+      Kj.setZero(nq, nq);
+      for (int i = 0; i < nq && i < static_cast<int>(jt.stiffness.size()); ++i) Kj(i, i) = jt.stiffness[i];
+    }
+    for (int q = 0; q < nq; ++q) dofs[q] = map.raw_joint(static_cast<int>(j), q);
+    assembler.add(std::span<const int>(dofs.data(), nq), Kj);
   }
 }
+
+void LinearStructure::assemble(const DofMap& map, SystemAssembler& assembler) const { assemble_into(map, assembler); }
+void LinearStructure::assemble(const DofMap& map, DenseAssembler& assembler) const { assemble_into(map, assembler); }
 
 Eigen::VectorXd LinearStructure::internal_force(const DofMap& map, const Eigen::VectorXd& u) const {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(map.raw_size());

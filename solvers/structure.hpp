@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/assembly.hpp"
+#include "core/dense_assembly.hpp"
 #include "core/dof_map.hpp"
 #include "core/model.hpp"
 #include "elements/beam.hpp"
@@ -20,6 +21,8 @@ class LinearStructure {
 
   // Assembles the elastic stiffness (beams and joint springs) into `assembler`.
   void assemble(const DofMap& map, SystemAssembler& assembler) const;
+  // The same into a dense K_ff (small models: the dense path of the stiffness condensation).
+  void assemble(const DofMap& map, DenseAssembler& assembler) const;
   // Internal force over raw DOFs for raw displacements u.
   Eigen::VectorXd internal_force(const DofMap& map, const Eigen::VectorXd& u_raw) const;
   // Raw DOFs of an element: its two nodes' 12 components.
@@ -31,6 +34,9 @@ class LinearStructure {
   const Model& model() const { return *model_; }
 
  private:
+  template <class Assembler>
+  void assemble_into(const DofMap& map, Assembler& assembler) const;
+
   const Model* model_;
   std::vector<std::optional<LinearBeam>> beams_;
 };

@@ -182,9 +182,21 @@ std::vector<std::pair<int, double>> PathEquilibrium::crow(const NonlinearState& 
 void PathEquilibrium::jacobian(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, SparseMatrix& J) const {
   const Eval e = state_of(start, s, u);
   const auto ev = ns.evaluate(e.st, e.f_app, true, e.mu_closure, e.lambda);
+  jacobian_from(start, s, u, e, ev.tangent, J);
+}
+
+void PathEquilibrium::jacobian_from(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, const Eval& e,
+                                    const SparseMatrix& tangent, SparseMatrix& J) const {
   const Eigen::VectorXd dg = delta_gens(u);
   const SparseMatrix D = ns.retraction_jacobian(dg);
-  const SparseMatrix KD = ev.tangent * D;
+  // D = I at Delta = 0 (a converged state's own tangent): no product (a spherical joint's block
+  // A^-1 I A is I only to round-off: multiplied as before).
+  const bool at_start = dg.isZero(0.0) && std::none_of(ns.gens().begin(), ns.gens().end(), [](const auto& g) {
+                          return g.kind == NonlinearStructure::GenKind::JointSpherical;
+                        });
+  SparseMatrix KDp;
+  if (!at_start) KDp = tangent * D;
+  const SparseMatrix& KD = at_start ? tangent : KDp;
   const auto tw = ns.twists(e.st);
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(KD.nonZeros() + 16 * (nc + 1));
@@ -273,7 +285,7 @@ Eigen::VectorXd PathEquilibrium::load_pattern(const NonlinearState& st) const {
   return pf;
 }
 
-Eigen::VectorXd PathEquilibrium::tangent(const Converged& c) const {
+StepSpec PathEquilibrium::tangent_spec(const Converged& c) const {
   StepSpec s;
   if (has_loads) {
     s.kind = StepKind::Load;
@@ -282,23 +294,61 @@ Eigen::VectorXd PathEquilibrium::tangent(const Converged& c) const {
     s.kind = StepKind::Control;
     s.control = cvalue(c.state, ctrl);
   }
+  return s;
+}
+
+namespace {
+// Exact equality of two converged states (the key of the evaluation kept by PathEquilibrium).
+bool same_vector(const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return a.size() == b.size() && a == b; }
+bool same_state(const Converged& a, const Converged& b) {
+  if (a.lambda != b.lambda || a.extra_mu != b.extra_mu || !same_vector(a.mu, b.mu)) return false;
+  const NonlinearState &x = a.state, &y = b.state;
+  if (x.x.size() != y.x.size() || x.R.size() != y.R.size() || x.q.size() != y.q.size() || x.Q.size() != y.Q.size())
+    return false;
+  for (std::size_t i = 0; i < x.x.size(); ++i)
+    if (x.x[i] != y.x[i] || x.R[i] != y.R[i]) return false;
+  for (std::size_t i = 0; i < x.q.size(); ++i)
+    if (!same_vector(x.q[i], y.q[i])) return false;
+  for (std::size_t i = 0; i < x.Q.size(); ++i)
+    if (x.Q[i] != y.Q[i]) return false;
+  return true;
+}
+}  // namespace
+
+const NonlinearStructure::Evaluation& PathEquilibrium::evaluation_at(const Converged& c) const {
+  if (cache_.valid && same_state(cache_.key, c)) return cache_.ev;
+  cache_.valid = cache_.has_tangent = false;
+  const StepSpec s = tangent_spec(c);
+  const Eval e = state_of(c, s, start_unknowns(c, s));
+  cache_.ev = ns.evaluate(e.st, e.f_app, true, e.mu_closure, e.lambda);
+  cache_.key = c;
+  cache_.valid = true;
+  return cache_.ev;
+}
+
+const Eigen::VectorXd& PathEquilibrium::tangent(const Converged& c) const {
+  const NonlinearStructure::Evaluation& ev = evaluation_at(c);
+  if (cache_.has_tangent) return cache_.t;
+  const StepSpec s = tangent_spec(c);
   const Eigen::VectorXd u0 = start_unknowns(c, s);
-  SparseMatrix J;
-  jacobian(c, s, u0, J);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(J.rows());
+  jacobian_from(c, s, u0, state_of(c, s, u0), ev.tangent, cache_.J);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(cache_.J.rows());
   if (has_loads) {
     rhs.head(nf) = load_pattern(c.state);
   } else {
     rhs[nf + nc] = 1.0;
   }
-  if (!predictor_lu_.factorize(J)) return {};
-  Eigen::VectorXd t = predictor_lu_.solver().solve(rhs);
-  if (!t.allFinite()) return {};
-  return t;
+  cache_.t.resize(0);
+  if (predictor_lu_.factorize(cache_.J)) {
+    cache_.t = predictor_lu_.solver().solve(rhs);
+    if (!cache_.t.allFinite()) cache_.t.resize(0);
+  }
+  cache_.has_tangent = true;
+  return cache_.t;
 }
 
 double PathEquilibrium::conjugate_slope(const Converged& c) const {
-  const Eigen::VectorXd t = tangent(c);
+  const Eigen::VectorXd& t = tangent(c);
   if (!t.size()) return NAN;
   if (!has_loads) return t[nf + nc];
   const auto tw = ns.twists(c.state);

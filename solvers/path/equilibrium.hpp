@@ -101,8 +101,14 @@ class PathEquilibrium {
   bool solve(KinsolSolver& kin, const Converged& start, const StepSpec& s, Eigen::VectorXd u, Converged& out,
              std::string& report) const;
   // Tangent direction at a converged state: [dDelta (nf), dmu (nc), dextra] per unit lambda (loads)
-  // or per unit control (imposed motion). Empty when the tangent is singular.
-  Eigen::VectorXd tangent(const Converged& c) const;
+  // or per unit control (imposed motion). Empty when the tangent is singular. Factorised once per
+  // state (kept with evaluation_at's).
+  const Eigen::VectorXd& tangent(const Converged& c) const;
+  // The evaluation at a converged state (Delta = 0, the state's load factor, multipliers and
+  // reaction): residual, tangent over gens, end forces. Computed once per state and kept while the
+  // state is the last one asked for: the predictor of the next step, the stability analysis, the
+  // frequencies and the record of the step share it (one assembly per converged state).
+  const NonlinearStructure::Evaluation& evaluation_at(const Converged& c) const;
   // Displacement control: the slope of the controlled DOF's conjugate along the path, dlambda/du_c
   // (with loads) or dR/du_c (imposed motion, R the controlled DOF's reaction), from the tangent.
   // A change of its sign between two states is an extremum of the load factor (or the reaction): a
@@ -147,7 +153,22 @@ class PathEquilibrium {
 
  private:
   void select_independent_constraints();
+  // The spec of the tangent system at a converged state (no extra row with loads; the controlled
+  // DOF held, its reaction the extra unknown, under an imposed motion).
+  StepSpec tangent_spec(const Converged& c) const;
+  // J from an evaluation at state_of(start, s, u) (jacobian's second half).
+  void jacobian_from(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, const Eval& e,
+                     const SparseMatrix& tangent, SparseMatrix& J) const;
   mutable LuFactor predictor_lu_;   // tangent predictor: symbolic analysis kept along the path
+  // The last converged state evaluated (see evaluation_at), its evaluation and tangent direction.
+  struct StateCache {
+    bool valid = false, has_tangent = false;
+    Converged key;
+    NonlinearStructure::Evaluation ev;
+    Eigen::VectorXd t;
+    SparseMatrix J;  // workspace of the tangent system (its storage kept between states)
+  };
+  mutable StateCache cache_;
 };
 
 }  // namespace beamfea

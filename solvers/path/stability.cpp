@@ -1,5 +1,6 @@
 #include "solvers/path/stability.hpp"
 
+#include <Eigen/CholmodSupport>
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <Eigen/UmfPackSupport>
@@ -18,8 +19,6 @@ constexpr double kNullSpacePivotTolerance = 1e-12;
 // Shift of the shift-invert eigen-solver just below a positive definite (Jacobi-scaled, so O(1))
 // spectrum: fast convergence to the lowest eigenvalue.
 constexpr double kEigenShiftMargin = 1e-6;
-// Up to this size the lowest eigenpairs of the stability matrix are computed densely.
-constexpr int kDenseEigenLimit = 400;
 // Below zero, the shift is this factor times the last lowest eigenvalue (a little below it: the
 // eigenvalue nearest the shift is the lowest one while it moves by less than half its value).
 constexpr double kNegativeShiftFactor = 1.5;
@@ -67,44 +66,76 @@ SparseMatrix null_space(const Eigen::MatrixXd& C0, int n) {
 
 StabilityAnalysis constrained_tangent(const PathEquilibrium& P, const Converged& c, bool with_control) {
   StabilityAnalysis out;
-  StepSpec s;
-  s.kind = StepKind::Load;
-  s.lambda = c.lambda;
-  const PathEquilibrium::Eval e = P.state_of(c, s, P.start_unknowns(c, s));
-  Eigen::VectorXd f_app = e.f_app;
-  if (P.ctrl.node >= 0 && !P.has_loads) f_app[P.ns.reference_map().raw_node(P.ctrl.node, P.ctrl.comp)] += c.extra_mu;
-  const auto ev = P.ns.evaluate(c.state, f_app, true, e.mu_closure, c.lambda);
-  std::vector<Eigen::Triplet<double>> t;
+  // The tangent at the state, as the predictor sees it (evaluated once per state).
+  const NonlinearStructure::Evaluation& ev = P.evaluation_at(c);
+  // Restriction to the free coordinates, column by column: gen_to_free is increasing on the free
+  // gens, so the rows and columns stay in order (no triplets, no sort).
+  SparseMatrix Kff(P.nf, P.nf);
+  Kff.reserve(ev.tangent.nonZeros());
   for (int j = 0; j < ev.tangent.outerSize(); ++j) {
     if (P.gen_to_free[j] < 0) continue;
+    Kff.startVec(P.gen_to_free[j]);
     for (SparseMatrix::InnerIterator it(ev.tangent, j); it; ++it)
-      if (P.gen_to_free[it.row()] >= 0) t.emplace_back(P.gen_to_free[it.row()], P.gen_to_free[j], it.value());
+      if (P.gen_to_free[it.row()] >= 0) Kff.insertBack(P.gen_to_free[it.row()], P.gen_to_free[j]) = it.value();
   }
-  SparseMatrix Kff(P.nf, P.nf);
-  Kff.setFromTriplets(t.begin(), t.end());
-  out.Z = null_space(P.constraint_matrix(c.state, with_control), P.nf);
-  out.K = SparseMatrix(out.Z.transpose() * Kff * out.Z);
-  out.p = out.Z.transpose() * P.load_pattern(c.state);
+  Kff.finalize();
+  const Eigen::MatrixXd C = P.constraint_matrix(c.state, with_control);
+  out.Z = null_space(C, P.nf);
+  if (C.rows() == 0) {  // Z = I
+    out.K = std::move(Kff);
+    out.p = P.load_pattern(c.state);
+  } else {
+    out.K = SparseMatrix(out.Z.transpose() * Kff * out.Z);
+    out.p = out.Z.transpose() * P.load_pattern(c.state);
+  }
   return out;
 }
 
+struct StabilityAnalyzer::Cholesky {
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt;
+  PatternMemory pattern;
+  Cholesky() { llt.cholmod().print = 0; }  // an indefinite matrix is an outcome here
+  // True when S (compressed) is positive definite.
+  bool factorize(const SparseMatrix& S) {
+    if (!pattern.same_or_remember(S)) {
+      llt.analyzePattern(S);
+      if (llt.info() != Eigen::Success) {
+        pattern.forget();
+        return false;
+      }
+    }
+    llt.factorize(S);
+    return llt.info() == Eigen::Success;
+  }
+};
+
+StabilityAnalyzer::StabilityAnalyzer(const PathEquilibrium& eq, int dense_limit)
+    : eq_(eq), dense_limit_(dense_limit), llt_(std::make_unique<Cholesky>()) {}
+StabilityAnalyzer::~StabilityAnalyzer() = default;
+
 StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_control, bool want_mode) {
   StabilityAnalysis out = constrained_tangent(eq_, c, with_control);
-  SparseMatrix S = SparseMatrix(0.5 * (out.K + SparseMatrix(out.K.transpose())));
+  const SparseMatrix S = SparseMatrix(0.5 * (out.K + SparseMatrix(out.K.transpose())));
   const int n = static_cast<int>(S.rows());
   if (n == 0) return out;
-  // Inertia by LDL^T (Sylvester): the number of negative pivots.
-  if (inertia_ldlt_.factorize(S)) {
+  // Inertia (Sylvester's law): positive definite when the LL^T succeeds, otherwise the number of
+  // negative pivots of the LDL^T.
+  const bool large = n > dense_limit_;
+  const bool cholesky = large && !last_indefinite_ && llt_->factorize(S);
+  if (cholesky) {
+    out.info.negative = 0;
+  } else if (inertia_ldlt_.factorize(S)) {
     out.info.negative = static_cast<int>((inertia_ldlt_.solver().vectorD().array() < 0.0).count());
   } else {
     out.info.negative = -1;
   }
+  last_indefinite_ = out.info.negative != 0;
   // Lowest eigenvalue of the Jacobi-scaled matrix.
-  Eigen::VectorXd sc(n);
-  for (int i = 0; i < n; ++i) {
-    const double d = std::abs(S.coeff(i, i));
-    sc[i] = d > 0.0 ? 1.0 / std::sqrt(d) : 1.0;
-  }
+  const Eigen::VectorXd d = S.diagonal().cwiseAbs();
+  const Eigen::VectorXd sc = (d.array() > 0.0).select(d.cwiseSqrt().cwiseInverse(), Eigen::VectorXd::Ones(n));
+  // The lowest eigenvalue from the factorisation just made, no shifted one (see lowest_from_factor).
+  // The dense solve up to dense_limit_, the critical mode, and what that fails to settle, as before.
+  if (large && out.info.negative >= 0 && !want_mode && lowest_from_factor(sc, cholesky, out.info)) return out;
   const SparseMatrix A = SparseMatrix(sc.asDiagonal() * S * sc.asDiagonal());
   const auto gershgorin_shift = [&] {  // below the Gershgorin lower bound of the spectrum
     double g = 0.0;
@@ -128,7 +159,7 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_contr
   for (int attempt = 0; attempt < 2; ++attempt) {
     try {
       EigenPairs ep;
-      if (n <= kDenseEigenLimit) {
+      if (n <= dense_limit_) {
         // Dense: a few milliseconds at this size, and no Lanczos restarts on the clustered lowest
         // eigenvalues of slender structures (bending next to axial stiffness).
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(A)};
@@ -158,6 +189,37 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_contr
     }
   }
   return out;
+}
+
+// The eigenvalues of A nearest zero are the largest of A^-1: Lanczos on the inverse that the
+// inertia's factorisation gives, for the negative count plus one of them. When the negative ones
+// found are as many as the inertia counts (Sylvester), they are all of A's negative eigenvalues and
+// the least found is the lowest; a stable state needs only the one nearest zero, its lowest.
+bool StabilityAnalyzer::lowest_from_factor(const Eigen::VectorXd& sc, bool cholesky, StabilityInfo& info) {
+  const auto& ldlt = inertia_ldlt_.solver();
+  if (!cholesky && !(ldlt.vectorD().array() != 0.0).all()) return false;  // a zero pivot: singular
+  const Eigen::Index n = sc.size();
+  // A = Sc S Sc (Jacobi-scaled), so A^-1 x = Sc^-1 S^-1 Sc^-1 x with S's factorisation.
+  const Eigen::VectorXd inv_sc = sc.cwiseInverse();
+  work_.resize(n);
+  const InverseOp inverse = [&](const double* x, double* y) {
+    work_ = inv_sc.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(x, n));
+    const Eigen::VectorXd z = cholesky ? Eigen::VectorXd(llt_->llt.solve(work_)) : Eigen::VectorXd(ldlt.solve(work_));
+    Eigen::Map<Eigen::VectorXd>(y, n) = inv_sc.cwiseProduct(z);
+  };
+  const int want = info.negative == 0 ? 1 : info.negative + 1;
+  try {
+    const EigenPairs ep =
+        lowest_eigenpairs_of_inverse(n, inverse, want, last_vector_.size() == n ? &last_vector_ : nullptr);
+    if (!ep.converged || ep.values.size() == 0) return false;
+    if ((ep.values.array() < 0.0).count() != info.negative) return false;
+    if (info.negative == 0 && !(ep.values[0] > 0.0)) return false;
+    info.min_eigenvalue = last_min_ = ep.values[0];
+    last_vector_ = ep.vectors.col(0);
+    return true;
+  } catch (const Error&) {
+    return false;
+  }
 }
 
 CondensedStiffness StabilityAnalyzer::node_stiffness(const Converged& c, const StabilityAnalysis& st, int node) const {

@@ -5,13 +5,19 @@
 // The tangent over the free coordinates is restricted to the null space Z of the constraint
 // Jacobian (eqs. 19-21; Z by exact elimination), symmetrised, and its inertia counted by a sparse
 // LDL^T (Sylvester's law of inertia): stable when it has no negative eigenvalue (eq. 23: the second
-// variation of the energy is positive on all admissible variations). min_eigenvalue is the lowest
-// eigenvalue of the Jacobi-scaled matrix (dimensionless). The loaded Cartesian stiffness of a node
+// variation of the energy is positive on all admissible variations). Above kStabilityDenseLimit a
+// CHOLMOD supernodal LL^T is tried first: its success proves positive definiteness (no negative
+// eigenvalue; Golub & Van Loan 2013, sec. 4.2), and the LDL^T counts the negative pivots only when
+// it fails (or when the last state had some). min_eigenvalue is the lowest eigenvalue of the
+// Jacobi-scaled matrix (dimensionless). A stable state's comes from the factorisation that proved it
+// stable (Lanczos on the inverse, started from the last state's eigenvector): one factorisation per
+// state; past a critical point (negative eigenvalues) a shifted solve finds it. The loaded Cartesian stiffness of a node
 // is the condensed tangent [ K_t  T_n^T ; T_n  0 ] [X; M] = [0; I],  K_c = -M, on the directions the
 // node can move (node_compliance, solvers/condensed_stiffness.hpp): any node, held or restricted by
 // supports, closed loops or the controlled DOF, gets its compliance (zero where it cannot move),
 // rigid directions and free directions.
 #include <Eigen/Core>
+#include <memory>
 #include <optional>
 
 #include "solvers/condensed_stiffness.hpp"
@@ -43,9 +49,18 @@ SparseMatrix null_space(const Eigen::MatrixXd& C, int n);
 // with_control: the controlled DOF is held too.
 StabilityAnalysis constrained_tangent(const PathEquilibrium& P, const Converged& c, bool with_control);
 
+// Up to this size the lowest eigenpairs of the stability matrix are computed densely (a few
+// milliseconds, and no Lanczos restarts on the clustered lowest eigenvalues of slender structures).
+inline constexpr int kStabilityDenseLimit = 400;
+
 class StabilityAnalyzer {
  public:
-  explicit StabilityAnalyzer(const PathEquilibrium& eq) : eq_(eq) {}
+  // dense_limit: the size up to which the inertia is an LDL^T and the lowest eigenvalue dense;
+  // above it, CHOLMOD's supernodal LL^T first (tests lower it to compare both on small models).
+  explicit StabilityAnalyzer(const PathEquilibrium& eq, int dense_limit = kStabilityDenseLimit);
+  ~StabilityAnalyzer();
+  StabilityAnalyzer(const StabilityAnalyzer&) = delete;
+  StabilityAnalyzer& operator=(const StabilityAnalyzer&) = delete;
   // with_control: the controlled DOF is held too (displacement control). want_mode: the critical
   // mode (the eigenvector of the eigenvalue nearest zero) is returned in info.mode.
   StabilityAnalysis analyse(const Converged& c, bool with_control, bool want_mode);
@@ -54,8 +69,18 @@ class StabilityAnalyzer {
 
  private:
   const PathEquilibrium& eq_;
+  // The lowest eigenpair of a positive definite state from the factorisation that decided its
+  // inertia (false when the Lanczos iterations did not converge: the caller falls back to a shifted
+  // solve).
+  bool lowest_from_factor(const Eigen::VectorXd& sc, bool cholesky, StabilityInfo& info);
+  const int dense_limit_;
+  struct Cholesky;                  // CHOLMOD's supernodal LL^T, symbolic analysis kept
+  std::unique_ptr<Cholesky> llt_;
+  bool last_indefinite_ = false;    // the last state had a negative eigenvalue: LDL^T directly
   LdltFactor inertia_ldlt_;         // inertia count: symbolic analysis kept along the path
   double last_min_ = 0.0;           // the last lowest eigenvalue found (the next shift's guess)
+  Eigen::VectorXd last_vector_;     // its eigenvector (scaled coordinates): the next Lanczos start
+  Eigen::VectorXd work_;            // workspace of the inverse operator
 };
 
 }  // namespace beamfea

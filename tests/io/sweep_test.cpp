@@ -188,3 +188,34 @@ TEST(SweepTable, FinishSortsByCaseKeepsTheLastRowOfACaseAndCounts) {
   EXPECT_EQ(t.rows[1][0], "bad");
   EXPECT_EQ(t.rows[2][0], "p2");
 }
+
+// A worker's reused document (SweepCaseDocument) gives every case the same document as a fresh
+// copy (Sweep::document), in any order: grid values set in place and put back, a list case with a
+// patch adding a key the base lacks (a fresh copy), and the cases after it.
+TEST(SweepCase, AReusedDocumentGivesEachCaseTheFreshCopysDocument) {
+  const json grid = {{"model", cantilever()},
+                     {"grid", {json{{"pointer", "/loads/0/force/1"}, {"values", {-1.0, -2.0, -3.0}}},
+                               json{{"pointer", {"/nodes/1/xyz/0", "/nodes/1/xyz/1"}}, {"values", {1.0, 2.0}}}}},
+                     {"outputs", {"analyses.K.matrix"}}};
+  const json list = {
+      {"model", cantilever()},
+      {"cases", {json{{"id", "a"}, {"set", {{"/loads/0/force/1", -5.0}, {"/nodes/1/xyz/0", 3.0}}}},
+                 json{{"id", "b"}, {"patch", {json{{"op", "add"}, {"path", "/loads/0/moment"}, {"value", {0, 0, 1.0}}}}}},
+                 json{{"id", "c"}, {"set", {{"/loads/0/force/0", 7.0}}}},
+                 json{{"id", "d"}, {"set", {{"/nodes/1/xyz/0", 4.0}}}}}},
+      {"outputs", {"analyses.K.matrix"}}};
+  for (const json& file : {grid, list}) {
+    const Sweep s = beamfea::read_sweep(file, fs::temp_directory_path());
+    beamfea::SweepCaseDocument documents(s);
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < s.size(); ++i) order.push_back(i);
+    for (std::size_t i = s.size(); i-- > 0;) order.push_back(i);
+    order.push_back(1);
+    order.push_back(1);
+    for (const std::size_t i : order) EXPECT_EQ(documents.apply(i), s.document(i)) << "case " << i;
+    // The same results either way.
+    const SweepCaseResult reused = beamfea::run_sweep_case(s, 1, {}, &documents);
+    const SweepCaseResult fresh = beamfea::run_sweep_case(s, 1);
+    EXPECT_EQ(reused.outputs, fresh.outputs);
+  }
+}

@@ -10,7 +10,10 @@
 #include <random>
 
 #include "core/assembly.hpp"
+#include "core/dense_assembly.hpp"
 #include "io/model_reader.hpp"
+#include "solvers/condensed_stiffness.hpp"
+#include "solvers/dense_condensation.hpp"
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
 
@@ -169,4 +172,64 @@ TEST(DenseFactor, RefusesWhatItCannotDoAndLeavesItToTheSparsePath) {
   EXPECT_EQ(f.factorize(K), FactorStatus::NotPositiveDefinite);
   EXPECT_FALSE(f.dense());
   EXPECT_TRUE(f.usable());  // UMFPACK's LU, as before
+}
+
+TEST(DenseFactor, CholeskySkippingZerosMatchesEigensLlt) {
+  // A banded matrix with zeros inside the band (skipped), a dense one, and an indefinite one.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int n : {1, 7, 40, 161}) {
+    for (const int band : {2, n}) {
+      Eigen::MatrixXd B = Eigen::MatrixXd::Zero(n, n);
+      for (int i = 0; i < n; ++i)
+        for (int j = std::max(0, i - band); j <= i; ++j)
+          if ((i + j) % 3 != 1) B(i, j) = U(rng);
+      const Eigen::MatrixXd K = B * B.transpose() + n * Eigen::MatrixXd::Identity(n, n);
+      Eigen::MatrixXd L = K;
+      std::vector<int> last;
+      ASSERT_TRUE(cholesky_in_place(L, last)) << n;
+      const Eigen::MatrixXd ref = K.llt().matrixL();
+      const Eigen::MatrixXd mine = L.triangularView<Eigen::Lower>();
+      EXPECT_LE(rel_diff(mine, ref), kAgreement) << n << " band " << band;
+      for (int k = 0; k < n; ++k) {
+        EXPECT_GE(last[k], k);
+        for (int i = last[k] + 1; i < n; ++i) EXPECT_EQ(mine(i, k), 0.0) << i << "," << k;
+      }
+    }
+  }
+  Eigen::Matrix2d K;
+  K << 1.0, 2.0, 2.0, 1.0;  // indefinite
+  Eigen::MatrixXd A = K;
+  std::vector<int> last;
+  EXPECT_FALSE(cholesky_in_place(A, last));
+}
+
+TEST(DenseFactor, DenseAssemblyAndCondensationAgreeWithTheSparseOnTheSuiteModels) {
+  int compared = 0;
+  for (const auto& f : suite_models()) {
+    const Assembled a = assemble(f);
+    const int n = static_cast<int>(a.K.rows());
+    if (n == 0 || n > kMaxDofs) continue;
+    const LinearStructure structure(a.model);
+    DenseAssembler dense(*a.map);
+    dense.begin();
+    structure.assemble(*a.map, dense);
+    dense.end();
+    const Eigen::MatrixXd Ks = a.K;
+    // The same sums in another order: rounding of the largest entries.
+    EXPECT_LE(rel_diff(dense.K_ff(), Ks), 1e-14) << f;
+    // The node stiffness of the last node both ways (the dense K goes through the dense Schur
+    // complement; the sparse one through its own copy to dense, or the saddle point when large).
+    const int node = static_cast<int>(a.model.nodes.size()) - 1;
+    const CondensedStiffness cd = condense_to_node(a.model, *a.map, dense.K_ff(), node);
+    const CondensedStiffness cs = condense_to_node(a.model, *a.map, a.K, node);
+    ASSERT_EQ(cd.ok, cs.ok) << f;
+    if (!cd.ok) continue;
+    EXPECT_EQ(cd.rank, cs.rank) << f;
+    EXPECT_EQ(cd.rigid_directions.size(), cs.rigid_directions.size()) << f;
+    EXPECT_LE(rel_diff(cd.K, cs.K), kAgreement) << f;
+    EXPECT_LE(rel_diff(cd.compliance, cs.compliance), kAgreement) << f;
+    ++compared;
+  }
+  EXPECT_GE(compared, 12);
 }

@@ -1,0 +1,130 @@
+// Stiffness analyses per second of the three-link chain (bench_models.hpp: 63 raw, 39 free DOFs)
+// on one core, at each stage a sweep case goes through (issue 15: 30,000 per second, a sweep within
+// 1.2x of the in-process analysis):
+//   linear_node_stiffness      DOF map, element matrices, assembly, condensation, rank
+//   in-process analysis        load_and_check + run_document on the parsed document (the model
+//                              built and checked, the results JSON built): bench_sweep_rate's
+//                              baseline
+//   sweep case                 run_sweep_case + sweep_row: the case's document, the analysis,
+//                              the outputs flattened and formatted as a CSV row
+//   run_sweep --jobs 1         the whole sweep inline (table written to a temporary folder),
+//                              per case
+// Only interfaces that predate the small-model work are used, so that the same source measures
+// an older build (paired before/after ratios: run both binaries alternately).
+//
+// Usage: taskset -c 1 bench_chain_rate [seconds_per_stage] [sweep_cases]
+// Thread CPU time per call (the machine's load makes wall clock meaningless at this scale),
+// median of 5 batches, the stages interleaved batch by batch. OpenBLAS held to one thread.
+#include <dlfcn.h>
+#include <unistd.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "app/sweep_runner.hpp"
+#include "bench_models.hpp"
+#include "io/model_reader.hpp"
+#include "io/run.hpp"
+#include "io/sweep.hpp"
+#include "io/sweep_table.hpp"
+#include "solvers/condensed_stiffness.hpp"
+
+using json = nlohmann::json;
+using namespace beamfea;
+namespace fs = std::filesystem;
+
+namespace {
+
+double thread_cpu_s() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// CPU seconds per call of each function: batches sized to about budget / 5 seconds, interleaved,
+// median of 5. `per_call` divides a call that runs several cases.
+std::vector<double> paired(const std::vector<std::function<void()>>& fs, const std::vector<double>& per_call, double budget) {
+  std::vector<long> reps(fs.size(), 1);
+  for (std::size_t i = 0; i < fs.size(); ++i) {
+    const double t0 = thread_cpu_s();
+    fs[i]();
+    reps[i] = std::max<long>(1, static_cast<long>(budget / 5 / std::max(1e-7, thread_cpu_s() - t0)));
+  }
+  std::vector<std::vector<double>> t(fs.size());
+  for (int b = 0; b < 5; ++b)
+    for (std::size_t i = 0; i < fs.size(); ++i) {
+      const double t0 = thread_cpu_s();
+      for (long r = 0; r < reps[i]; ++r) fs[i]();
+      t[i].push_back((thread_cpu_s() - t0) / static_cast<double>(reps[i]) / per_call[i]);
+    }
+  std::vector<double> med;
+  for (auto& v : t) {
+    std::sort(v.begin(), v.end());
+    med.push_back(v[2]);
+  }
+  return med;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using SetThreads = void (*)(int);
+  if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
+  const double budget = argc > 1 ? std::atof(argv[1]) : 1.0;
+  const std::size_t sweep_cases = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 343;
+
+  const json doc = bench::chain();
+  const Model model = read_model(doc);
+  const int tip = model.find_node("T");
+  // A grid over the three actuator stiffnesses (bench_sweep_rate's sweep): every case a new model.
+  const std::size_t n = std::max<std::size_t>(1, static_cast<std::size_t>(std::cbrt(static_cast<double>(sweep_cases)) + 0.5));
+  std::vector<double> k;
+  for (std::size_t i = 0; i < n; ++i) k.push_back(500.0 + 100.0 * static_cast<double>(i));
+  const json tail = {{"grid", {json{{"pointer", "/joints/0/stiffness/0"}, {"values", k}},
+                               json{{"pointer", "/joints/1/stiffness/0"}, {"values", k}},
+                               json{{"pointer", "/joints/2/stiffness/0"}, {"values", k}}}},
+                     {"outputs", {"analyses.K.matrix"}}};
+  json sweep_doc = tail;
+  sweep_doc["model"] = doc;
+  const Sweep sweep = read_sweep(sweep_doc, fs::temp_directory_path());
+  const SweepCaseResult first = run_sweep_case(sweep, 0);
+  const SweepColumns columns = sweep_columns(sweep, &first);
+  const fs::path out = fs::temp_directory_path() / fmt::format("beamfea_bench_chain_rate_{}", static_cast<long>(getpid()));
+
+  volatile double sink = 0;
+  std::size_t next = 0;
+  const auto t = paired(
+      {[&] { sink = sink + linear_node_stiffness(model, tip).K(0, 0); },
+       [&] {
+         const Model m = load_and_check(doc);
+         sink = sink + static_cast<double>(run_document(m, doc, {}).failed);
+       },
+       [&] {
+         const std::size_t i = next++ % sweep.size();
+         sink = sink + static_cast<double>(sweep_row(sweep, i, columns, run_sweep_case(sweep, i)).size());
+       },
+       [&] {
+         fs::remove_all(out);
+         SweepOptions o;
+         o.out_dir = out;
+         o.jobs = 1;
+         sink = sink + static_cast<double>(run_sweep(sweep, o).ok);
+       }},
+      {1.0, 1.0, 1.0, static_cast<double>(sweep.size())}, budget);
+  fs::remove_all(out);
+  const char* names[] = {"linear_node_stiffness", "in-process analysis (load_and_check + run_document)",
+                         "sweep case (run_sweep_case + sweep_row)", "run_sweep --jobs 1, per case"};
+  fmt::print("| stage (three-link chain, {} free DOFs, one core) | us per call | calls per second | / in-process |\n",
+             39);
+  fmt::print("|---|---:|---:|---:|\n");
+  for (std::size_t i = 0; i < t.size(); ++i)
+    fmt::print("| {} | {:.1f} | {:.0f} | {:.2f} |\n", names[i], 1e6 * t[i], 1.0 / t[i], t[i] / t[1]);
+}

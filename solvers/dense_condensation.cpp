@@ -1,0 +1,99 @@
+#include "solvers/dense_condensation.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+
+namespace beamfea {
+
+bool cholesky_in_place(Eigen::MatrixXd& A, std::vector<int>& last) {
+  const int n = static_cast<int>(A.rows());
+  last.assign(n, 0);
+  double* a = A.data();
+  const Eigen::Index ld = A.rows();
+  for (int k = 0; k < n; ++k) {
+    double* ak = a + ld * k;
+    const double d = ak[k];
+    if (!(d > 0.0) || !std::isfinite(d)) return false;
+    const double r = std::sqrt(d);
+    ak[k] = r;
+    const double inv = 1.0 / r;
+    int lk = k;
+    for (int i = k + 1; i < n; ++i) {
+      ak[i] *= inv;
+      if (ak[i] != 0.0) lk = i;
+    }
+    last[k] = lk;
+    // Right-looking update of the trailing columns that row k reaches: A_jj.. -= L_jk L_.k
+    for (int j = k + 1; j <= lk; ++j) {
+      const double ljk = ak[j];
+      if (ljk == 0.0) continue;
+      double* aj = a + ld * j;
+      for (int i = j; i <= lk; ++i) aj[i] -= ljk * ak[i];
+    }
+  }
+  return true;
+}
+
+void cholesky_solve_in_place(const Eigen::MatrixXd& L, const std::vector<int>& last, Eigen::Ref<Eigen::VectorXd> x) {
+  const Eigen::Index n = L.rows();
+  for (Eigen::Index k = 0; k < n; ++k) {  // L y = x
+    const double* lk = L.col(k).data();
+    const double xk = x[k] / lk[k];
+    x[k] = xk;
+    if (xk != 0.0)
+      for (Eigen::Index i = k + 1; i <= last[k]; ++i) x[i] -= lk[i] * xk;
+  }
+  for (Eigen::Index k = n; k-- > 0;) {  // L^T x = y
+    const double* lk = L.col(k).data();
+    double xk = x[k];
+    for (Eigen::Index i = k + 1; i <= last[k]; ++i) xk -= lk[i] * x[i];
+    x[k] = xk / lk[k];
+  }
+}
+
+double cholesky_rcond(const Eigen::MatrixXd& L) {
+  if (L.rows() == 0) return 1.0;
+  const auto d = L.diagonal().cwiseAbs();
+  const double lo = d.minCoeff(), hi = d.maxCoeff();
+  return hi > 0.0 ? (lo / hi) * (lo / hi) : 0.0;
+}
+
+bool condense_dense(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz, const FactorOptions& options,
+                    DenseCondensationWorkspace* workspace) {
+  const Eigen::Index n = K.rows(), r = A.rows();
+  if (n == 0 || n > options.dense_max_dofs || K.cols() != n || A.cols() != n || r == 0) return false;
+  DenseCondensationWorkspace local;
+  DenseCondensationWorkspace& w = workspace ? *workspace : local;
+  // Jacobi scaling as in SparseFactor::factorize: S K S, so that the condition estimate does not
+  // depend on units; A K^-1 A^T = (A S) (S K S)^-1 (A S)^T.
+  w.s.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!(K(i, i) > 0.0)) return false;
+    w.s[i] = 1.0 / std::sqrt(K(i, i));
+  }
+  w.L.resize(n, n);
+  for (Eigen::Index j = 0; j < n; ++j)
+    for (Eigen::Index i = j; i < n; ++i) w.L(i, j) = K(i, j) * w.s[i] * w.s[j];
+  if (!cholesky_in_place(w.L, w.last) || cholesky_rcond(w.L) < options.singular_rcond) return false;
+  // C = (A S) L^-T L^-1 (A S)^T = W^T W with W = L^-1 (A S)^T: forward substitution column by
+  // column, skipping the zeros of W (the rows of one node touch few DOFs) and of L.
+  w.W = (A * w.s.asDiagonal()).transpose();
+  for (Eigen::Index c = 0; c < r; ++c) {
+    double* x = w.W.col(c).data();
+    for (Eigen::Index k = 0; k < n; ++k) {
+      if (x[k] == 0.0) continue;
+      const double* lk = w.L.col(k).data();
+      const double xk = x[k] / lk[k];
+      x[k] = xk;
+      for (Eigen::Index i = k + 1; i <= w.last[k]; ++i) x[i] -= lk[i] * xk;
+    }
+  }
+  w.C.noalias() = w.W.transpose().lazyProduct(w.W);  // r x r, r <= a few: no GEMM blocking
+  const Eigen::LLT<Eigen::MatrixXd> lc(w.C);
+  if (lc.info() != Eigen::Success || cholesky_rcond(lc.matrixLLT()) < options.singular_rcond) return false;
+  Kz = lc.solve(Eigen::MatrixXd::Identity(r, r));
+  Kz = 0.5 * (Kz + Kz.transpose()).eval();
+  return Kz.allFinite();
+}
+
+}  // namespace beamfea
