@@ -131,6 +131,26 @@ LoadSet read_load_list(const Model& m, const json& list, const std::string& base
   return s;
 }
 
+namespace {
+// Calls read(object, pointer, id) for each object of the array doc[key], after checking that its
+// "id" is new in `seen` (id -> pointer of its first definition).
+template <class Read>
+void for_each_identified(const json& doc, const char* key, const std::string& what,
+                         std::map<std::string, std::string>& seen, Read&& read) {
+  if (!doc.contains(key)) return;
+  const std::string root = std::string("/") + key;
+  const auto& arr = array(doc[key], root, key);
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    const std::string p = child(root, i);
+    const auto& o = object(arr[i], p, what);
+    std::string id = json_in::id(require(o, p, "id", what), child(p, "id"), what);
+    if (auto [it, fresh] = seen.emplace(id, p); !fresh)
+      throw InputError(child(p, "id"), what + " '" + id + "': the id is defined twice (first at " + it->second + ")");
+    read(o, p, std::move(id));
+  }
+}
+}  // namespace
+
 void read_loads_and_cases(const json& doc, Model& m) {
   LoadSet def;
   if (doc.contains("loads")) def = read_load_list(m, doc["loads"], "/loads");
@@ -145,42 +165,29 @@ void read_loads_and_cases(const json& doc, Model& m) {
     }
   }
 
+  // Load cases and combinations share one name space (an analysis's load_case names either).
   std::map<std::string, std::string> seen;  // id -> pointer of its first definition
-  if (doc.contains("load_cases")) {
-    const auto& arr = array(doc["load_cases"], "/load_cases", "load_cases");
-    for (std::size_t i = 0; i < arr.size(); ++i) {
-      const std::string p = child("/load_cases", i);
-      const auto& o = object(arr[i], p, "load case");
-      LoadCase c;
-      c.id = json_in::id(require(o, p, "id", "load case"), child(p, "id"), "load case");
-      if (auto [it, fresh] = seen.emplace(c.id, p); !fresh)
-        throw InputError(child(p, "id"), "load case '" + c.id + "' is defined twice (first at " + it->second + ")");
-      if (o.contains("loads")) c.loads = read_load_list(m, o["loads"], child(p, "loads"));
-      if (o.contains("gravity")) c.loads.gravity = read_gravity(o["gravity"], child(p, "gravity"));
-      expect_keys(o, p, {"id", "loads", "gravity"});
-      m.load_cases.push_back(std::move(c));
+  for_each_identified(doc, "load_cases", "load case", seen, [&](const json& o, const std::string& p, std::string id) {
+    LoadCase c;
+    c.id = std::move(id);
+    if (o.contains("loads")) c.loads = read_load_list(m, o["loads"], child(p, "loads"));
+    if (o.contains("gravity")) c.loads.gravity = read_gravity(o["gravity"], child(p, "gravity"));
+    expect_keys(o, p, {"id", "loads", "gravity"});
+    m.load_cases.push_back(std::move(c));
+  });
+  for_each_identified(doc, "combinations", "combination", seen, [&](const json& o, const std::string& p, std::string id) {
+    Combination c;
+    c.id = std::move(id);
+    const std::string fp = child(p, "factors");
+    const auto& factors = object(require(o, p, "factors", "combination '" + c.id + "'"), fp, "combination factors");
+    for (const auto& [name, v] : factors.items()) {
+      const int k = m.find_load_case(name);
+      if (k < 0) throw InputError(child(fp, name), "combination '" + c.id + "' names unknown load case '" + name + "'");
+      c.factors.emplace_back(k, number(v, child(fp, name), "combination factor"));
     }
-  }
-  if (doc.contains("combinations")) {
-    const auto& arr = array(doc["combinations"], "/combinations", "combinations");
-    for (std::size_t i = 0; i < arr.size(); ++i) {
-      const std::string p = child("/combinations", i);
-      const auto& o = object(arr[i], p, "combination");
-      Combination c;
-      c.id = json_in::id(require(o, p, "id", "combination"), child(p, "id"), "combination");
-      if (auto [it, fresh] = seen.emplace(c.id, p); !fresh)
-        throw InputError(child(p, "id"), "combination '" + c.id + "': the id is defined twice (first at " + it->second + ")");
-      const std::string fp = child(p, "factors");
-      const auto& factors = object(require(o, p, "factors", "combination '" + c.id + "'"), fp, "combination factors");
-      for (const auto& [name, v] : factors.items()) {
-        const int k = m.find_load_case(name);
-        if (k < 0) throw InputError(child(fp, name), "combination '" + c.id + "' names unknown load case '" + name + "'");
-        c.factors.emplace_back(k, number(v, child(fp, name), "combination factor"));
-      }
-      expect_keys(o, p, {"id", "factors"});
-      m.combinations.push_back(std::move(c));
-    }
-  }
+    expect_keys(o, p, {"id", "factors"});
+    m.combinations.push_back(std::move(c));
+  });
 }
 
 double read_density(const json& o, const std::string& p, const std::string& what) {
