@@ -20,10 +20,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -31,6 +29,7 @@
 
 #include "app/sweep_runner.hpp"
 #include "bench_models.hpp"
+#include "bench_timing.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
 #include "io/sweep.hpp"
@@ -40,40 +39,6 @@
 using json = nlohmann::json;
 using namespace beamfea;
 namespace fs = std::filesystem;
-
-namespace {
-
-double thread_cpu_s() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-// CPU seconds per call of each function: batches sized to about budget / 5 seconds, interleaved,
-// median of 5. `per_call` divides a call that runs several cases.
-std::vector<double> paired(const std::vector<std::function<void()>>& fs, const std::vector<double>& per_call, double budget) {
-  std::vector<long> reps(fs.size(), 1);
-  for (std::size_t i = 0; i < fs.size(); ++i) {
-    const double t0 = thread_cpu_s();
-    fs[i]();
-    reps[i] = std::max<long>(1, static_cast<long>(budget / 5 / std::max(1e-7, thread_cpu_s() - t0)));
-  }
-  std::vector<std::vector<double>> t(fs.size());
-  for (int b = 0; b < 5; ++b)
-    for (std::size_t i = 0; i < fs.size(); ++i) {
-      const double t0 = thread_cpu_s();
-      for (long r = 0; r < reps[i]; ++r) fs[i]();
-      t[i].push_back((thread_cpu_s() - t0) / static_cast<double>(reps[i]) / per_call[i]);
-    }
-  std::vector<double> med;
-  for (auto& v : t) {
-    std::sort(v.begin(), v.end());
-    med.push_back(v[2]);
-  }
-  return med;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   using SetThreads = void (*)(int);
@@ -101,7 +66,7 @@ int main(int argc, char** argv) {
 
   volatile double sink = 0;
   std::size_t next = 0;
-  const auto t = paired(
+  const auto t = bench::paired(
       {[&] { sink = sink + linear_node_stiffness(model, tip).K(0, 0); },
        [&] {
          const Model m = load_and_check(doc);
@@ -118,7 +83,7 @@ int main(int argc, char** argv) {
          o.jobs = 1;
          sink = sink + static_cast<double>(run_sweep(sweep, o).ok);
        }},
-      {1.0, 1.0, 1.0, static_cast<double>(sweep.size())}, budget);
+      budget, {1.0, 1.0, 1.0, static_cast<double>(sweep.size())});
   fs::remove_all(out);
   const char* names[] = {"linear_node_stiffness", "in-process analysis (load_and_check + run_document)",
                          "sweep case (run_sweep_case + sweep_row)", "run_sweep --jobs 1, per case"};

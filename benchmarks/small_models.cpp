@@ -13,8 +13,6 @@
 
 #include <Eigen/UmfPackSupport>
 #include <algorithm>
-#include <chrono>
-#include <ctime>
 #include <cstdlib>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -28,6 +26,7 @@
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
 #include "bench_models.hpp"
+#include "bench_timing.hpp"
 
 using json = nlohmann::json;
 using namespace beamfea;
@@ -87,43 +86,6 @@ SparseMatrix stiffness(const Model& model, const DofMap& map) {
   return a.K_ff();
 }
 
-// The calling thread's CPU time: on a loaded machine wall clock measures the scheduler.
-struct thread_clock {
-  using duration = std::chrono::nanoseconds;
-  using time_point = std::chrono::time_point<thread_clock>;
-  static time_point now() {
-    timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return time_point(duration(ts.tv_sec * 1000000000LL + ts.tv_nsec));
-  }
-};
-
-// CPU seconds per call of each function: batches of calls sized to about `budget` seconds, the
-// functions interleaved batch by batch, median over 5 batches.
-std::vector<double> paired(const std::vector<std::function<void()>>& fs, double budget) {
-  using clock = thread_clock;
-  std::vector<long> reps(fs.size(), 1);
-  for (std::size_t i = 0; i < fs.size(); ++i) {
-    const auto t0 = clock::now();
-    fs[i]();
-    const double dt = std::max(1e-7, std::chrono::duration<double>(clock::now() - t0).count());
-    reps[i] = std::max<long>(1, static_cast<long>(budget / 5 / dt));
-  }
-  std::vector<std::vector<double>> t(fs.size());
-  for (int b = 0; b < 5; ++b)
-    for (std::size_t i = 0; i < fs.size(); ++i) {
-      const auto t0 = clock::now();
-      for (long r = 0; r < reps[i]; ++r) fs[i]();
-      t[i].push_back(std::chrono::duration<double>(clock::now() - t0).count() / reps[i]);
-    }
-  std::vector<double> med;
-  for (auto& v : t) {
-    std::sort(v.begin(), v.end());
-    med.push_back(v[2]);
-  }
-  return med;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -166,7 +128,7 @@ int main(int argc, char** argv) {
       }
       sink = sink + x[0];
     };
-    const auto t = paired({[&] { SparseFactor f; f.factorize(K, sparse); sink = sink + f.solve(b)[0]; },
+    const auto t = bench::paired({[&] { SparseFactor f; f.factorize(K, sparse); sink = sink + f.solve(b)[0]; },
                            [&] { SparseFactor f; f.factorize(K, dense); sink = sink + f.solve(b)[0]; }, zero_skipping},
                           budget);
     fmt::print("| {} | {} | {:.1f} | {:.1f} | {:.1f} | {:.2f} | {:.2f} |\n", name, n, 1e6 * t[0], 1e6 * t[1], 1e6 * t[2],
@@ -204,10 +166,10 @@ int main(int argc, char** argv) {
     return Eigen::MatrixXd(X.bottomRows(6));
   };
   volatile double sink = 0;
-  const auto tc = paired({[&] { sink = sink + saddle_lu()(0, 0); },
+  const auto tc = bench::paired({[&] { sink = sink + saddle_lu()(0, 0); },
                           [&] { Eigen::MatrixXd Kz; condense_dense(K, rows, Kz); sink = sink + Kz(0, 0); }},
                          budget);
-  const auto ta = paired({[&] { sink = sink + linear_node_stiffness(model, tip).K(0, 0); },
+  const auto ta = bench::paired({[&] { sink = sink + linear_node_stiffness(model, tip).K(0, 0); },
                           [&] {
                             const Model m = load_and_check(doc);
                             sink = sink + static_cast<double>(run_document(m, doc, {}).failed);

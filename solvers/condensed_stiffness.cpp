@@ -285,23 +285,17 @@ CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const
 CondensedStiffness linear_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options) {
   const DofMap map(model);
   const LinearStructure structure(model);
-  if (map.free_size() <= kDenseMaxDofs) {
-    // Small model: assembled into a dense matrix and condensed by the dense Schur complement.
-    DenseAssembler dense(map);
-    dense.begin();
-    structure.assemble(map, dense);
-    dense.end();
-    CondensedStiffness out = condense_to_node(model, map, dense.K_ff(), node, options);
+  auto condensed = [&](auto&& assembler) {
+    assembler.begin();
+    structure.assemble(map, assembler);
+    assembler.end();
+    CondensedStiffness out = condense_to_node(model, map, assembler.K_ff(), node, options);
     out.statically_indeterminate = map.redundant_constraints();
     return out;
-  }
-  SystemAssembler assembler(map);
-  assembler.begin();
-  structure.assemble(map, assembler);
-  assembler.end();
-  CondensedStiffness out = condense_to_node(model, map, assembler.K_ff(), node, options);
-  out.statically_indeterminate = map.redundant_constraints();
-  return out;
+  };
+  // Small models: assembled into a dense matrix and condensed by the dense Schur complement.
+  if (map.free_size() <= kDenseMaxDofs) return condensed(DenseAssembler(map));
+  return condensed(SystemAssembler(map));
 }
 
 CondensedStiffness loaded_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options) {

@@ -1,0 +1,46 @@
+// Timing helpers of the small-model benchmarks (bench_small_models, bench_chain_rate).
+#pragma once
+
+#include <time.h>
+
+#include <algorithm>
+#include <functional>
+#include <vector>
+
+namespace beamfea::bench {
+
+// The calling thread's CPU seconds: on a loaded machine wall clock measures the scheduler.
+inline double thread_cpu_s() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// CPU seconds per call of each function: batches of calls sized to about budget / 5 seconds, the
+// functions interleaved batch by batch (so a slow phase of the machine slows all of them), the
+// median of 5 batches. per_call[i] (default 1) divides a call of fs[i] that runs several cases.
+inline std::vector<double> paired(const std::vector<std::function<void()>>& fs, double budget,
+                                  std::vector<double> per_call = {}) {
+  per_call.resize(fs.size(), 1.0);
+  std::vector<long> reps(fs.size(), 1);
+  for (std::size_t i = 0; i < fs.size(); ++i) {
+    const double t0 = thread_cpu_s();
+    fs[i]();
+    reps[i] = std::max<long>(1, static_cast<long>(budget / 5 / std::max(1e-7, thread_cpu_s() - t0)));
+  }
+  std::vector<std::vector<double>> t(fs.size());
+  for (int b = 0; b < 5; ++b)
+    for (std::size_t i = 0; i < fs.size(); ++i) {
+      const double t0 = thread_cpu_s();
+      for (long r = 0; r < reps[i]; ++r) fs[i]();
+      t[i].push_back((thread_cpu_s() - t0) / static_cast<double>(reps[i]) / per_call[i]);
+    }
+  std::vector<double> med;
+  for (auto& v : t) {
+    std::sort(v.begin(), v.end());
+    med.push_back(v[2]);
+  }
+  return med;
+}
+
+}  // namespace beamfea::bench
