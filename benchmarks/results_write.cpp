@@ -1,0 +1,85 @@
+// Writing results.json against the analysis it reports (issue 15 item 1: "writing results.json
+// under 10 % of the analysis" at 202,752 DOFs).
+//
+//   python3 benchmarks/cube_frame.py 15x15x14 /tmp/cube.json    # 21,504 DOFs
+//   build/benchmarks/bench_results_write /tmp/cube.json [reps]
+//
+// Runs the model's analyses in process once (no files), then times, alternately, nlohmann's
+// dump(2) (the writer before) and write_results_json (io/json_writer.hpp) of the same results
+// object, each followed by the atomic write of its text to a temporary folder, and prints the
+// bytes, the times (thread CPU and wall, median of the repetitions) and their ratios to the
+// analysis (process CPU and wall).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "bench_timing.hpp"
+#include "io/atomic_file.hpp"
+#include "io/json_writer.hpp"
+#include "io/run.hpp"
+
+namespace {
+
+double process_cpu_s() {
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+double wall_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace beamfea;
+  if (argc < 2) {
+    fmt::print(stderr, "usage: {} model.json [reps]\n", argv[0]);
+    return 2;
+  }
+  const int reps = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
+  std::ifstream in(argv[1]);
+  const nlohmann::json document = nlohmann::json::parse(in);
+  const Model model = load_and_check(document);
+  const double c0 = process_cpu_s(), w0 = wall_s();
+  const RunReport report = run_document(model, document, RunOptions{});
+  const double analysis_cpu = process_cpu_s() - c0, analysis_wall = wall_s() - w0;
+
+  const auto dir = std::filesystem::temp_directory_path() / fmt::format("bench_results_write_{}", getpid());
+  std::filesystem::create_directories(dir);
+  std::vector<double> cpu[2], wall[2], serialise[2];
+  std::size_t bytes[2] = {0, 0};
+  for (int r = 0; r < reps; ++r)
+    for (int k = 0; k < 2; ++k) {
+      const double t0 = bench::thread_cpu_s(), v0 = wall_s();
+      std::string text;
+      if (k == 0) text = report.results.dump(2);
+      else write_results_json(report.results, text);
+      text += '\n';
+      serialise[k].push_back(bench::thread_cpu_s() - t0);
+      write_text_atomic(dir / "results.json", text);
+      cpu[k].push_back(bench::thread_cpu_s() - t0);
+      wall[k].push_back(wall_s() - v0);
+      bytes[k] = text.size();
+    }
+  std::filesystem::remove_all(dir);
+
+  fmt::print("{}: {} nodes, {} elements; analysis {:.3f} s process CPU, {:.3f} s wall\n", argv[1],
+             model.nodes.size(), model.elements.size(), analysis_cpu, analysis_wall);
+  fmt::print("| writer | MB | serialise, thread CPU s | with the file write, thread CPU s | wall s | / analysis CPU | / analysis wall |\n|---|---:|---:|---:|---:|---:|---:|\n");
+  const char* names[2] = {"nlohmann dump(2) (before)", "write_results_json"};
+  for (int k = 0; k < 2; ++k)
+    fmt::print("| {} | {:.1f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} |\n", names[k], bytes[k] / 1e6, median(serialise[k]), median(cpu[k]),
+               median(wall[k]), median(cpu[k]) / analysis_cpu, median(wall[k]) / analysis_wall);
+  fmt::print("new / before: thread CPU {:.2f}, wall {:.2f}, bytes {:.2f}\n", median(cpu[1]) / median(cpu[0]),
+             median(wall[1]) / median(wall[0]), static_cast<double>(bytes[1]) / static_cast<double>(bytes[0]));
+  return 0;
+}

@@ -1,0 +1,130 @@
+#include "io/json_writer.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace beamfea {
+
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+bool is_scalar(const ojson& v) { return !v.is_structured(); }
+
+void write_string(const std::string& s, std::string& out) {
+  for (const char c : s)
+    if (static_cast<unsigned char>(c) >= 0x80) {
+      // Non-ASCII: nlohmann's own serialiser (UTF-8 passed through, invalid UTF-8 an error).
+      out += ojson(s).dump();
+      return;
+    }
+  out += '"';
+  for (const char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\b': out += "\\b"; break;
+      case '\f': out += "\\f"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          static constexpr char hex[] = "0123456789abcdef";
+          out += "\\u00";
+          out += hex[(c >> 4) & 0xf];
+          out += hex[c & 0xf];
+        } else {
+          out += c;
+        }
+    }
+  }
+  out += '"';
+}
+
+void write_double(double x, std::string& out) {
+  if (!std::isfinite(x)) {
+    out += "null";
+    return;
+  }
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  out.append(buf, r.ptr);
+  for (const char* p = buf; p != r.ptr; ++p)
+    if (*p == '.' || *p == 'e') return;
+  out += ".0";
+}
+
+template <class Int>
+void write_integer(Int x, std::string& out) {
+  char buf[24];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  out.append(buf, r.ptr);
+}
+
+void write_scalar(const ojson& v, std::string& out) {
+  switch (v.type()) {
+    case ojson::value_t::null: out += "null"; break;
+    case ojson::value_t::boolean: out += v.get_ref<const bool&>() ? "true" : "false"; break;
+    case ojson::value_t::number_float: write_double(v.get_ref<const double&>(), out); break;
+    case ojson::value_t::number_integer: write_integer(v.get_ref<const std::int64_t&>(), out); break;
+    case ojson::value_t::number_unsigned: write_integer(v.get_ref<const std::uint64_t&>(), out); break;
+    case ojson::value_t::string: write_string(v.get_ref<const std::string&>(), out); break;
+    default: out += v.dump(); break;  // binary: not produced by beamfea
+  }
+}
+
+void newline(std::string& out, int indent) {
+  out += '\n';
+  out.append(static_cast<std::size_t>(indent), ' ');
+}
+
+void write_value(const ojson& v, std::string& out, int indent) {
+  if (v.is_object()) {
+    if (v.empty()) {
+      out += "{}";
+      return;
+    }
+    out += '{';
+    bool first = true;
+    for (const auto& [key, member] : v.get_ref<const ojson::object_t&>()) {
+      if (!first) out += ',';
+      first = false;
+      newline(out, indent + 2);
+      write_string(key, out);
+      out += ": ";
+      write_value(member, out, indent + 2);
+    }
+    newline(out, indent);
+    out += '}';
+  } else if (v.is_array()) {
+    if (v.empty()) {
+      out += "[]";
+      return;
+    }
+    bool flat = true;
+    for (const auto& e : v)
+      if (!is_scalar(e)) {
+        flat = false;
+        break;
+      }
+    out += '[';
+    bool first = true;
+    for (const auto& e : v) {
+      if (!first) out += flat ? ", " : ",";
+      first = false;
+      if (!flat) newline(out, indent + 2);
+      write_value(e, out, indent + 2);
+    }
+    if (!flat) newline(out, indent);
+    out += ']';
+  } else {
+    write_scalar(v, out);
+  }
+}
+
+}  // namespace
+
+void write_results_json(const ojson& value, std::string& out) { write_value(value, out, 0); }
+
+}  // namespace beamfea

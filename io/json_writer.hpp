@@ -1,0 +1,19 @@
+#pragma once
+// The results writer: results.json as people and programs read it, written in one pass.
+//
+// Objects are indented by two spaces per level, one member per line, as nlohmann's dump(2) does;
+// arrays whose elements are all scalars (numbers, strings, booleans, nulls) are written on one
+// line, `[1.0, -2.5e-07, 0.0]`, so that a displacement or an end force reads as one line and
+// results.json is about half the bytes of dump(2) (most of its bytes were the indentation of
+// numbers, one per line). Numbers are the shortest text that reads back to the same double
+// (std::to_chars), with ".0" added to integral values so that they stay floating point for
+// readers that care; non-finite numbers are written as null, as nlohmann does.
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace beamfea {
+
+// Appends the text of `value` to `out` (no trailing newline).
+void write_results_json(const nlohmann::ordered_json& value, std::string& out);
+
+}  // namespace beamfea

@@ -1,0 +1,84 @@
+// write_results_json (io/json_writer.hpp): the text of results.json. What it must keep: every value
+// reads back exactly (numbers to the last bit: std::to_chars gives the shortest round-trip text,
+// C++17 [utility.to.chars]), objects indented as dump(2), arrays of scalars on one line.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "io/json_writer.hpp"
+
+using namespace beamfea;
+using ojson = nlohmann::ordered_json;
+
+namespace {
+std::string text_of(const ojson& v) {
+  std::string s;
+  write_results_json(v, s);
+  return s;
+}
+}  // namespace
+
+TEST(JsonWriter, LayoutObjectsIndentedScalarArraysOnOneLine) {
+  ojson v = ojson::object();
+  v["a"] = {1.0, -2.5e-07, 0.0};
+  v["b"] = ojson::object();
+  v["c"] = ojson::array();
+  v["d"] = {{{"x", 1}}, {1, 2}};
+  v["s"] = "ok";
+  EXPECT_EQ(text_of(v),
+            "{\n"
+            "  \"a\": [1.0, -2.5e-07, 0.0],\n"
+            "  \"b\": {},\n"
+            "  \"c\": [],\n"
+            "  \"d\": [\n"
+            "    {\n"
+            "      \"x\": 1\n"
+            "    },\n"
+            "    [1, 2]\n"
+            "  ],\n"
+            "  \"s\": \"ok\"\n"
+            "}");
+}
+
+TEST(JsonWriter, NumbersReadBackBitForBitAndStayFloatingPoint) {
+  const double values[] = {0.1, 1.0 / 3.0, -17251.231662345606, 1e-300, 4.9e-324, 1.7976931348623157e308,
+                           1e21, 123456789012345680.0, -0.0, 3.0, 2.0 / 7.0 * 1e-12};
+  ojson a = ojson::array();
+  for (const double x : values) a.push_back(x);
+  a.push_back(std::int64_t{-42});
+  a.push_back(std::uint64_t{18446744073709551615u});
+  const ojson back = ojson::parse(text_of(a));
+  ASSERT_EQ(back.size(), a.size());
+  for (std::size_t i = 0; i < std::size(values); ++i) {
+    ASSERT_TRUE(back[i].is_number_float()) << i << ": " << back[i].dump();
+    const double x = back[i].get<double>();
+    EXPECT_EQ(std::memcmp(&x, &values[i], sizeof x), 0) << i << ": " << values[i] << " read back as " << x;
+  }
+  EXPECT_EQ(back[std::size(values)].get<std::int64_t>(), -42);
+  EXPECT_EQ(back[std::size(values) + 1].get<std::uint64_t>(), 18446744073709551615u);
+  EXPECT_EQ(text_of(ojson(3.0)), "3.0");
+}
+
+TEST(JsonWriter, NonFiniteNumbersAreNullAsNlohmannWritesThem) {
+  ojson a = {std::numeric_limits<double>::infinity(), std::nan(""), 1.5};
+  EXPECT_EQ(text_of(a), "[null, null, 1.5]");
+}
+
+TEST(JsonWriter, StringsEscapedAndUtf8PassedThrough) {
+  ojson v = ojson::object();
+  v["quote\"back\\slash"] = "tab\there\nnew\x01line";
+  v["utf8"] = "\xce\xbb = 1.5 \xe2\x80\x94 ok";
+  const std::string t = text_of(v);
+  EXPECT_NE(t.find("\"quote\\\"back\\\\slash\": \"tab\\there\\nnew\\u0001line\""), std::string::npos) << t;
+  EXPECT_EQ(ojson::parse(t), v);
+}
+
+TEST(JsonWriter, ANestedResultReadsBackEqual) {
+  ojson r = ojson::parse(R"({"analyses": {"lin": {"type": "linear_static", "status": "ok",
+      "nodes": {"A": {"displacement": [0.0, -1.25e-3, 0.0, 0.0, 0.0, -0.001875], "reaction": null}},
+      "elements": {"e": {"stations": [{"x": 0.0, "forces": [1, 2, 3, 4, 5, 6]}, {"x": 0.5, "forces": []}]}},
+      "stable": true, "modes": [[1.0, 2.0], [3.0]]}}})");
+  EXPECT_EQ(ojson::parse(text_of(r)), r);
+}
