@@ -22,7 +22,9 @@ the order rotated each repetition so that load drifts hit all sides alike):
   - OpenSees: a child Python process (this script, --opensees-child) that builds the same model
     through OpenSeesPy (elasticBeamColumn, Linear transformation with the same vecxz, Plain
     constraints, RCM numberer) and times analyze(1) + reactions() ("analysis"); "process" is the
-    child's whole wall time (interpreter start, import, model definition, analysis).
+    child's whole wall time (interpreter start, import, model definition, analysis; with
+    --opensees-writes also writing the displacements, reactions and local end forces that
+    beamfea's results.json holds, for equal output: without it OpenSees writes nothing).
 Both answers are compared (roof displacement, 1e-6 relative) before any time is reported. The
 table gives the median of each time and the median of the per-repetition paired ratios
 OpenSees / beamfea (above 1: beamfea faster).
@@ -132,8 +134,10 @@ def run_beamfea(exe, model_path, probe):
                     free_dofs=res["free_dofs"], blas=blas)
 
 
-def opensees_child(nx, ny, nz, system):
-    """Runs in the child process: builds the model in OpenSeesPy, times analyze + reactions."""
+def opensees_child(nx, ny, nz, system, write_results):
+    """Runs in the child process: builds the model in OpenSeesPy, times analyze + reactions; with
+    write_results, then writes what beamfea's results.json holds that OpenSees computes (every
+    node's displacement and reaction, every element's local end forces) as JSON to a temporary file."""
     import openseespy.opensees as ops
     nodes, elems, supports, loads = frame(nx, ny, nz)
     probe = nodes[-1][0]
@@ -165,6 +169,12 @@ def opensees_child(nx, ny, nz, system):
     ok = ops.analyze(1)
     ops.reactions()
     dt = time.perf_counter() - t0
+    if write_results:
+        with tempfile.TemporaryDirectory() as d, open(os.path.join(d, "results.json"), "w") as f:
+            json.dump({"nodes": {str(n): {"displacement": ops.nodeDisp(n), "reaction": ops.nodeReaction(n)}
+                                 for n, *_ in nodes},
+                       "elements": {str(e + 1): {"end_forces": ops.eleResponse(e + 1, "localForce")}
+                                    for e in range(len(elems))}}, f, indent=1)
     with open("/proc/self/maps") as f:
         blas = blas_in_maps(f.read())
     # Several BLAS may be mapped (the wheel's and the preloaded one): say which one dgemm_ binds to
@@ -173,13 +183,14 @@ def opensees_child(nx, ny, nz, system):
     print(json.dumps(dict(ok=ok, analysis=dt, ux=ops.nodeDisp(probe, 1), blas=blas)))
 
 
-def run_opensees(python, size, system, blas_lib):
+def run_opensees(python, size, system, blas_lib, write_results):
     env = dict(os.environ)
     if blas_lib:
         env["LD_PRELOAD"] = blas_lib
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    r = subprocess.run([python, os.path.abspath(__file__), "--opensees-child", "x".join(map(str, size)), system],
+    r = subprocess.run([python, os.path.abspath(__file__), "--opensees-child", "x".join(map(str, size)), system,
+                        "1" if write_results else "0"],
                        env=env, capture_output=True, text=True)
     total = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -202,10 +213,13 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--systems", default="Mumps,UmfPack")
     ap.add_argument("--blas", default=OPENBLAS, help="BLAS preloaded into OpenSees ('' keeps the wheel's own)")
-    ap.add_argument("--opensees-child", nargs=2, metavar=("SIZE", "SYSTEM"), help=argparse.SUPPRESS)
+    ap.add_argument("--opensees-writes", action="store_true",
+                    help="OpenSees also writes every node's displacement and reaction and every element's local "
+                         "end forces to a JSON file (beamfea's results.json holds these and more), counted in its process")
+    ap.add_argument("--opensees-child", nargs=3, metavar=("SIZE", "SYSTEM", "WRITE"), help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.opensees_child:
-        opensees_child(*parse_size(a.opensees_child[0]), a.opensees_child[1])
+        opensees_child(*parse_size(a.opensees_child[0]), a.opensees_child[1], a.opensees_child[2] == "1")
         return
     systems = a.systems.split(",")
     head = ["bays", "free DOFs", "beamfea process s (CPU s)", "beamfea analysis s"]
@@ -229,7 +243,7 @@ def main():
                 order = sides[rep % len(sides):] + sides[:rep % len(sides)]
                 for s in order:
                     r = run_beamfea(a.beamfea, model_path, probe) if s == "beamfea" else \
-                        run_opensees(a.python, size, s, a.blas)
+                        run_opensees(a.python, size, s, a.blas, a.opensees_writes)
                     runs[s].append(r)
                     blas_seen.setdefault(s, set()).update(r["blas"])
         bf = runs["beamfea"]
