@@ -2,12 +2,32 @@
 
 #include <charconv>
 #include <cmath>
+#include <fstream>
+
+#include "core/errors.hpp"
+#include "io/atomic_file.hpp"
 
 namespace beamfea {
 
 namespace {
 
 using ojson = nlohmann::ordered_json;
+
+// The text is built in `out`; with a stream, `out` is handed to it whenever it passes a chunk, so
+// that a results.json of hundreds of megabytes never sits whole in memory.
+inline constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+
+struct Sink {
+  std::string& out;
+  std::ostream* stream = nullptr;
+  void flush_if_full() {
+    if (stream && out.size() >= kChunkBytes) flush();
+  }
+  void flush() {
+    stream->write(out.data(), static_cast<std::streamsize>(out.size()));
+    out.clear();
+  }
+};
 
 bool is_scalar(const ojson& v) { return !v.is_structured(); }
 
@@ -79,7 +99,8 @@ void newline(std::string& out, int indent) {
   out.append(static_cast<std::size_t>(indent), ' ');
 }
 
-void write_value(const ojson& v, std::string& out, int indent) {
+void write_value(const ojson& v, Sink& sink, int indent) {
+  std::string& out = sink.out;
   if (v.is_object()) {
     if (v.empty()) {
       out += "{}";
@@ -93,7 +114,8 @@ void write_value(const ojson& v, std::string& out, int indent) {
       newline(out, indent + 2);
       write_string(key, out);
       out += ": ";
-      write_value(member, out, indent + 2);
+      write_value(member, sink, indent + 2);
+      sink.flush_if_full();
     }
     newline(out, indent);
     out += '}';
@@ -114,7 +136,8 @@ void write_value(const ojson& v, std::string& out, int indent) {
       if (!first) out += flat ? ", " : ",";
       first = false;
       if (!flat) newline(out, indent + 2);
-      write_value(e, out, indent + 2);
+      write_value(e, sink, indent + 2);
+      if (!flat) sink.flush_if_full();
     }
     if (!flat) newline(out, indent);
     out += ']';
@@ -125,6 +148,24 @@ void write_value(const ojson& v, std::string& out, int indent) {
 
 }  // namespace
 
-void write_results_json(const ojson& value, std::string& out) { write_value(value, out, 0); }
+void write_results_json(const ojson& value, std::string& out) {
+  Sink sink{out};
+  write_value(value, sink, 0);
+}
+
+void write_results_json_file(const ojson& value, const std::filesystem::path& path) {
+  write_atomic(path, [&](const std::filesystem::path& tmp) {
+    std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
+    if (!file) throw Error("cannot write '" + tmp.string() + "'");
+    std::string buffer;
+    buffer.reserve(kChunkBytes + (kChunkBytes >> 4));
+    Sink sink{buffer, &file};
+    write_value(value, sink, 0);
+    buffer += '\n';
+    sink.flush();
+    file.close();
+    if (!file) throw Error("error writing '" + tmp.string() + "'");
+  });
+}
 
 }  // namespace beamfea

@@ -7,7 +7,9 @@
 // results.json is about half the bytes of dump(2) (most of its bytes were the indentation of
 // numbers, one per line). Numbers are the shortest text that reads back to the same double
 // (std::to_chars), with ".0" added to integral values so that they stay floating point for
-// readers that care; non-finite numbers are written as null, as nlohmann does.
+// readers that care; non-finite numbers are written as null, as nlohmann does. To a file the
+// text is streamed: it is never whole in memory.
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -15,5 +17,9 @@ namespace beamfea {
 
 // Appends the text of `value` to `out` (no trailing newline).
 void write_results_json(const nlohmann::ordered_json& value, std::string& out);
+
+// Writes the text of `value` and a newline to `path` atomically (io/atomic_file.hpp), streamed in
+// chunks of about a megabyte; throws beamfea::Error when the file cannot be written.
+void write_results_json_file(const nlohmann::ordered_json& value, const std::filesystem::path& path);
 
 }  // namespace beamfea

@@ -93,10 +93,7 @@ RunReport run_document(const Model& model, const nlohmann::json& document, const
   report.results["analyses"] = std::move(analyses);
   if (cache.linear) report.results["factorizations"] = cache.linear->factorizations();
   if (staging) {
-    std::string text;
-    write_results_json(report.results, text);
-    text += '\n';
-    write_text_atomic(staging->path() / "results.json", text);
+    write_results_json_file(report.results, staging->path() / "results.json");
     staging->commit("results.json");
   }
   return report;

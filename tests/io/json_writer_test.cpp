@@ -5,8 +5,12 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <unistd.h>
 
+#include "core/errors.hpp"
 #include "io/json_writer.hpp"
 
 using namespace beamfea;
@@ -81,4 +85,27 @@ TEST(JsonWriter, ANestedResultReadsBackEqual) {
       "elements": {"e": {"stations": [{"x": 0.0, "forces": [1, 2, 3, 4, 5, 6]}, {"x": 0.5, "forces": []}]}},
       "stable": true, "modes": [[1.0, 2.0], [3.0]]}}})");
   EXPECT_EQ(ojson::parse(text_of(r)), r);
+}
+
+TEST(JsonWriter, TheStreamedFileIsTheTextAndANewlineAcrossManyChunks) {
+  // Several megabytes: the file writer hands its buffer to the stream about every megabyte.
+  ojson r = {{"elements", ojson::array()}};
+  for (int i = 0; i < 16000; ++i)
+    r["elements"].push_back({{"id", i}, {"forces", {i * 0.1, -i / 3.0, 1e-9 * i, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 1.0 / (i + 1)}}});
+  std::string text;
+  write_results_json(r, text);
+  ASSERT_GT(text.size(), std::size_t{2} << 20);
+  const auto path = std::filesystem::temp_directory_path() / ("json_writer_test_" + std::to_string(::getpid()) + ".json");
+  write_results_json_file(r, path);
+  std::ifstream in(path, std::ios::binary);
+  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::filesystem::remove(path);
+  EXPECT_EQ(file, text + "\n");
+  EXPECT_EQ(ojson::parse(file), r);
+}
+
+TEST(JsonWriter, AFileThatCannotBeWrittenIsAnErrorAndLeavesNothing) {
+  const auto dir = std::filesystem::temp_directory_path() / ("json_writer_missing_" + std::to_string(::getpid()));
+  EXPECT_THROW(write_results_json_file(ojson{{"a", 1}}, dir / "results.json"), Error);
+  EXPECT_FALSE(std::filesystem::exists(dir));
 }
