@@ -153,7 +153,33 @@ struct Options {
   double mem_margin_gb = 3.0;           // memory left to others when deciding to factorise
   double library_path_max_s = 90.0;     // run SparseFactor too when the numeric stage took less
   std::string ordering = "default";     // staged CHOLMOD's ordering: default (its trials), amd, metis, nesdis
+  std::string nrelax, zrelax;           // CHOLMOD's supernodal amalgamation (three values each; empty: its defaults)
 };
+
+// CHOLMOD's relaxed supernodal amalgamation (cholmod_common nrelax[3], zrelax[3]): columns are
+// merged into a supernode while the supernode has fewer than nrelax[k] columns or the fraction of
+// explicit zeros stays under zrelax[k]; larger supernodes mean larger BLAS-3 calls.
+void set_relax(cholmod_common& c, const std::string& nrelax, const std::string& zrelax) {
+  const auto three = [](const std::string& s) {
+    std::vector<double> v;
+    std::size_t start = 0;
+    while (start <= s.size()) {
+      const std::size_t end = std::min(s.find(',', start), s.size());
+      v.push_back(std::atof(s.substr(start, end - start).c_str()));
+      start = end + 1;
+    }
+    if (v.size() != 3) throw std::runtime_error("--nrelax/--zrelax: three comma-separated values");
+    return v;
+  };
+  if (!nrelax.empty()) {
+    const auto v = three(nrelax);
+    for (int k = 0; k < 3; ++k) c.nrelax[k] = static_cast<std::size_t>(v[k]);
+  }
+  if (!zrelax.empty()) {
+    const auto v = three(zrelax);
+    for (int k = 0; k < 3; ++k) c.zrelax[k] = v[k];
+  }
+}
 
 // Restricts CHOLMOD to one ordering ("default" leaves its own trials: AMD, then METIS when AMD's
 // fill looks poor, keeping the better).
@@ -238,6 +264,7 @@ int run_single(long target, const Options& o) {
   {
     Cholmod llt;
     set_ordering(llt.common(), o.ordering);
+    set_relax(llt.common(), o.nrelax, o.zrelax);
     t0 = Stopwatch();
     llt.analyzePattern(A);
     stage("symbolic", t0);
@@ -377,6 +404,8 @@ Record run_child(const char* self, long size, const Options& o, long& maxrss_kb,
                                 fmt::format("{}", o.max_simplicial_gflop), "--mem-margin-gb",
                                 fmt::format("{}", o.mem_margin_gb), "--library-path-max-s",
                                 fmt::format("{}", o.library_path_max_s), "--ordering", o.ordering};
+  if (!o.nrelax.empty()) args.insert(args.end(), {"--nrelax", o.nrelax});
+  if (!o.zrelax.empty()) args.insert(args.end(), {"--zrelax", o.zrelax});
   int fd[2];
   if (pipe(fd) != 0) throw std::runtime_error("pipe failed");
   const pid_t pid = fork();
@@ -562,9 +591,11 @@ int main(int argc, char** argv) {
         return 2;
       }
     }
+    else if (a == "--nrelax") o.nrelax = next();
+    else if (a == "--zrelax") o.zrelax = next();
     else {
       fmt::print(stderr,
-                 "usage: {} [--sizes N1,N2,...] [--stories S] [--repeat R] [--max-gflop G] "
+                 "usage: {} [--nrelax a,b,c] [--zrelax x,y,z] [--sizes N1,N2,...] [--stories S] [--repeat R] [--max-gflop G] "
                  "[--max-simplicial-gflop G] [--mem-margin-gb M] [--library-path-max-s T] [--ordering O] [--single N]\n",
                  argv[0]);
       return a == "--help" || a == "-h" ? 0 : 2;

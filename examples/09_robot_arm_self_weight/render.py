@@ -51,64 +51,57 @@ def finish(v, path, focal, scale):
     SaveScreenshot(path, v, ImageResolution=[1400, 700])
 
 
+def plain(src, v, radius, grey, opacity=1.0):
+    """The members as uncoloured tubes (the undeformed arm under a deformed one)."""
+    d = Show(tube(src, radius), v)
+    d.DiffuseColor = [grey] * 3
+    d.Opacity = opacity
+    d.ColorArrayName = ['POINTS', '']
+
+
+def coloured(src, v, radius, array, preset, bar_title=None, component=None):
+    """Tubes coloured by a point array (its magnitude when `component` is "Magnitude")."""
+    d = Show(tube(src, radius), v)
+    ColorBy(d, ("POINTS", array, component) if component else ("POINTS", array))
+    lut = GetColorTransferFunction(array)
+    lut.ApplyPreset(preset, True)
+    if bar_title:
+        bar = GetScalarBar(lut, v)
+        bar.Title = bar_title
+        bar.ComponentTitle = ""
+        bar.TitleColor = [0, 0, 0]
+        bar.LabelColor = [0, 0, 0]
+        d.SetScalarBarVisibility(v, True)
+
+
+def warped(src, vectors, scale):
+    w = WarpByVector(Input=src)
+    w.Vectors = ["POINTS", vectors]
+    w.ScaleFactor = scale
+    return w
+
+
 # 1. Sag: undeformed in grey, deformed (x100) coloured by |displacement|.
 v = view_setup("Robot arm, service load (own weight + cable + payload): sag x %g" % SCALE)
-d0 = Show(tube(arm, 0.012), v)
-d0.DiffuseColor = [0.75, 0.75, 0.75]
-d0.Opacity = 0.5
-d0.ColorArrayName = ['POINTS', '']
-warp = WarpByVector(Input=arm)
-warp.Vectors = ["POINTS", "displacement"]
-warp.ScaleFactor = SCALE
-d1 = Show(tube(warp, 0.015), v)
-ColorBy(d1, ("POINTS", "displacement", "Magnitude"))
-lut = GetColorTransferFunction("displacement")
-lut.ApplyPreset("Viridis (matplotlib)", True)
-bar = GetScalarBar(lut, v)
-bar.Title = "|u| (m)"
-bar.ComponentTitle = ""
-bar.TitleColor = [0, 0, 0]
-bar.LabelColor = [0, 0, 0]
-d1.SetScalarBarVisibility(v, True)
+plain(arm, v, 0.012, 0.75, opacity=0.5)
+coloured(warped(arm, "displacement", SCALE), v, 0.015, "displacement", "Viridis (matplotlib)", "|u| (m)", "Magnitude")
 finish(v, os.path.join(here, "sag.png"), (0.62, 0.3), 0.4)
 
 # 2. Bending moment My drawn across each member (diagram_My: My times the local z axis).
 v2 = view_setup("Bending moment My along the members, service load (%g m per N m)" % MOMENT_SCALE)
-b0 = Show(tube(arm, 0.008), v2)
-b0.DiffuseColor = [0.3, 0.3, 0.3]
-b0.ColorArrayName = ['POINTS', '']
-dia = WarpByVector(Input=arm)
-dia.Vectors = ["POINTS", "diagram_My"]
-dia.ScaleFactor = MOMENT_SCALE
-calc = Calculator(Input=dia)
+plain(arm, v2, 0.008, 0.3)
+calc = Calculator(Input=warped(arm, "diagram_My", MOMENT_SCALE))
 calc.ResultArrayName = "My"
 calc.Function = "section_forces_4"
-b1 = Show(tube(calc, 0.006), v2)
-ColorBy(b1, ("POINTS", "My"))
-lut2 = GetColorTransferFunction("My")
-lut2.ApplyPreset("Cool to Warm", True)
-bar2 = GetScalarBar(lut2, v2)
-bar2.Title = "My (N m)"
-bar2.ComponentTitle = ""
-bar2.TitleColor = [0, 0, 0]
-bar2.LabelColor = [0, 0, 0]
-b1.SetScalarBarVisibility(v2, True)
+coloured(calc, v2, 0.006, "My", "Cool to Warm", "My (N m)")
 finish(v2, os.path.join(here, "moment.png"), (0.45, 0.55), 0.6)
+
 # 3. The first vibration mode (analysis "modes"): the .vtu's displacement is the mode drawn at
 # 10 % of the model size (results.json: vtk_scale); undeformed in grey.
 mode = XMLUnstructuredGridReader(FileName=[os.path.join(out, "modes_mode1.vtu")])
 mode.UpdatePipeline()
 v3 = view_setup("First vibration mode, %.2f Hz (shape at 10 %% of the model size)" % mode.FieldData["frequency"].GetRange()[0])
-m0 = Show(tube(mode, 0.012), v3)
-m0.DiffuseColor = [0.75, 0.75, 0.75]
-m0.Opacity = 0.5
-m0.ColorArrayName = ['POINTS', '']
-mw = WarpByVector(Input=mode)
-mw.Vectors = ["POINTS", "displacement"]
-mw.ScaleFactor = 1.0
-m1 = Show(tube(mw, 0.015), v3)
-ColorBy(m1, ("POINTS", "displacement", "Magnitude"))
-lut3 = GetColorTransferFunction("displacement")
-lut3.ApplyPreset("Viridis (matplotlib)", True)
+plain(mode, v3, 0.012, 0.75, opacity=0.5)
+coloured(warped(mode, "displacement", 1.0), v3, 0.015, "displacement", "Viridis (matplotlib)", component="Magnitude")
 finish(v3, os.path.join(here, "mode1.png"), (0.62, 0.35), 0.45)
 print("wrote", os.path.join(here, "sag.png"), os.path.join(here, "moment.png"), "and", os.path.join(here, "mode1.png"))
