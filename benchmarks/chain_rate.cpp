@@ -15,15 +15,19 @@
 // Usage: taskset -c 1 bench_chain_rate [seconds_per_stage] [sweep_cases]
 // Thread CPU time per call (the machine's load makes wall clock meaningless at this scale),
 // median of 5 batches, the stages interleaved batch by batch. OpenBLAS held to one thread.
+// "allocations per call": calls of operator new (this executable replaces it with a counting
+// one) per call of the stage, counted over a separate pass after the timing.
 #include <dlfcn.h>
 #include <unistd.h>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <new>
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -39,6 +43,31 @@
 using json = nlohmann::json;
 using namespace beamfea;
 namespace fs = std::filesystem;
+
+// Calls of operator new in the whole process (the sized, aligned and array forms all end here or
+// in the aligned overload below).
+static std::atomic<long> g_allocations{0};
+
+// GCC 12 flags free() of memory from a replaced operator new as mismatched; here both are ours.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
+void* operator new(std::size_t n) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void* operator new(std::size_t n, std::align_val_t a) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  const std::size_t al = static_cast<std::size_t>(a);
+  if (void* p = std::aligned_alloc(al, (n + al - 1) / al * al)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
 
 int main(int argc, char** argv) {
   using SetThreads = void (*)(int);
@@ -66,8 +95,7 @@ int main(int argc, char** argv) {
 
   volatile double sink = 0;
   std::size_t next = 0;
-  const auto t = bench::paired(
-      {[&] { sink = sink + linear_node_stiffness(model, tip).K(0, 0); },
+  const std::vector<std::function<void()>> stages = {[&] { sink = sink + linear_node_stiffness(model, tip).K(0, 0); },
        [&] {
          const Model m = load_and_check(doc);
          sink = sink + static_cast<double>(run_document(m, doc, {}).failed);
@@ -82,14 +110,25 @@ int main(int argc, char** argv) {
          o.out_dir = out;
          o.jobs = 1;
          sink = sink + static_cast<double>(run_sweep(sweep, o).ok);
-       }},
-      budget, {1.0, 1.0, 1.0, static_cast<double>(sweep.size())});
+       }};
+  const std::vector<double> per_call = {1.0, 1.0, 1.0, static_cast<double>(sweep.size())};
+  const auto t = bench::paired(stages, budget, per_call);
+  std::vector<double> allocations;
+  for (std::size_t i = 0; i < stages.size(); ++i) {
+    constexpr int kCalls = 20;
+    const long a0 = g_allocations.load();
+    for (int r = 0; r < kCalls; ++r) stages[i]();
+    allocations.push_back(static_cast<double>(g_allocations.load() - a0) / kCalls / per_call[i]);
+  }
   fs::remove_all(out);
   const char* names[] = {"linear_node_stiffness", "in-process analysis (load_and_check + run_document)",
                          "sweep case (run_sweep_case + sweep_row)", "run_sweep --jobs 1, per case"};
-  fmt::print("| stage (three-link chain, {} free DOFs, one core) | us per call | calls per second | / in-process |\n",
-             39);
-  fmt::print("|---|---:|---:|---:|\n");
+  fmt::print(
+      "| stage (three-link chain, {} free DOFs, one core) | us per call | calls per second | / in-process | "
+      "allocations per call |\n",
+      39);
+  fmt::print("|---|---:|---:|---:|---:|\n");
   for (std::size_t i = 0; i < t.size(); ++i)
-    fmt::print("| {} | {:.1f} | {:.0f} | {:.2f} |\n", names[i], 1e6 * t[i], 1.0 / t[i], t[i] / t[1]);
+    fmt::print("| {} | {:.1f} | {:.0f} | {:.2f} | {:.0f} |\n", names[i], 1e6 * t[i], 1.0 / t[i], t[i] / t[1],
+               allocations[i]);
 }
