@@ -30,11 +30,11 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
   if (spec.contains("load_case")) s.load_case = json_in::id(spec["load_case"], child(p, "load_case"), "load_case");
   o.platform_node = node_ref(model, require(spec, p, "platform_node", what), child(p, "platform_node"));
   // Candidates
-  const std::string pc = child(p, "candidate_joints");
+  const json_in::Pointer pc = child(p, "candidate_joints");
   const auto& cands = array(require(spec, p, "candidate_joints", what), pc, what + " candidate_joints");
   if (cands.empty()) throw InputError(pc, what + ": no candidate joints");
   for (std::size_t i = 0; i < cands.size(); ++i) {
-    const std::string pi = child(pc, i);
+    const json_in::Pointer pi = child(pc, i);
     ActuatorCandidate c;
     if (cands[i].is_object()) {
       expect_keys(cands[i], pi, {"joint", "coordinate"});
@@ -62,7 +62,7 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
     throw InputError(child(p, "actuators"), fmt::format("{}: {} actuators but only {} candidate joint(s)", what,
                                                         s.actuators, n_all));
   // Stiffness
-  const std::string pk = child(p, "actuator_stiffness");
+  const json_in::Pointer pk = child(p, "actuator_stiffness");
   const auto& k = require(spec, p, "actuator_stiffness", what);
   if (k.is_array()) {
     auto v = numbers(k, pk, what + " actuator_stiffness");
@@ -75,7 +75,7 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
     o.actuator_stiffness.assign(n_all, positive(k, pk, what + " actuator_stiffness"));
   }
   // Directions
-  const std::string pd = child(p, "directions");
+  const json_in::Pointer pd = child(p, "directions");
   const auto& dirs = array(require(spec, p, "directions", what), pd, what + " directions");
   if (dirs.empty()) throw InputError(pd, what + ": no directions");
   for (std::size_t i = 0; i < dirs.size(); ++i) {
@@ -88,7 +88,7 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
   }
   // Structural terms
   if (spec.contains("structural_terms")) {
-    const std::string pt = child(p, "structural_terms");
+    const json_in::Pointer pt = child(p, "structural_terms");
     const auto& t = array(spec["structural_terms"], pt, what + " structural_terms");
     if (t.empty()) throw InputError(pt, what + ": no structural terms");
     o.terms.clear();
@@ -105,11 +105,11 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
   }
   // Poses
   if (spec.contains("poses")) {
-    const std::string pp = child(p, "poses");
+    const json_in::Pointer pp = child(p, "poses");
     const auto& poses = array(spec["poses"], pp, what + " poses");
     if (poses.empty()) throw InputError(pp, what + ": empty list of poses");
     for (std::size_t i = 0; i < poses.size(); ++i) {
-      const std::string pi = child(pp, i);
+      const json_in::Pointer pi = child(pp, i);
       const auto& po = object(poses[i], pi, "pose");
       expect_keys(po, pi, {"id", "nodes"});
       Pose pose;
@@ -117,10 +117,10 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
       for (const auto& q : s.poses)
         if (q.id == pose.id) throw InputError(child(pi, "id"), "duplicate pose id '" + pose.id + "'");
       if (po.contains("nodes")) {
-        const std::string pn = child(pi, "nodes");
+        const json_in::Pointer pn = child(pi, "nodes");
         const auto& nodes = array(po["nodes"], pn, "pose '" + pose.id + "' nodes");
         for (std::size_t j = 0; j < nodes.size(); ++j) {
-          const std::string pj = child(pn, j);
+          const json_in::Pointer pj = child(pn, j);
           const auto& nj = object(nodes[j], pj, "pose node");
           expect_keys(nj, pj, {"node", "xyz"});
           const int n = node_ref(model, require(nj, pj, "node", "pose node"), child(pj, "node"));
@@ -150,10 +150,10 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
   }
   // Schemes
   if (spec.contains("schemes")) {
-    const std::string ps = child(p, "schemes");
+    const json_in::Pointer ps = child(p, "schemes");
     const auto& sch = array(spec["schemes"], ps, what + " schemes");
     for (std::size_t i = 0; i < sch.size(); ++i) {
-      const std::string pi = child(ps, i);
+      const json_in::Pointer pi = child(ps, i);
       const auto& list = array(sch[i], pi, "scheme");
       if (static_cast<int>(list.size()) != s.actuators)
         throw InputError(pi, fmt::format("scheme has {} joints, expected {} (actuators)", list.size(), s.actuators));
@@ -185,7 +185,7 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
   // Ranking
   s.rank_direction = 0;
   if (spec.contains("rank_by")) {
-    const std::string pr = child(p, "rank_by");
+    const json_in::Pointer pr = child(p, "rank_by");
     const auto& r = object(spec["rank_by"], pr, what + " rank_by");
     expect_keys(r, pr, {"stiffness", "direction"});
     if (r.contains("stiffness")) {

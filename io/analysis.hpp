@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/model.hpp"
+#include "io/json_pointer.hpp"
 
 namespace beamfea {
 
@@ -78,7 +79,7 @@ struct AnalysisType {
   std::string name;
   // Validates the spec against the model, covering everything the run needs that input can
   // decide without solving (InputError with the JSON pointer). `check` and `run` share it.
-  std::function<void(const Model&, const nlohmann::json& spec, const std::string& pointer)> check;
+  std::function<void(const Model&, const nlohmann::json& spec, const json_in::Pointer& pointer)> check;
   std::function<AnalysisOutcome(const AnalysisContext&)> run;
   // Every file `run` may write for an analysis of this id (empty: it writes none).
   std::function<AnalysisFiles(const std::string& id)> files;
@@ -104,11 +105,11 @@ void check_file_clashes(const std::vector<AnalysisFileOwner>& analyses);
 // _ - . + = only, not "." or "..", at most kMaxAnalysisIdLength characters. Returns the id of
 // `v` or throws InputError at `pointer`.
 inline constexpr std::size_t kMaxAnalysisIdLength = 64;
-std::string analysis_id(const nlohmann::json& v, const std::string& pointer);
+std::string analysis_id(const nlohmann::json& v, const json_in::Pointer& pointer);
 
 // The model restrictions of the nonlinear analyses (buckling, path), as the nonlinear structure
 // states them, as an InputError at the analysis's pointer `p`.
-void check_nonlinear_model(const Model& model, const std::string& p);
+void check_nonlinear_model(const Model& model, const json_in::Pointer& p);
 
 // The first non-finite number in a result ("" when all are finite), as a path "a.b[2]".
 std::string first_non_finite(const ojson& v, const std::string& path = "");

@@ -69,7 +69,7 @@ void check_file_clashes(const std::vector<AnalysisFileOwner>& analyses) {
       if (name.empty()) continue;
       throw InputError(json_in::child(analyses[j].pointer, "id"),
                        "analysis '" + analyses[j].id + "' (" + analyses[j].type->name + ") and analysis '" +
-                           analyses[i].id + "' at " + json_in::child(analyses[i].pointer, "id") + " (" +
+                           analyses[i].id + "' at " + json_in::child(analyses[i].pointer, "id").str() + " (" +
                            analyses[i].type->name + ") would both write '" + name +
                            "' into the output folder: rename one of them");
     }

@@ -76,7 +76,7 @@ ojson element_json(const Model& model, const LinearStaticResult& r, int interior
 constexpr int kDefaultStations = 10;
 constexpr int kMaxStations = 10000;
 
-void check_linear_static(const Model&, const nlohmann::json& spec, const std::string& p) {
+void check_linear_static(const Model&, const nlohmann::json& spec, const json_in::Pointer& p) {
   json_in::expect_keys(spec, p, {"id", "type", "description", "load_case", "stations"});
   if (spec.contains("stations")) {
     const int n = json_in::integer_at_least(spec["stations"], json_in::child(p, "stations"), "linear_static stations", 0);
@@ -150,7 +150,7 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   return out;
 }
 
-void check_stiffness(const Model& model, const nlohmann::json& spec, const std::string& p) {
+void check_stiffness(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
   json_in::expect_keys(spec, p, {"id", "type", "description", "node", "load_case"});
   node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
   // Any node answers (issue 11): where supports, loops or rigid links hold it, its compliance is zero

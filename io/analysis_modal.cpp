@@ -30,7 +30,7 @@ ModalOptions read_options(const nlohmann::json& spec) {
 void check_modal(const Model& model, const nlohmann::json& spec, const std::string& p) {
   json_in::expect_keys(spec, p, {"id", "type", "description", "modes", "mass", "load_case"});
   if (spec.contains("modes")) {
-    const std::string mp = json_in::child(p, "modes");
+    const json_in::Pointer mp = json_in::child(p, "modes");
     const int m = json_in::integer_in(spec["modes"], mp, "modal modes", 1, kMaxModes);
     const int n = modal_dof_count(model);
     if (m > n)
@@ -38,7 +38,7 @@ void check_modal(const Model& model, const nlohmann::json& spec, const std::stri
                                std::to_string(n) + " free DOFs");
   }
   if (spec.contains("mass")) {
-    const std::string mp = json_in::child(p, "mass");
+    const json_in::Pointer mp = json_in::child(p, "mass");
     const std::string kind = json_in::string(spec["mass"], mp, "modal mass");
     if (kind != "consistent" && kind != "lumped")
       throw InputError(mp, "modal: unknown mass '" + kind + "' (expected consistent or lumped)");

@@ -64,7 +64,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
                                  "branch_switch", "stability", "desired_iterations", "max_cuts", "imperfection",
                                  "save_every", "load_case", "frequencies"});
   const auto& c = json_in::object(json_in::require(spec, p, "control", "path analysis"), child(p, "control"), "path control");
-  const std::string pc = child(p, "control");
+  const json_in::Pointer pc = child(p, "control");
   json_in::expect_keys(c, pc, {"load_factor", "to", "node", "dof", "arc_length", "min", "max", "increments"});
   const int kinds = (c.contains("load_factor") ? 1 : 0) + (c.contains("to") ? 1 : 0) + (c.contains("arc_length") ? 1 : 0);
   if (kinds != 1)
@@ -93,7 +93,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
     o.increments = json_in::integer_in(c["increments"], child(pc, "increments"), "increments", 1, kMaxSteps);
   }
   if (spec.contains("stop")) {
-    const std::string ps = child(p, "stop");
+    const json_in::Pointer ps = child(p, "stop");
     const auto& s = json_in::object(spec["stop"], ps, "path stop");
     json_in::expect_keys(s, ps, {"load_factor", "beyond", "node", "dof", "steps"});
     if (s.contains("load_factor")) o.stop_load_factor = json_in::number(s["load_factor"], child(ps, "load_factor"), "stop load_factor");
@@ -124,7 +124,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
     o.max_cuts = json_in::integer_in(spec["max_cuts"], child(p, "max_cuts"), "max_cuts", 0, kMaxCuts);
   }
   if (spec.contains("imperfection")) {
-    const std::string pi = child(p, "imperfection");
+    const json_in::Pointer pi = child(p, "imperfection");
     const auto& im = json_in::object(spec["imperfection"], pi, "imperfection");
     json_in::expect_keys(im, pi, {"mode", "amplitude"});
     o.imperfection_mode =
@@ -133,7 +133,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
     o.imperfection_amplitude = json_in::number(json_in::require(im, pi, "amplitude", "imperfection"), child(pi, "amplitude"), "imperfection amplitude");
   }
   if (spec.contains("frequencies")) {
-    const std::string pf = child(p, "frequencies");
+    const json_in::Pointer pf = child(p, "frequencies");
     const auto& f = json_in::object(spec["frequencies"], pf, "path frequencies");
     json_in::expect_keys(f, pf, {"modes", "mass"});
     o.frequency_modes = f.contains("modes") ? json_in::integer_in(f["modes"], child(pf, "modes"), "frequencies modes", 1,

@@ -27,7 +27,7 @@ const AnalysisType* find_analysis_type(const std::string& name) {
   return nullptr;
 }
 
-std::string analysis_id(const nlohmann::json& v, const std::string& pointer) {
+std::string analysis_id(const nlohmann::json& v, const json_in::Pointer& pointer) {
   const std::string id = json_in::id(v, pointer, "analysis");
   if (id.size() > kMaxAnalysisIdLength)
     throw InputError(pointer, "analysis id of " + std::to_string(id.size()) + " characters: at most " +
@@ -46,12 +46,12 @@ void check_analyses(const Model& model, const nlohmann::json& document) {
   std::map<std::string, std::size_t> ids;
   std::vector<AnalysisFileOwner> owners;
   for (std::size_t i = 0; i < it->size(); ++i) {
-    const std::string p = json_in::child("/analyses", i);
+    const json_in::Pointer p = json_in::child("/analyses", i);
     const auto& a = json_in::object((*it)[i], p, "analysis");
     const std::string id = analysis_id(json_in::require(a, p, "id", "analysis"), json_in::child(p, "id"));
     if (auto [first, fresh] = ids.emplace(id, i); !fresh)
       throw InputError(json_in::child(p, "id"), "duplicate analysis id '" + id + "' (first at " +
-                                                    json_in::child("/analyses", first->second) + ")");
+                                                    json_in::child("/analyses", first->second).str() + ")");
     const std::string type = json_in::string(json_in::require(a, p, "type", "analysis '" + id + "'"),
                                              json_in::child(p, "type"), "analysis '" + id + "'");
     const AnalysisType* t = find_analysis_type(type);
@@ -67,7 +67,7 @@ void check_analyses(const Model& model, const nlohmann::json& document) {
   check_file_clashes(owners);
 }
 
-void check_nonlinear_model(const Model& model, const std::string& p) {
+void check_nonlinear_model(const Model& model, const json_in::Pointer& p) {
   try {
     const NonlinearStructure ns(model);
   } catch (const ModelError& e) {

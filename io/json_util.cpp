@@ -8,19 +8,14 @@
 
 namespace beamfea::json_in {
 
-std::string child(const std::string& pointer, const std::string& key) {
-  std::string k;
-  for (char c : key) {
-    if (c == '~') k += "~0";
-    else if (c == '/') k += "~1";
-    else k += c;
-  }
-  return pointer + "/" + k;
-}
-
-std::string child(const std::string& pointer, std::size_t index) { return pointer + "/" + std::to_string(index); }
-
 namespace {
+
+// `what` followed by `tail`: an error message.
+std::string msg(std::string_view what, std::string_view tail) {
+  std::string m(what);
+  m += tail;
+  return m;
+}
 
 // Levenshtein distance (insertions, deletions, substitutions), O(|a| |b|).
 std::size_t edit_distance(std::string_view a, std::string_view b) {
@@ -67,7 +62,7 @@ std::string nearest_key(std::string_view key, std::initializer_list<std::string_
   return "";
 }
 
-void expect_keys(const json& obj, const std::string& pointer, std::initializer_list<std::string_view> known) {
+void expect_keys(const json& obj, const Pointer& pointer, std::initializer_list<std::string_view> known) {
   if (!obj.is_object()) return;
   for (const auto& [k, v] : obj.items()) {
     if (!k.empty() && k[0] == '_') continue;
@@ -85,95 +80,95 @@ void expect_keys(const json& obj, const std::string& pointer, std::initializer_l
   }
 }
 
-const json& require(const json& obj, const std::string& pointer, const std::string& key, const std::string& what) {
-  if (!obj.is_object()) throw InputError(pointer, what + ": expected an object");
+const json& require(const json& obj, const Pointer& pointer, std::string_view key, std::string_view what) {
+  if (!obj.is_object()) throw InputError(pointer, msg(what, ": expected an object"));
   auto it = obj.find(key);
-  if (it == obj.end()) throw InputError(child(pointer, key), what + ": missing field '" + key + "'");
+  if (it == obj.end()) throw InputError(child(pointer, key), msg(what, ": missing field '").append(key) + "'");
   return *it;
 }
 
-double number(const json& v, const std::string& pointer, const std::string& what) {
-  if (!v.is_number()) throw InputError(pointer, what + ": expected a number");
+double number(const json& v, const Pointer& pointer, std::string_view what) {
+  if (!v.is_number()) throw InputError(pointer, msg(what, ": expected a number"));
   const double x = v.get<double>();
-  if (!std::isfinite(x)) throw InputError(pointer, what + ": must be finite");
+  if (!std::isfinite(x)) throw InputError(pointer, msg(what, ": must be finite"));
   if (std::abs(x) > kMaxMagnitude)
-    throw InputError(pointer, what + ": " + v.dump() + " is beyond the largest magnitude accepted, 1e100 (products of "
+    throw InputError(pointer, msg(what, ": ") + v.dump() + " is beyond the largest magnitude accepted, 1e100 (products of "
                                          "such values overflow double precision in the analysis)");
   return x;
 }
 
-double positive(const json& v, const std::string& pointer, const std::string& what) {
+double positive(const json& v, const Pointer& pointer, std::string_view what) {
   const double x = number(v, pointer, what);
-  if (!(x > 0.0)) throw InputError(pointer, what + ": must be positive (got " + v.dump() + ")");
+  if (!(x > 0.0)) throw InputError(pointer, msg(what, ": must be positive (got ") + v.dump() + ")");
   return x;
 }
 
-int integer(const json& v, const std::string& pointer, const std::string& what) {
-  if (!v.is_number_integer()) throw InputError(pointer, what + ": expected an integer");
+int integer(const json& v, const Pointer& pointer, std::string_view what) {
+  if (!v.is_number_integer()) throw InputError(pointer, msg(what, ": expected an integer"));
   constexpr auto lo = std::numeric_limits<int>::min();
   constexpr auto hi = std::numeric_limits<int>::max();
   if (v.is_number_unsigned() ? v.get<std::uint64_t>() > static_cast<std::uint64_t>(hi)
                              : (v.get<std::int64_t>() < lo || v.get<std::int64_t>() > hi))
-    throw InputError(pointer, what + ": " + v.dump() + " is out of range for an integer here");
+    throw InputError(pointer, msg(what, ": ") + v.dump() + " is out of range for an integer here");
   return v.get<int>();
 }
 
-int integer_at_least(const json& v, const std::string& pointer, const std::string& what, int min) {
+int integer_at_least(const json& v, const Pointer& pointer, std::string_view what, int min) {
   const int x = integer(v, pointer, what);
-  if (x < min) throw InputError(pointer, what + " must be at least " + std::to_string(min) + " (got " + std::to_string(x) + ")");
+  if (x < min) throw InputError(pointer, msg(what, " must be at least ") + std::to_string(min) + " (got " + std::to_string(x) + ")");
   return x;
 }
 
-int integer_in(const json& v, const std::string& pointer, const std::string& what, int min, int max) {
+int integer_in(const json& v, const Pointer& pointer, std::string_view what, int min, int max) {
   const int x = integer(v, pointer, what);
   if (x < min || x > max)
-    throw InputError(pointer, what + " must be between " + std::to_string(min) + " and " + std::to_string(max) +
+    throw InputError(pointer, msg(what, " must be between ") + std::to_string(min) + " and " + std::to_string(max) +
                                   " (got " + std::to_string(x) + ")");
   return x;
 }
 
-bool boolean(const json& v, const std::string& pointer, const std::string& what) {
-  if (!v.is_boolean()) throw InputError(pointer, what + ": expected true or false");
+bool boolean(const json& v, const Pointer& pointer, std::string_view what) {
+  if (!v.is_boolean()) throw InputError(pointer, msg(what, ": expected true or false"));
   return v.get<bool>();
 }
 
-std::string string(const json& v, const std::string& pointer, const std::string& what) {
-  if (!v.is_string()) throw InputError(pointer, what + ": expected a string");
+std::string string(const json& v, const Pointer& pointer, std::string_view what) {
+  if (!v.is_string()) throw InputError(pointer, msg(what, ": expected a string"));
   return v.get<std::string>();
 }
 
-std::string id(const json& v, const std::string& pointer, const std::string& what) {
+std::string id(const json& v, const Pointer& pointer, std::string_view what) {
   if (v.is_string()) {
     auto s = v.get<std::string>();
-    if (s.empty()) throw InputError(pointer, what + ": id must not be empty");
+    if (s.empty()) throw InputError(pointer, msg(what, ": id must not be empty"));
     return s;
   }
   if (v.is_number_unsigned()) return std::to_string(v.get<std::uint64_t>());
   if (v.is_number_integer()) return std::to_string(v.get<long long>());
-  throw InputError(pointer, what + ": an id must be a string or an integer");
+  throw InputError(pointer, msg(what, ": an id must be a string or an integer"));
 }
 
-Vec3 vec3(const json& v, const std::string& pointer, const std::string& what) {
-  if (!v.is_array() || v.size() != 3) throw InputError(pointer, what + ": expected an array of 3 numbers");
+Vec3 vec3(const json& v, const Pointer& pointer, std::string_view what) {
+  if (!v.is_array() || v.size() != 3) throw InputError(pointer, msg(what, ": expected an array of 3 numbers"));
   Vec3 x;
   for (int i = 0; i < 3; ++i) x[i] = number(v[i], child(pointer, i), what);
   return x;
 }
 
-std::vector<double> numbers(const json& v, const std::string& pointer, const std::string& what) {
-  if (!v.is_array()) throw InputError(pointer, what + ": expected an array of numbers");
+std::vector<double> numbers(const json& v, const Pointer& pointer, std::string_view what) {
+  if (!v.is_array()) throw InputError(pointer, msg(what, ": expected an array of numbers"));
   std::vector<double> out;
   for (std::size_t i = 0; i < v.size(); ++i) out.push_back(number(v[i], child(pointer, i), what));
   return out;
 }
 
-const json& array(const json& v, const std::string& pointer, const std::string& what) {
-  if (!v.is_array()) throw InputError(pointer, what + ": expected an array");
+const json& array(const json& v, const Pointer& pointer, std::string_view what) {
+  if (!v.is_array()) throw InputError(pointer, msg(what, ": expected an array"));
   return v;
 }
 
-const json& object(const json& v, const std::string& pointer, const std::string& what) {
-  if (!v.is_object()) throw InputError(pointer, what + ": expected an object");
+const json& object(const json& v, const Pointer& pointer, std::string_view what) {
+  if (!v.is_object()) throw InputError(pointer, msg(what, ": expected an object"));
   return v;
 }
 

@@ -1,5 +1,7 @@
 #pragma once
 // Typed access to JSON input with errors that carry the JSON pointer of the field at fault.
+// Pointers are json_in::Pointer (io/json_pointer.hpp): rendered only when an error is thrown;
+// `what` (the entity named in the message) is only read then too.
 #include <nlohmann/json.hpp>
 #include <initializer_list>
 #include <string>
@@ -8,14 +10,11 @@
 
 #include "core/errors.hpp"
 #include "core/rotation.hpp"
+#include "io/json_pointer.hpp"
 
 namespace beamfea::json_in {
 
 using json = nlohmann::json;
-
-// Appends a key or index to a pointer, escaping per RFC 6901.
-std::string child(const std::string& pointer, const std::string& key);
-std::string child(const std::string& pointer, std::size_t index);
 
 // The one key policy of every input object (model, analysis specs, stop/control blocks, sweep
 // files): a key of `obj` that is not in `known` is an InputError at its pointer, suggesting the
@@ -23,7 +22,7 @@ std::string child(const std::string& pointer, std::size_t index);
 // the key "comment" are free (for the user's notes). Adding a key to the format is adding it to
 // the `known` list at the call site: one line. Does nothing when `obj` is not an object (the
 // caller's type check reports that).
-void expect_keys(const json& obj, const std::string& pointer, std::initializer_list<std::string_view> known);
+void expect_keys(const json& obj, const Pointer& pointer, std::initializer_list<std::string_view> known);
 // The known key nearest to `key` by edit distance, or "" when none is close enough to suggest.
 std::string nearest_key(std::string_view key, std::initializer_list<std::string_view> known);
 
@@ -31,23 +30,23 @@ std::string nearest_key(std::string_view key, std::initializer_list<std::string_
 // squared, E I / L^3, ...) stay far inside double range (1.8e308). docs/input-format.md.
 inline constexpr double kMaxMagnitude = 1e100;
 
-const json& require(const json& obj, const std::string& pointer, const std::string& key, const std::string& what);
+const json& require(const json& obj, const Pointer& pointer, std::string_view key, std::string_view what);
 // A finite number of magnitude at most kMaxMagnitude.
-double number(const json& v, const std::string& pointer, const std::string& what);
-double positive(const json& v, const std::string& pointer, const std::string& what);
+double number(const json& v, const Pointer& pointer, std::string_view what);
+double positive(const json& v, const Pointer& pointer, std::string_view what);
 // An integer that fits an int (values beyond it are an error, never wrapped).
-int integer(const json& v, const std::string& pointer, const std::string& what);
+int integer(const json& v, const Pointer& pointer, std::string_view what);
 // An integer no smaller than `min`.
-int integer_at_least(const json& v, const std::string& pointer, const std::string& what, int min);
+int integer_at_least(const json& v, const Pointer& pointer, std::string_view what, int min);
 // An integer in [min, max] (documented bounds on sizes that would exhaust memory or time).
-int integer_in(const json& v, const std::string& pointer, const std::string& what, int min, int max);
-bool boolean(const json& v, const std::string& pointer, const std::string& what);
-std::string string(const json& v, const std::string& pointer, const std::string& what);
+int integer_in(const json& v, const Pointer& pointer, std::string_view what, int min, int max);
+bool boolean(const json& v, const Pointer& pointer, std::string_view what);
+std::string string(const json& v, const Pointer& pointer, std::string_view what);
 // An id: a string or an integer, returned as a string.
-std::string id(const json& v, const std::string& pointer, const std::string& what);
-Vec3 vec3(const json& v, const std::string& pointer, const std::string& what);
-std::vector<double> numbers(const json& v, const std::string& pointer, const std::string& what);
-const json& array(const json& v, const std::string& pointer, const std::string& what);
-const json& object(const json& v, const std::string& pointer, const std::string& what);
+std::string id(const json& v, const Pointer& pointer, std::string_view what);
+Vec3 vec3(const json& v, const Pointer& pointer, std::string_view what);
+std::vector<double> numbers(const json& v, const Pointer& pointer, std::string_view what);
+const json& array(const json& v, const Pointer& pointer, std::string_view what);
+const json& object(const json& v, const Pointer& pointer, std::string_view what);
 
 }  // namespace beamfea::json_in

@@ -19,7 +19,7 @@ namespace {
 constexpr double kInertiaSymmetry = 1e-9;
 constexpr double kInertiaPsd = 1e-9;
 
-double fraction(const json& o, const std::string& p, const char* key, double fallback, const std::string& what) {
+double fraction(const json& o, const json_in::Pointer& p, const char* key, double fallback, const std::string& what) {
   if (!o.contains(key)) return fallback;
   const double v = number(o[key], child(p, key), what + " " + key);
   if (!(v >= 0.0 && v <= 1.0))
@@ -27,7 +27,7 @@ double fraction(const json& o, const std::string& p, const char* key, double fal
   return v;
 }
 
-MemberLoad read_member_load(const Model& m, const json& o, const std::string& p) {
+MemberLoad read_member_load(const Model& m, const json& o, const json_in::Pointer& p) {
   MemberLoad l;
   const std::string id = json_in::id(o["element"], child(p, "element"), "load element");
   l.member = m.find_member(id);
@@ -67,16 +67,16 @@ MemberLoad read_member_load(const Model& m, const json& o, const std::string& p)
   return l;
 }
 
-Vec3 read_gravity(const json& v, const std::string& p) { return vec3(v, p, "gravity"); }
+Vec3 read_gravity(const json& v, const json_in::Pointer& p) { return vec3(v, p, "gravity"); }
 
-PointMass read_mass(const Model& m, const json& o, const std::string& p) {
+PointMass read_mass(const Model& m, const json& o, const json_in::Pointer& p) {
   PointMass pm;
   pm.node = node_ref(m, require(o, p, "node", "mass"), child(p, "node"));
   const std::string what = "mass at node '" + m.nodes[pm.node].id + "'";
   pm.mass = number(require(o, p, "mass", what), child(p, "mass"), what);
   if (!(pm.mass >= 0.0)) throw InputError(child(p, "mass"), what + ": mass must not be negative");
   if (o.contains("inertia")) {
-    const std::string ip = child(p, "inertia");
+    const json_in::Pointer ip = child(p, "inertia");
     const auto& rows = array(o["inertia"], ip, what + " inertia");
     if (rows.size() != 3) throw InputError(ip, what + ": inertia must be a 3x3 matrix");
     for (int r = 0; r < 3; ++r) {
@@ -97,11 +97,11 @@ PointMass read_mass(const Model& m, const json& o, const std::string& p) {
 
 }  // namespace
 
-LoadSet read_load_list(const Model& m, const json& list, const std::string& base) {
+LoadSet read_load_list(const Model& m, const json& list, const json_in::Pointer& base) {
   LoadSet s;
   array(list, base, "loads");
   for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string p = child(base, i);
+    const json_in::Pointer p = child(base, i);
     const auto& o = object(list[i], p, "load");
     if (o.contains("element")) {
       s.member.push_back(read_member_load(m, o, p));
@@ -141,7 +141,7 @@ void for_each_identified(const json& doc, const char* key, const std::string& wh
   const std::string root = std::string("/") + key;
   const auto& arr = array(doc[key], root, key);
   for (std::size_t i = 0; i < arr.size(); ++i) {
-    const std::string p = child(root, i);
+    const json_in::Pointer p = child(root, i);
     const auto& o = object(arr[i], p, what);
     std::string id = json_in::id(require(o, p, "id", what), child(p, "id"), what);
     if (auto [it, fresh] = seen.emplace(id, p); !fresh)
@@ -160,14 +160,14 @@ void read_loads_and_cases(const json& doc, Model& m) {
   if (doc.contains("masses")) {
     const auto& arr = array(doc["masses"], "/masses", "masses");
     for (std::size_t i = 0; i < arr.size(); ++i) {
-      const std::string p = child("/masses", i);
+      const json_in::Pointer p = child("/masses", i);
       m.masses.push_back(read_mass(m, object(arr[i], p, "mass"), p));
     }
   }
 
   // Load cases and combinations share one name space (an analysis's load_case names either).
   std::map<std::string, std::string> seen;  // id -> pointer of its first definition
-  for_each_identified(doc, "load_cases", "load case", seen, [&](const json& o, const std::string& p, std::string id) {
+  for_each_identified(doc, "load_cases", "load case", seen, [&](const json& o, const json_in::Pointer& p, std::string id) {
     LoadCase c;
     c.id = std::move(id);
     if (o.contains("loads")) c.loads = read_load_list(m, o["loads"], child(p, "loads"));
@@ -175,10 +175,10 @@ void read_loads_and_cases(const json& doc, Model& m) {
     expect_keys(o, p, {"id", "loads", "gravity"});
     m.load_cases.push_back(std::move(c));
   });
-  for_each_identified(doc, "combinations", "combination", seen, [&](const json& o, const std::string& p, std::string id) {
+  for_each_identified(doc, "combinations", "combination", seen, [&](const json& o, const json_in::Pointer& p, std::string id) {
     Combination c;
     c.id = std::move(id);
-    const std::string fp = child(p, "factors");
+    const json_in::Pointer fp = child(p, "factors");
     const auto& factors = object(require(o, p, "factors", "combination '" + c.id + "'"), fp, "combination factors");
     for (const auto& [name, v] : factors.items()) {
       const int k = m.find_load_case(name);
@@ -190,7 +190,7 @@ void read_loads_and_cases(const json& doc, Model& m) {
   });
 }
 
-double read_density(const json& o, const std::string& p, const std::string& what) {
+double read_density(const json& o, const json_in::Pointer& p, const std::string& what) {
   if (!o.contains("density")) return 0.0;
   const double rho = number(o["density"], child(p, "density"), what + " density");
   if (!(rho >= 0.0)) throw InputError(child(p, "density"), what + ": density must not be negative");
@@ -211,7 +211,7 @@ std::string known_cases(const Model& m) {
 }
 }  // namespace
 
-void check_load_case(const Model& m, const json& spec, const std::string& p) {
+void check_load_case(const Model& m, const json& spec, const json_in::Pointer& p) {
   if (!spec.contains("load_case")) return;
   const std::string id = json_in::id(spec["load_case"], child(p, "load_case"), "load_case");
   if (m.find_load_case(id) < 0 && m.find_combination(id) < 0 && id != kDefaultLoadCase)

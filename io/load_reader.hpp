@@ -6,22 +6,23 @@
 #include <string>
 
 #include "core/model.hpp"
+#include "io/json_pointer.hpp"
 
 namespace beamfea {
 
 // A list of loads ("loads" at the top level or in a load case) at `pointer`.
-LoadSet read_load_list(const Model& m, const nlohmann::json& list, const std::string& pointer);
+LoadSet read_load_list(const Model& m, const nlohmann::json& list, const json_in::Pointer& pointer);
 
 // "gravity", "masses", "loads", "load_cases" and "combinations" of the document, into `m`
 // (members, nodes and joints must be read already).
 void read_loads_and_cases(const nlohmann::json& doc, Model& m);
 
 // A material's "density" (absent: 0; negative: InputError).
-double read_density(const nlohmann::json& material, const std::string& pointer, const std::string& what);
+double read_density(const nlohmann::json& material, const json_in::Pointer& pointer, const std::string& what);
 
 // Checks an analysis's "load_case" (a case or a combination of the model, or "default": the
 // top-level loads and gravity), if present.
-void check_load_case(const Model& m, const nlohmann::json& spec, const std::string& pointer);
+void check_load_case(const Model& m, const nlohmann::json& spec, const json_in::Pointer& pointer);
 // The model with the analysis's load case (its "load_case") as the default loads; the model itself
 // when the spec names none.
 Model model_for_load_case(const Model& m, const nlohmann::json& spec);

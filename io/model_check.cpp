@@ -29,7 +29,7 @@ void check_model(const Model& m, const nlohmann::json&) {
     const int s = support_fixing(m, p.dof.index, p.dof.comp);
     if (s >= 0 && p.value != 0.0)
       throw InputError(child("/prescribed", i), m.describe(p.dof) + ": prescribed " + json_in::json(p.value).dump() +
-                                                    " but the support at " + child("/supports", s) +
+                                                    " but the support at " + child("/supports", s).str() +
                                                     " fixes it at 0; give one of them");
   }
   // Supports and prescribed values on one rigid body must agree (DofMap finds the redundant ones).
@@ -47,11 +47,11 @@ std::string why_held(const Model& m, const DofMap& map, int node, int comp) {
   if (const int p = map.prescribed_index(raw); p >= 0) {
     if (map.prescribed()[p].support) {
       const int s = support_fixing(m, node, comp);
-      return "is supported" + (s >= 0 ? " (" + child("/supports", s) + ")" : std::string());
+      return "is supported" + (s >= 0 ? " (" + child("/supports", s).str() + ")" : std::string());
     }
     for (std::size_t i = 0; i < m.prescribed.size(); ++i)
       if (m.prescribed[i].dof == DofRef{DofRef::Owner::Node, node, comp})
-        return "is prescribed (" + child("/prescribed", i) + ")";
+        return "is prescribed (" + child("/prescribed", i).str() + ")";
     return "is prescribed";
   }
   bool moves = false;

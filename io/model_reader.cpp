@@ -41,14 +41,14 @@ json read_json_file(const std::string& path) {
   return parse_json_text(ss.str(), path);
 }
 
-int node_ref(const Model& m, const json& v, const std::string& pointer) {
+int node_ref(const Model& m, const json& v, const json_in::Pointer& pointer) {
   const std::string id = json_in::id(v, pointer, "node reference");
   const int n = m.find_node(id);
   if (n < 0) throw InputError(pointer, "unknown node '" + id + "'");
   return n;
 }
 
-int joint_ref(const Model& m, const json& v, const std::string& pointer) {
+int joint_ref(const Model& m, const json& v, const json_in::Pointer& pointer) {
   const std::string id = json_in::id(v, pointer, "joint reference");
   const int j = m.find_joint(id);
   if (j < 0) throw InputError(pointer, "unknown joint '" + id + "'");
@@ -64,18 +64,18 @@ const json& collection(const json& doc, const char* key, bool required) {
     if (required) throw InputError(std::string("/") + key, std::string("missing '") + key + "'");
     return empty;
   }
-  return array(*it, std::string("/") + key, key);
+  return array(*it, Pointer().child(key), key);
 }
 
-void check_unique(std::map<std::string, std::size_t>& seen, const std::string& kind, const std::string& base,
+void check_unique(std::map<std::string, std::size_t>& seen, const std::string& kind, const Pointer& base,
                   const std::string& id, std::size_t i) {
   auto [it, inserted] = seen.emplace(id, i);
   if (!inserted)
     throw InputError(child(child(base, i), "id"),
-                     "duplicate " + kind + " id '" + id + "' (first at " + child(base, it->second) + ")");
+                     "duplicate " + kind + " id '" + id + "' (first at " + child(base, it->second).str() + ")");
 }
 
-DofRef read_dof_target(const Model& m, const json& e, const std::string& p, const std::string& what) {
+DofRef read_dof_target(const Model& m, const json& e, const json_in::Pointer& p, const std::string& what) {
   if (e.contains("joint")) {
     const int j = joint_ref(m, e["joint"], child(p, "joint"));
     int c = e.contains("coordinate") ? integer(e["coordinate"], child(p, "coordinate"), what) : 0;

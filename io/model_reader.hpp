@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/model.hpp"
+#include "io/json_pointer.hpp"
 
 namespace beamfea {
 
@@ -18,7 +19,7 @@ nlohmann::json read_json_file(const std::string& path);
 Model read_model(const nlohmann::json& doc);
 
 // The node index for a node id given as a JSON value at `pointer`; throws InputError if unknown.
-int node_ref(const Model& m, const nlohmann::json& v, const std::string& pointer);
-int joint_ref(const Model& m, const nlohmann::json& v, const std::string& pointer);
+int node_ref(const Model& m, const nlohmann::json& v, const json_in::Pointer& pointer);
+int joint_ref(const Model& m, const nlohmann::json& v, const json_in::Pointer& pointer);
 
 }  // namespace beamfea

@@ -13,6 +13,7 @@
 #include <unordered_map>
 
 #include "core/model.hpp"
+#include "io/json_pointer.hpp"
 
 namespace beamfea::reader {
 
@@ -28,18 +29,18 @@ struct ReadState {
 };
 
 // A beam theory by name ("euler_bernoulli", "timoshenko"); InputError at `pointer` otherwise.
-BeamTheory beam_theory(const std::string& name, const std::string& pointer, const std::string& what);
+BeamTheory beam_theory(const std::string& name, const json_in::Pointer& pointer, const std::string& what);
 
 // The array at doc[key] (pointer "/key"); an empty array when absent and not required.
 const json& collection(const json& doc, const char* key, bool required);
 
 // Records `id` of item `i` of the collection at `base`; a repeated id is an InputError naming
 // both places.
-void check_unique(std::map<std::string, std::size_t>& seen, const std::string& kind, const std::string& base,
+void check_unique(std::map<std::string, std::size_t>& seen, const std::string& kind, const json_in::Pointer& base,
                   const std::string& id, std::size_t i);
 
 // A node DOF {"node", "dof"} or a joint coordinate {"joint", "coordinate"} named in object `e`.
-DofRef read_dof_target(const Model& m, const json& e, const std::string& p, const std::string& what);
+DofRef read_dof_target(const Model& m, const json& e, const json_in::Pointer& p, const std::string& what);
 
 void read_nodes(ReadState& s);
 void read_materials(ReadState& s);

@@ -15,7 +15,7 @@ void read_supports(ReadState& s) {
   Model& m = s.model;
   const auto& arr = collection(s.doc, "supports", false);
   for (std::size_t i = 0; i < arr.size(); ++i) {
-    const std::string p = child("/supports", i);
+    const json_in::Pointer p = child("/supports", i);
     const auto& o = object(arr[i], p, "support");
     expect_keys(o, p, {"node", "fix"});
     Support sup;
@@ -48,7 +48,7 @@ void read_prescribed(ReadState& s) {
   const auto& arr = collection(s.doc, "prescribed", false);
   std::map<std::pair<int, int>, std::size_t> seen;  // (owner-coded index, component) -> entry
   for (std::size_t i = 0; i < arr.size(); ++i) {
-    const std::string p = child("/prescribed", i);
+    const json_in::Pointer p = child("/prescribed", i);
     const auto& o = object(arr[i], p, "prescribed value");
     expect_keys(o, p, {"node", "dof", "joint", "coordinate", "value"});
     Prescribed pr;
@@ -56,7 +56,7 @@ void read_prescribed(ReadState& s) {
     pr.value = number(require(o, p, "value", "prescribed " + m.describe(pr.dof)), child(p, "value"), "prescribed value");
     const std::pair<int, int> key{pr.dof.owner == DofRef::Owner::Node ? pr.dof.index : -1 - pr.dof.index, pr.dof.comp};
     if (auto [first, fresh] = seen.emplace(key, i); !fresh)
-      throw InputError(p, m.describe(pr.dof) + " is prescribed twice (first at " + child("/prescribed", first->second) + ")");
+      throw InputError(p, m.describe(pr.dof) + " is prescribed twice (first at " + child("/prescribed", first->second).str() + ")");
     m.prescribed.push_back(pr);
   }
 }

@@ -23,7 +23,7 @@ constexpr double kOrthogonalAxes = 1e-9;
 // values the user computed elsewhere).
 constexpr double kMatrixTolerance = 1e-9;
 
-JointType joint_type(const std::string& type, const std::string& p, const std::string& what) {
+JointType joint_type(const std::string& type, const json_in::Pointer& p, const std::string& what) {
   if (type == "revolute") return JointType::Revolute;
   if (type == "universal") return JointType::Universal;
   if (type == "spherical") return JointType::Spherical;
@@ -31,7 +31,7 @@ JointType joint_type(const std::string& type, const std::string& p, const std::s
   throw InputError(p, what + ": unknown type '" + type + "' (expected revolute, universal, spherical, virtual_spring)");
 }
 
-void read_axes(Joint& j, const json& o, const std::string& p, const std::string& what, const std::string& type) {
+void read_axes(Joint& j, const json& o, const json_in::Pointer& p, const std::string& what, const std::string& type) {
   const int nc = joint_coordinate_count(j.type);
   // Axes: one per rotation coordinate; a virtual spring gives its frame (x, y, z), used for its
   // three translations and its three rotations alike.
@@ -66,7 +66,7 @@ void read_axes(Joint& j, const json& o, const std::string& p, const std::string&
   }
 }
 
-void read_stiffness(Joint& j, const json& st, const std::string& sp, const std::string& what) {
+void read_stiffness(Joint& j, const json& st, const json_in::Pointer& sp, const std::string& what) {
   const int nc = joint_coordinate_count(j.type);
   if (st.is_array() && !st.empty() && st[0].is_array()) {
     // A full matrix, symmetric, positive semi-definite.
@@ -98,13 +98,13 @@ void read_stiffness(Joint& j, const json& st, const std::string& sp, const std::
 
 // "stiffness_from_beam": the tip stiffness of a cantilever (elements/beam.hpp), in the joint
 // frame (x along the link).
-void read_stiffness_from_beam(Joint& j, const ReadState& s, const json& o, const std::string& p, const std::string& what) {
+void read_stiffness_from_beam(Joint& j, const ReadState& s, const json& o, const json_in::Pointer& p, const std::string& what) {
   const Model& m = s.model;
   if (j.type != JointType::VirtualSpring)
     throw InputError(child(p, "stiffness_from_beam"), what + ": stiffness_from_beam needs a virtual_spring joint");
   if (o.contains("stiffness"))
     throw InputError(child(p, "stiffness_from_beam"), what + ": give \"stiffness\" or \"stiffness_from_beam\", not both");
-  const std::string bp = child(p, "stiffness_from_beam");
+  const json_in::Pointer bp = child(p, "stiffness_from_beam");
   const auto& b = object(o["stiffness_from_beam"], bp, what + " stiffness_from_beam");
   expect_keys(b, bp, {"material", "section", "length", "theory"});
   const std::string mid = json_in::id(require(b, bp, "material", what), child(bp, "material"), what + " material");
@@ -120,7 +120,7 @@ void read_stiffness_from_beam(Joint& j, const ReadState& s, const json& o, const
   if (b.contains("theory")) {
     // A shear-deformable link: the Timoshenko cantilever's tip stiffness (its compliance adds
     // k L/(G A) to the transverse terms).
-    const std::string tp = child(bp, "theory");
+    const json_in::Pointer tp = child(bp, "theory");
     if (beam_theory(string(b["theory"], tp, what + " theory"), tp, what) == BeamTheory::Timoshenko) {
       if (!(sec.ky > 0.0 && sec.kz > 0.0))
         throw InputError(tp, what + ": a Timoshenko beam needs the shear factors of section '" + sec.id +
@@ -140,7 +140,7 @@ void read_joints(ReadState& s) {
   const auto& arr = collection(s.doc, "joints", false);
   std::map<std::string, std::size_t> seen;
   for (std::size_t i = 0; i < arr.size(); ++i) {
-    const std::string p = child("/joints", i);
+    const json_in::Pointer p = child("/joints", i);
     const auto& o = object(arr[i], p, "joint");
     expect_keys(o, p, {"id", "type", "nodes", "axes", "stiffness", "stiffness_from_beam"});
     Joint j;

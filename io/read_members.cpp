@@ -28,7 +28,7 @@ int find_property(const std::unordered_map<std::string, int>& index, const std::
 
 }  // namespace
 
-BeamTheory beam_theory(const std::string& name, const std::string& pointer, const std::string& what) {
+BeamTheory beam_theory(const std::string& name, const json_in::Pointer& pointer, const std::string& what) {
   if (name == "euler_bernoulli") return BeamTheory::EulerBernoulli;
   if (name == "timoshenko") return BeamTheory::Timoshenko;
   throw InputError(pointer, what + ": unknown theory '" + name + "' (expected euler_bernoulli or timoshenko)");
@@ -40,7 +40,7 @@ void read_members(ReadState& s) {
   std::map<std::string, std::size_t> seen;
   m.members.reserve(arr.size());
   for (std::size_t i = 0; i < arr.size(); ++i) {
-    const std::string p = child("/elements", i);
+    const json_in::Pointer p = child("/elements", i);
     const auto& o = object(arr[i], p, "element");
     expect_keys(o, p, {"id", "type", "nodes", "material", "section", "orientation", "divisions", "theory"});
     Member mem;
@@ -78,7 +78,7 @@ void read_members(ReadState& s) {
       if (o.contains("divisions"))
         mem.divisions = integer_in(o["divisions"], child(p, "divisions"), what + " divisions", 1, kMaxDivisions);
       if (o.contains("theory")) {
-        const std::string tp = child(p, "theory");
+        const json_in::Pointer tp = child(p, "theory");
         mem.theory = beam_theory(string(o["theory"], tp, what + " theory"), tp, what);
         const Section& sec = m.sections[mem.section];
         if (mem.theory == BeamTheory::Timoshenko && !(sec.ky > 0.0 && sec.kz > 0.0))

@@ -15,7 +15,7 @@ void read_nodes(ReadState& s) {
   std::map<std::string, std::size_t> seen;
   m.nodes.reserve(arr.size());
   for (std::size_t i = 0; i < arr.size(); ++i) {
-    const std::string p = child("/nodes", i);
+    const json_in::Pointer p = child("/nodes", i);
     const auto& n = object(arr[i], p, "node");
     expect_keys(n, p, {"id", "xyz"});
     Node node;
@@ -31,7 +31,7 @@ void read_materials(ReadState& s) {
   const auto& arr = collection(s.doc, "materials", false);
   std::map<std::string, std::size_t> seen;
   for (std::size_t i = 0; i < arr.size(); ++i) {
-    const std::string p = child("/materials", i);
+    const json_in::Pointer p = child("/materials", i);
     const auto& o = object(arr[i], p, "material");
     expect_keys(o, p, {"id", "E", "G", "nu", "density"});
     Material mat;
@@ -56,7 +56,7 @@ void read_materials(ReadState& s) {
 
 namespace {
 
-Section read_section(const json& o, const std::string& p, const std::string& id) {
+Section read_section(const json& o, const json_in::Pointer& p, const std::string& id) {
   Section sec;
   sec.id = id;
   const std::string what = "section '" + id + "'";
@@ -110,7 +110,7 @@ void read_sections(ReadState& s) {
   const auto& arr = collection(s.doc, "sections", false);
   std::map<std::string, std::size_t> seen;
   for (std::size_t i = 0; i < arr.size(); ++i) {
-    const std::string p = child("/sections", i);
+    const json_in::Pointer p = child("/sections", i);
     const auto& o = object(arr[i], p, "section");
     expect_keys(o, p, {"id", "shape", "b", "h", "d", "r", "t", "A", "Iy", "Iz", "J", "k", "ky", "kz"});
     const std::string id = json_in::id(require(o, p, "id", "section"), child(p, "id"), "section");

@@ -283,7 +283,7 @@ Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
     if (g.empty()) throw InputError("/grid", "empty grid: no axes");
     long double n = 1;
     for (std::size_t a = 0; a < g.size(); ++a) {
-      const std::string p = child("/grid", a);
+      const json_in::Pointer p = child("/grid", a);
       const auto& ax = json_in::object(g[a], p, "grid axis");
       json_in::expect_keys(ax, p, {"name", "pointer", "values", "patches"});
       SweepAxis axis;
@@ -325,7 +325,7 @@ Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
     if (cs.empty()) throw InputError("/cases", "empty list of cases");
     std::set<std::string> ids;
     for (std::size_t i = 0; i < cs.size(); ++i) {
-      const std::string p = child("/cases", i);
+      const json_in::Pointer p = child("/cases", i);
       const auto& c = json_in::object(cs[i], p, "case");
       json_in::expect_keys(c, p, {"id", "parameters", "set", "patch"});
       SweepListCase lc;
@@ -338,7 +338,7 @@ Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
       if (c.contains("set")) {
         const auto& set = json_in::object(c["set"], child(p, "set"), "case set");
         for (const auto& [k, v] : set.items()) {
-          const std::string where = child(child(p, "set"), k);
+          const json_in::Pointer where = child(child(p, "set"), k);
           const auto ptr = read_pointer(json(k), where);
           check_exists(s.base, ptr, where);
           check_value(s.base, ptr, v, where);
@@ -376,7 +376,7 @@ Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
   if (doc.contains("outputs")) {
     const auto& os = json_in::array(doc["outputs"], "/outputs", "outputs");
     for (std::size_t i = 0; i < os.size(); ++i) {
-      const std::string p = child("/outputs", i);
+      const json_in::Pointer p = child("/outputs", i);
       SweepOutput o = read_output(os[i], p);
       const auto& t = o.path;
       if (t.empty() || (t[0].key != "analyses" && t[0].key != "model"))
