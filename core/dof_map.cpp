@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <deque>
 #include <map>
 
 #include "core/errors.hpp"
+#include "core/sparse_row.hpp"
 
 namespace beamfea {
 
@@ -23,12 +23,7 @@ Configuration reference_configuration(const Model& m) {
 
 namespace {
 
-using Expr = std::map<int, double>;
-
-void add_scaled(Expr& dst, const Expr& src, double f) {
-  if (f == 0.0) return;
-  for (const auto& [k, v] : src) dst[k] += f * v;
-}
+using Expr = SparseRow;
 
 double max_abs(const Expr& e) {
   double m = 0.0;
@@ -72,95 +67,6 @@ Eigen::VectorXd DofMap::prescribed_values() const {
   return v;
 }
 
-// Spanning forest of the graph of rigid links and joints, rooted at the most supported node of
-// each connected component so that supports fall on independent DOFs whenever possible.
-void DofMap::build_forest(const Model& m) {
-  struct Adj {
-    ConstraintEdge::Kind kind;
-    int index, other;
-  };
-  std::vector<std::vector<Adj>> adj(n_nodes_);
-  for (int e = 0; e < static_cast<int>(m.elements.size()); ++e) {
-    const auto& el = m.elements[e];
-    if (el.type != MemberType::Rigid) continue;
-    adj[el.nodes[0]].push_back({ConstraintEdge::Kind::Rigid, e, el.nodes[1]});
-    adj[el.nodes[1]].push_back({ConstraintEdge::Kind::Rigid, e, el.nodes[0]});
-  }
-  for (int j = 0; j < static_cast<int>(m.joints.size()); ++j) {
-    const auto& jt = m.joints[j];
-    adj[jt.nodes[0]].push_back({ConstraintEdge::Kind::Joint, j, jt.nodes[1]});
-    adj[jt.nodes[1]].push_back({ConstraintEdge::Kind::Joint, j, jt.nodes[0]});
-  }
-  std::vector<int> support_count(n_nodes_, 0);
-  for (const auto& s : m.supports)
-    for (bool f : s.fixed) support_count[s.node] += f ? 1 : 0;
-  for (const auto& p : m.prescribed)
-    if (p.dof.owner == DofRef::Owner::Node) support_count[p.dof.index] += 1;
-
-  // Grounds: nodes whose six DOFs are all supported or prescribed. Every ground is a root, and one
-  // breadth-first search from all grounds at once carries each node from its nearest ground: chains
-  // stay short, and a loop between two grounds closes at an edge in its middle (a closure) rather
-  // than through the supports of a slave (which would make one long chain through the loop). Then the
-  // remaining components, each from its most supported node.
-  std::vector<std::array<char, 6>> held(n_nodes_, std::array<char, 6>{});
-  for (const auto& s : m.supports)
-    for (int k = 0; k < 6; ++k) held[s.node][k] = held[s.node][k] || s.fixed[k];
-  for (const auto& p : m.prescribed)
-    if (p.dof.owner == DofRef::Owner::Node) held[p.dof.index][p.dof.comp] = 1;
-  std::vector<int> order(n_nodes_);
-  for (int i = 0; i < n_nodes_; ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return support_count[a] > support_count[b]; });
-
-  parent_edge_.assign(n_nodes_, -1);
-  std::vector<char> visited(n_nodes_, 0);
-  std::vector<char> used_rigid(m.elements.size(), 0), used_joint(m.joints.size(), 0);
-  auto search = [&](std::deque<int> queue) {
-    while (!queue.empty()) {
-      const int n = queue.front();
-      queue.pop_front();
-      for (const auto& a : adj[n]) {
-        auto& used = a.kind == ConstraintEdge::Kind::Rigid ? used_rigid[a.index] : used_joint[a.index];
-        if (used) continue;
-        used = 1;
-        ConstraintEdge e;
-        e.kind = a.kind;
-        e.index = a.index;
-        if (!visited[a.other]) {
-          visited[a.other] = 1;
-          e.parent = n;
-          e.child = a.other;
-          e.forward = a.kind == ConstraintEdge::Kind::Joint ? m.joints[a.index].nodes[0] == n : true;
-          parent_edge_[a.other] = static_cast<int>(tree_edges_.size());
-          tree_order_.push_back(static_cast<int>(tree_edges_.size()));
-          tree_edges_.push_back(e);
-          queue.push_back(a.other);
-        } else {
-          // Closes a loop: kept as an extra constraint, written from nodes[0] to nodes[1].
-          const auto& ends = a.kind == ConstraintEdge::Kind::Rigid ? m.elements[a.index].nodes
-                                                                   : m.joints[a.index].nodes;
-          e.parent = ends[0];
-          e.child = ends[1];
-          e.forward = true;
-          loop_edges_.push_back(e);
-        }
-      }
-    }
-  };
-  std::deque<int> grounds;
-  for (int n : order)
-    if (!adj[n].empty() && std::all_of(held[n].begin(), held[n].end(), [](char h) { return h != 0; })) {
-      visited[n] = 1;
-      grounds.push_back(n);
-    }
-  search(grounds);
-  for (int root : order) {
-    if (visited[root] || adj[root].empty()) continue;
-    visited[root] = 1;
-    search({root});
-  }
-}
-
 // Raw rows of the slaves in terms of independent DOFs, parents first.
 //   rigid link p -> s, d = x_s - x_p:  u_s = u_p + theta_p x d,  theta_s = theta_p
 //   joint p -> s:                       u_s = u_p,  theta_s = theta_p +/- sum_i a_i dq_i
@@ -170,6 +76,7 @@ void DofMap::build_tree_rows(const Model& m, const Configuration& c) {
     if (!is_slave(n))
       for (int k = 0; k < 6; ++k) raw_to_ind_[6 * n + k] = 0;
   for (int r = 6 * n_nodes_; r < n_raw_; ++r) raw_to_ind_[r] = 0;
+  ind_to_raw_.reserve(n_raw_);
   for (int r = 0; r < n_raw_; ++r)
     if (raw_to_ind_[r] == 0) {
       raw_to_ind_[r] = static_cast<int>(ind_to_raw_.size());
@@ -177,16 +84,22 @@ void DofMap::build_tree_rows(const Model& m, const Configuration& c) {
     }
   n_ind_ = static_cast<int>(ind_to_raw_.size());
 
-  // Expressions only for slave DOFs; an independent DOF's row is itself.
+  // Expressions only for slave DOFs; an independent DOF's row is itself. Each slave row is built
+  // in `acc` and stored once finished (RowStore); the rows of a slave are built in the order
+  // 3, 4, 5, 0, 1, 2: a virtual spring's lever term of u_s (rows 0..2) reads theta of the first
+  // body, which may be the slave itself. Each row receives its terms in the same order as when
+  // all six were built side by side, so its sums are the same.
   std::vector<int> slave_slot(n_raw_, -1);
-  std::vector<Expr> slave_rows;
+  int n_slave_rows = 0;
   for (int ei : tree_order_) {
     const int s = tree_edges_[ei].child;
-    for (int k = 0; k < 6; ++k) {
-      slave_slot[6 * s + k] = static_cast<int>(slave_rows.size());
-      slave_rows.emplace_back();
-    }
+    for (int k = 0; k < 6; ++k) slave_slot[6 * s + k] = n_slave_rows++;
   }
+  RowStore slave_rows;
+  slave_rows.reset(n_slave_rows, 4 * static_cast<std::size_t>(n_slave_rows));
+  Expr acc, lever;
+  acc.reserve(16);
+  lever.reserve(16);
   auto add_row = [&](Expr& dst, int raw, double f) {
     if (raw_to_ind_[raw] >= 0) dst[raw_to_ind_[raw]] += f;
     else add_scaled(dst, slave_rows[slave_slot[raw]], f);
@@ -194,50 +107,58 @@ void DofMap::build_tree_rows(const Model& m, const Configuration& c) {
   for (int ei : tree_order_) {
     const auto& e = tree_edges_[ei];
     const int p = e.parent, s = e.child;
-    for (int k = 0; k < 6; ++k) add_row(slave_rows[slave_slot[6 * s + k]], 6 * p + k, 1.0);
-    if (e.kind == ConstraintEdge::Kind::Rigid) {
-      const Mat3 D = -skew(c.x[s] - c.x[p]);  // u_s += -[d] theta_p
-      for (int i = 0; i < 3; ++i)
-        for (int k = 0; k < 3; ++k)
-          if (D(i, k) != 0.0) add_row(slave_rows[slave_slot[6 * s + i]], 6 * p + 3 + k, D(i, k));
-    } else {
-      const double sign = e.forward ? 1.0 : -1.0;
-      const auto& axes = c.joint_axes[e.index];
-      const int nt = m.joints[e.index].translations;
-      for (int q = 0; q < static_cast<int>(axes.size()); ++q) {
-        const int rq = raw_joint(e.index, q);
-        const int offset = q < nt ? 0 : 3;  // translations move u, rotations move theta
-        for (int i = 0; i < 3; ++i)
-          if (axes[q][i] != 0.0) add_row(slave_rows[slave_slot[6 * s + offset + i]], rq, sign * axes[q][i]);
-      }
-      // A joint with translations (a virtual spring) separates its nodes in a deformed
-      // configuration: the offset d = x_s - x_p turns with the first body, so
-      // u_s += -[d] theta_1, theta_1 = theta_p (forward) or theta_s (reverse). Zero in the reference.
-      const Vec3 d = c.x[s] - c.x[p];
-      if (d.squaredNorm() > 0.0) {
-        const Mat3 D = -skew(d);
-        const int body1 = e.forward ? p : s;
-        for (int i = 0; i < 3; ++i) {
-          Expr lever;
+    for (int row : {3, 4, 5, 0, 1, 2}) {
+      acc.clear();
+      add_row(acc, 6 * p + row, 1.0);
+      if (e.kind == ConstraintEdge::Kind::Rigid) {
+        if (row < 3) {
+          const Mat3 D = -skew(c.x[s] - c.x[p]);  // u_s += -[d] theta_p
           for (int k = 0; k < 3; ++k)
-            if (D(i, k) != 0.0) add_row(lever, 6 * body1 + 3 + k, D(i, k));
-          add_scaled(slave_rows[slave_slot[6 * s + i]], lever, 1.0);
+            if (D(row, k) != 0.0) add_row(acc, 6 * p + 3 + k, D(row, k));
+        }
+      } else {
+        const double sign = e.forward ? 1.0 : -1.0;
+        const auto& axes = c.joint_axes[e.index];
+        const int nt = m.joints[e.index].translations;
+        for (int q = 0; q < static_cast<int>(axes.size()); ++q) {
+          const int offset = q < nt ? 0 : 3;  // translations move u, rotations move theta
+          const int i = row - offset;
+          if (i >= 0 && i < 3 && axes[q][i] != 0.0) add_row(acc, raw_joint(e.index, q), sign * axes[q][i]);
+        }
+        // A joint with translations (a virtual spring) separates its nodes in a deformed
+        // configuration: the offset d = x_s - x_p turns with the first body, so
+        // u_s += -[d] theta_1, theta_1 = theta_p (forward) or theta_s (reverse). Zero in the reference.
+        const Vec3 d = c.x[s] - c.x[p];
+        if (row < 3 && d.squaredNorm() > 0.0) {
+          const Mat3 D = -skew(d);
+          const int body1 = e.forward ? p : s;
+          lever.clear();
+          for (int k = 0; k < 3; ++k)
+            if (D(row, k) != 0.0) add_row(lever, 6 * body1 + 3 + k, D(row, k));
+          add_scaled(acc, lever, 1.0);
         }
       }
+      slave_rows.set(slave_slot[6 * s + row], acc);
     }
   }
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(n_raw_);
+  // Tind_ row by row (its terms are sorted and unique already).
+  std::size_t nnz = 0;
   for (int r = 0; r < n_raw_; ++r) {
+    if (raw_to_ind_[r] >= 0) ++nnz;
+    else for (const auto& [k, v] : slave_rows[slave_slot[r]]) nnz += v != 0.0 ? 1 : 0;
+  }
+  Tind_.resize(n_raw_, n_ind_);
+  Tind_.reserve(static_cast<Eigen::Index>(nnz));
+  for (int r = 0; r < n_raw_; ++r) {
+    Tind_.startVec(r);
     if (raw_to_ind_[r] >= 0) {
-      t.emplace_back(r, raw_to_ind_[r], 1.0);
+      Tind_.insertBack(r, raw_to_ind_[r]) = 1.0;
       continue;
     }
     for (const auto& [k, v] : slave_rows[slave_slot[r]])
-      if (v != 0.0) t.emplace_back(r, k, v);
+      if (v != 0.0) Tind_.insertBack(r, k) = v;
   }
-  Tind_.resize(n_raw_, n_ind_);
-  Tind_.setFromTriplets(t.begin(), t.end());
+  Tind_.finalize();
 }
 
 // Row k (0..5) of a loop edge over raw DOFs, from nodes[0] (parent) to nodes[1] (child).
@@ -316,7 +237,7 @@ void DofMap::eliminate(const Model& m) {
     Expr row;  // row . ind - rhs . p = 0
     for (const auto& t : x.raw)
       for (SparseRowMatrix::InnerIterator it(Tind_, t.ind); it; ++it) row[static_cast<int>(it.col())] += t.coef * it.value();
-    extra_ind_.push_back(row);
+    extra_ind_.emplace_back(row.begin(), row.end());
     for (const auto& t : x.rhs) row[presc_key(t.ind)] -= t.coef;
     const double scale = max_abs(row);
     // Known values and earlier eliminations.
@@ -366,6 +287,7 @@ void DofMap::eliminate(const Model& m) {
 
   raw_to_free_.assign(n_raw_, -1);
   std::vector<int> ind_to_free(n_ind_, -1);
+  free_refs_.reserve(n_ind_);
   for (int i = 0; i < n_ind_; ++i) {
     if (ind_prescribed_[i] >= 0 || dependent.count(i)) continue;
     ind_to_free[i] = n_free_++;
@@ -375,32 +297,35 @@ void DofMap::eliminate(const Model& m) {
   ind_dependent_.assign(n_ind_, 0);
   for (const auto& [d, de] : dependent) ind_dependent_[d] = 1;
 
-  std::vector<Eigen::Triplet<double>> tf, tp;
-  auto emit = [&](int raw, int k, double v) {
-    if (k < 0) {
-      tp.emplace_back(raw, -1 - k, v);
-    } else {
-      tf.emplace_back(raw, ind_to_free[k], v);
-    }
+  // Tf_ and Tp_ row by row: a row's terms in the order they are produced, then sorted, duplicates
+  // summed and zeros dropped (append_row).
+  std::vector<SparseRow::Term> tf, tp;
+  tf.reserve(16);
+  tp.reserve(16);
+  auto emit = [&](int k, double v) {
+    if (k < 0) tp.emplace_back(-1 - k, v);
+    else tf.emplace_back(ind_to_free[k], v);
   };
-  tf.reserve(Tind_.nonZeros());
-  for (int r = 0; r < n_raw_; ++r)
+  Tf_.resize(n_raw_, n_free_);
+  Tp_.resize(n_raw_, prescribed_size());
+  Tf_.reserve(Tind_.nonZeros());
+  Tp_.reserve(prescribed_size());
+  for (int r = 0; r < n_raw_; ++r) {
     for (SparseRowMatrix::InnerIterator it(Tind_, r); it; ++it) {
       const int ind = static_cast<int>(it.col());
       if (ind_prescribed_[ind] >= 0) {
-        emit(r, presc_key(ind_prescribed_[ind]), it.value());
+        emit(presc_key(ind_prescribed_[ind]), it.value());
       } else if (auto d = dependent.find(ind); d != dependent.end()) {
-        for (const auto& [k, v] : d->second) emit(r, k, it.value() * v);
+        for (const auto& [k, v] : d->second) emit(k, it.value() * v);
       } else {
-        emit(r, ind, it.value());
+        emit(ind, it.value());
       }
     }
-  Tf_.resize(n_raw_, n_free_);
-  Tf_.setFromTriplets(tf.begin(), tf.end());
-  Tf_.prune(0.0);
-  Tp_.resize(n_raw_, prescribed_size());
-  Tp_.setFromTriplets(tp.begin(), tp.end());
-  Tp_.prune(0.0);
+    append_row(Tf_, r, tf);
+    append_row(Tp_, r, tp);
+  }
+  Tf_.finalize();
+  Tp_.finalize();
   (void)m;
 }
 

@@ -1,0 +1,117 @@
+// DofMap, part 2: the spanning forest of the constraint graph (core/dof_map.hpp, "slave").
+#include <algorithm>
+#include <array>
+#include <vector>
+
+#include "core/dof_map.hpp"
+
+namespace beamfea {
+
+// Spanning forest of the graph of rigid links and joints, rooted at the most supported node of
+// each connected component so that supports fall on independent DOFs whenever possible.
+void DofMap::build_forest(const Model& m) {
+  struct Adj {
+    ConstraintEdge::Kind kind;
+    int index, other;
+  };
+  // Adjacency lists in one array (node n's are adj[first[n]] .. adj[first[n + 1] - 1]), each in the
+  // order rigid links by element, then joints by joint.
+  std::vector<int> first(n_nodes_ + 1, 0);
+  auto for_each_edge = [&](auto&& f) {
+    for (int e = 0; e < static_cast<int>(m.elements.size()); ++e) {
+      const auto& el = m.elements[e];
+      if (el.type != MemberType::Rigid) continue;
+      f(el.nodes[0], Adj{ConstraintEdge::Kind::Rigid, e, el.nodes[1]});
+      f(el.nodes[1], Adj{ConstraintEdge::Kind::Rigid, e, el.nodes[0]});
+    }
+    for (int j = 0; j < static_cast<int>(m.joints.size()); ++j) {
+      const auto& jt = m.joints[j];
+      f(jt.nodes[0], Adj{ConstraintEdge::Kind::Joint, j, jt.nodes[1]});
+      f(jt.nodes[1], Adj{ConstraintEdge::Kind::Joint, j, jt.nodes[0]});
+    }
+  };
+  for_each_edge([&](int n, const Adj&) { ++first[n + 1]; });
+  for (int n = 0; n < n_nodes_; ++n) first[n + 1] += first[n];
+  std::vector<Adj> adj(first[n_nodes_]);
+  {
+    std::vector<int> fill(first.begin(), first.end() - 1);
+    for_each_edge([&](int n, const Adj& a) { adj[fill[n]++] = a; });
+  }
+  auto has_edges = [&](int n) { return first[n + 1] > first[n]; };
+  std::vector<int> support_count(n_nodes_, 0);
+  for (const auto& s : m.supports)
+    for (bool f : s.fixed) support_count[s.node] += f ? 1 : 0;
+  for (const auto& p : m.prescribed)
+    if (p.dof.owner == DofRef::Owner::Node) support_count[p.dof.index] += 1;
+
+  // Grounds: nodes whose six DOFs are all supported or prescribed. Every ground is a root, and one
+  // breadth-first search from all grounds at once carries each node from its nearest ground: chains
+  // stay short, and a loop between two grounds closes at an edge in its middle (a closure) rather
+  // than through the supports of a slave (which would make one long chain through the loop). Then the
+  // remaining components, each from its most supported node.
+  std::vector<std::array<char, 6>> held(n_nodes_, std::array<char, 6>{});
+  for (const auto& s : m.supports)
+    for (int k = 0; k < 6; ++k) held[s.node][k] = held[s.node][k] || s.fixed[k];
+  for (const auto& p : m.prescribed)
+    if (p.dof.owner == DofRef::Owner::Node) held[p.dof.index][p.dof.comp] = 1;
+  std::vector<int> order(n_nodes_);
+  for (int i = 0; i < n_nodes_; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return support_count[a] > support_count[b]; });
+
+  parent_edge_.assign(n_nodes_, -1);
+  std::vector<char> visited(n_nodes_, 0);
+  std::vector<char> used_rigid(m.elements.size(), 0), used_joint(m.joints.size(), 0);
+  // Breadth first from the nodes in `queue` (a FIFO: `head` is its front).
+  std::vector<int> queue;
+  queue.reserve(n_nodes_);
+  const std::size_t n_edges = adj.size() / 2;
+  tree_edges_.reserve(std::min<std::size_t>(n_edges, static_cast<std::size_t>(n_nodes_)));
+  tree_order_.reserve(std::min<std::size_t>(n_edges, static_cast<std::size_t>(n_nodes_)));
+  auto search = [&]() {
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const int n = queue[head];
+      for (int ai = first[n]; ai < first[n + 1]; ++ai) {
+        const Adj& a = adj[ai];
+        auto& used = a.kind == ConstraintEdge::Kind::Rigid ? used_rigid[a.index] : used_joint[a.index];
+        if (used) continue;
+        used = 1;
+        ConstraintEdge e;
+        e.kind = a.kind;
+        e.index = a.index;
+        if (!visited[a.other]) {
+          visited[a.other] = 1;
+          e.parent = n;
+          e.child = a.other;
+          e.forward = a.kind == ConstraintEdge::Kind::Joint ? m.joints[a.index].nodes[0] == n : true;
+          parent_edge_[a.other] = static_cast<int>(tree_edges_.size());
+          tree_order_.push_back(static_cast<int>(tree_edges_.size()));
+          tree_edges_.push_back(e);
+          queue.push_back(a.other);
+        } else {
+          // Closes a loop: kept as an extra constraint, written from nodes[0] to nodes[1].
+          const auto& ends = a.kind == ConstraintEdge::Kind::Rigid ? m.elements[a.index].nodes
+                                                                   : m.joints[a.index].nodes;
+          e.parent = ends[0];
+          e.child = ends[1];
+          e.forward = true;
+          loop_edges_.push_back(e);
+        }
+      }
+    }
+  };
+  for (int n : order)
+    if (has_edges(n) && std::all_of(held[n].begin(), held[n].end(), [](char h) { return h != 0; })) {
+      visited[n] = 1;
+      queue.push_back(n);
+    }
+  search();
+  for (int root : order) {
+    if (visited[root] || !has_edges(root)) continue;
+    visited[root] = 1;
+    queue.assign(1, root);
+    search();
+  }
+}
+
+}  // namespace beamfea
