@@ -69,10 +69,10 @@ ChordOutcome chord_correct(const PathEquilibrium& P, const Converged& start, con
   for (int k = 1; k <= kMaxChordIterations; ++k) {
     const double before = out.residual_norm;
     if (!bordered) {
-      du = -lu->solver().solve(F);
+      du = -P.solve_with_tangent_factor(F);
     } else {
       // Block elimination (Crisfield 1991, vol. 1, eq. 9.12): du = dū + dlambda du_t.
-      const Eigen::VectorXd dbar = -lu->solver().solve(F.head(m));
+      const Eigen::VectorXd dbar = -P.solve_with_tangent_factor(F.head(m));
       double a_dbar = 0.0, a_t = 0.0, b = 0.0;
       if (s.kind == StepKind::Arc) {
         a_dbar = P.weighted_dot(u, dbar) / s.ds;

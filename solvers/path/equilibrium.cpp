@@ -376,6 +376,15 @@ const LuFactor* PathEquilibrium::tangent_factor(const Converged& c) const {
   return &predictor_lu_;
 }
 
+Eigen::VectorXd PathEquilibrium::solve_with_tangent_factor(const Eigen::VectorXd& b) const {
+  auto& lu = predictor_lu_.solver();
+  const double irstep = lu.umfpackControl()(UMFPACK_IRSTEP);
+  lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
+  Eigen::VectorXd x = lu.solve(b);
+  lu.umfpackControl()(UMFPACK_IRSTEP) = irstep;
+  return x;
+}
+
 double PathEquilibrium::conjugate_slope(const Converged& c) const {
   const Eigen::VectorXd& t = tangent(c);
   if (!t.size()) return NAN;

@@ -28,6 +28,7 @@ class PatternFactor {
     return true;
   }
   const Solver& solver() const { return solver_; }
+  Solver& solver() { return solver_; }  // (its solve options; the factor stays as it is)
   Eigen::Index rows() const { return A_.rows(); }
   // Symbolic analyses and numeric factorisations so far.
   long symbolic_analyses() const { return symbolic_; }
