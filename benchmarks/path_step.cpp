@@ -11,7 +11,7 @@
 //              negative eigenvalues
 //   min eig    lowest eigenvalue of the Jacobi-scaled symmetrised tangent (solvers/eigen_lowest.hpp:
 //              dense below 200 DOFs, Spectra shift-invert with CHOLMOD above)
-//   step       one whole arc-length step of follow_path (predictor, KINSOL Newton iterations,
+//   step       one whole arc-length step of follow_path (predictor, chord or KINSOL Newton iterations,
 //              stability, the record of the step): the least of the times between the progress
 //              lines of consecutive steps (steady state: setup, linearised buckling of the scales and
 //              the first step excluded); "no stab." the same without the stability analysis
@@ -127,7 +127,7 @@ double median(std::vector<double> v) {
 // machine slows both sides of a ratio. Also Newton iterations per step, and the process and
 // thread CPU of the whole run.
 struct PathRun {
-  double step = NAN, ratio = NAN, iterations = 0.0, process = 0.0, thread = 0.0;
+  double step = NAN, ratio = NAN, iterations = 0.0, chord_iterations = 0.0, process = 0.0, thread = 0.0;
 };
 PathRun time_path(const Model& m, int steps, bool stability, const std::function<double()>& reference) {
   PathOptions o;
@@ -157,8 +157,13 @@ PathRun time_path(const Model& m, int steps, bool stability, const std::function
   out.step = least(d);
   out.ratio = median(q);
   long its = 0;
+  long chord = 0;
   for (const auto& s : r.steps) its += s.iterations;
+#if __has_include("solvers/path/corrector.hpp")  // chord iterations (issue 15's chord corrector)
+  for (const auto& s : r.steps) chord += s.chord_iterations;
+#endif
   out.iterations = static_cast<double>(its) / std::max<int>(1, static_cast<int>(r.steps.size()) - 1);
+  out.chord_iterations = static_cast<double>(chord) / std::max<int>(1, static_cast<int>(r.steps.size()) - 1);
   return out;
 }
 
@@ -255,7 +260,7 @@ int main(int argc, char** argv) {
     }
   }
   fmt::print("| bays | storeys | free DOFs | assembly [ms] | LU factor [ms] | LDL' inertia [ms] | min eig [ms] | step [ms] | "
-             "step, no stab. [ms] | step / (asm + LU) | no stab. / (asm + LU) | Newton it./step | process / thread CPU |\n");
+             "step, no stab. [ms] | step / (asm + LU) | no stab. / (asm + LU) | Newton + chord it./step | process / thread CPU |\n");
   fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int n : sizes) {
     const Model m = frame(n, storeys);
@@ -318,9 +323,9 @@ int main(int argc, char** argv) {
       return thread_cpu() - t0;
     };
     const PathRun with = time_path(m, steps, true, reference), without = time_path(m, steps, false, reference);
-    fmt::print("| {}x{} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.1f} | {:.2f} |\n", n,
+    fmt::print("| {}x{} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.1f} + {:.1f} | {:.2f} |\n", n,
                n, storeys, free.size(), 1e3 * a, 1e3 * l, 1e3 * least(t_ldl), 1e3 * least(t_eig), 1e3 * with.step,
-               1e3 * without.step, with.ratio, without.ratio, with.iterations,
+               1e3 * without.step, with.ratio, without.ratio, with.iterations, with.chord_iterations,
                (with.process + without.process) / (with.thread + without.thread));
     std::fflush(stdout);
     if (negative != 0) fmt::print(stderr, "warning: {} negative eigenvalues at the reference state\n", negative);

@@ -110,8 +110,8 @@ CorotationalKinematics CorotationalBeam::kinematics(const Vec3& x1, const Mat3& 
   return {F.Rr, F.ln, F.ln - L0_, F.theta1, F.theta2};
 }
 
-CorotationalResponse CorotationalBeam::evaluate(const Vec3& x1, const Mat3& R1, const Vec3& x2,
-                                                const Mat3& R2) const {
+CorotationalResponse CorotationalBeam::evaluate(const Vec3& x1, const Mat3& R1, const Vec3& x2, const Mat3& R2,
+                                                bool with_tangent) const {
   const Frame F = corotated_frame(E0_, x1, R1, x2, R2);
   const double ln = F.ln;
   const Vec3 &r1 = F.r1, &r2 = F.r2, &r3 = F.r3;
@@ -158,6 +158,10 @@ CorotationalResponse CorotationalBeam::evaluate(const Vec3& x1, const Mat3& R1, 
 
   // Internal force.
   out.force = r.transpose() * N + P[0].transpose() * v[0] + P[1].transpose() * v[1];
+  if (!with_tangent) {
+    out.tangent.setZero();
+    return out;
+  }
 
   // Material tangent: B^T k B with B = [r; TP_1; TP_2] and k the (ubar, thetabar) block of kl.
   constexpr int rot[6] = {3, 4, 5, 9, 10, 11};

@@ -85,8 +85,10 @@ class CorotationalBeam {
   // Throws ModelError for a zero length or an orientation parallel to the member.
   CorotationalBeam(const BeamSection& section, const Vec3& X1, const Vec3& X2, const Vec3& orientation);
 
-  // Current positions x_i and total rotations R_i (from the reference configuration).
-  CorotationalResponse evaluate(const Vec3& x1, const Mat3& R1, const Vec3& x2, const Mat3& R2) const;
+  // Current positions x_i and total rotations R_i (from the reference configuration). Without
+  // `with_tangent` the tangent is left zero (a residual evaluation: end forces, force, energy only).
+  CorotationalResponse evaluate(const Vec3& x1, const Mat3& R1, const Vec3& x2, const Mat3& R2,
+                                bool with_tangent = true) const;
   CorotationalKinematics kinematics(const Vec3& x1, const Mat3& R1, const Vec3& x2, const Mat3& R2) const;
 
   double reference_length() const { return L0_; }

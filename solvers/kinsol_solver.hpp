@@ -60,6 +60,7 @@ class KinsolSolver {
   // Number of symbolic analyses and numeric factorisations so far (pattern reuse check).
   long symbolic_analyses() const;
   long factorizations() const;
+  const KinsolOptions& options() const { return options_; }
 
  private:
   struct Impl;

@@ -342,7 +342,7 @@ NonlinearStructure::Evaluation NonlinearStructure::evaluate(const NonlinearState
     const int a = el.nodes[0], b = el.nodes[1];
     CorotationalResponse r;
     try {
-      r = beams_[e]->evaluate(s.x[a], s.R[a], s.x[b], s.R[b]);
+      r = beams_[e]->evaluate(s.x[a], s.R[a], s.x[b], s.R[b], with_tangent);
     } catch (const Error& err) {  // the element's own error, named here
       throw ModelError("element '" + el.id + "'", err.what());
     }

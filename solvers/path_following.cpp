@@ -43,6 +43,7 @@ int record(PathResult& res, const PathOptions& o, const Model& original, const P
   ps.control = control;
   ps.arc_length = ds;
   ps.iterations = c.iterations;
+  ps.chord_iterations = c.chord_iterations;
   ps.reaction = c.extra_mu;
   for (int n : o.track) {
     Vec6 d;
@@ -218,8 +219,9 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
     control.advance();
     const int neg_before = neg;
     neg = record(res, o, original, P, stab, next, step, control.value(next), std::abs(control.h), control.mode);
-    say(fmt::format("step {}: load factor {:.6g}, control {:.6g}, {} iterations, {} negative eigenvalues", step,
-                    next.lambda, control.value(next), next.iterations, neg));
+    say(fmt::format("step {}: load factor {:.6g}, control {:.6g}, {} iterations{}, {} negative eigenvalues", step,
+                    next.lambda, control.value(next), next.iterations,
+                    next.chord_iterations ? fmt::format(" ({} chord)", next.chord_iterations) : std::string(), neg));
 
     const bool fall_back = control.mode != o.control;  // no critical points in a snap-back fall-back
     bool control_turns = false;  // the step straddles a turn of the controlled DOF (not of the load)
@@ -284,13 +286,15 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
     if (fall_back && control.resume_displacement(cur, next))
       say(fmt::format("step {}: the controlled DOF moves toward its target again: displacement control", step));
     else
-      control.adapt(next.iterations);
+      control.adapt(adapt_count(next));
     cur = next;
     cuts = 0;
     if (stopped(res, o, original, next, step)) break;
   }
-  res.factorizations = kin.factorizations();
-  res.symbolic_analyses = kin.symbolic_analyses();
+  res.factorizations = kin.factorizations() + P.tangent_factorizations();
+  res.symbolic_analyses = kin.symbolic_analyses() + P.tangent_symbolic_analyses();
+  res.chord_steps = P.chord_steps();
+  res.chord_fallbacks = P.chord_fallbacks();
   return res;
 }
 

@@ -1,9 +1,12 @@
 #include "solvers/path/equilibrium.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "solvers/path/corrector.hpp"
 #include "solvers/structure.hpp"
 
 namespace beamfea {
@@ -14,7 +17,7 @@ namespace {
 constexpr double kRoundOffForceRatio = 1e-5;
 }  // namespace
 
-PathEquilibrium::PathEquilibrium(const Model& model, const PathOptions& o) : ns(model) {
+PathEquilibrium::PathEquilibrium(const Model& model, const PathOptions& o) : ns(model), chord(o.chord_corrector) {
   const DofMap& map = ns.reference_map();
   // Prescribed values that the constraints make inconsistent (a loop that cannot close, a rigid link
   // whose ends are prescribed apart): bad input naming the link, joint or DOF.
@@ -256,6 +259,29 @@ Eigen::VectorXd PathEquilibrium::fscale(const StepSpec& s) const {
 
 bool PathEquilibrium::solve(KinsolSolver& kin, const Converged& start, const StepSpec& s, Eigen::VectorXd u, Converged& out,
                             std::string& report) const {
+  auto finish = [&](const Eigen::VectorXd& uu) {
+    const Eval e = state_of(start, s, uu);
+    out.state = e.st;
+    out.lambda = e.lambda;
+    out.mu = uu.segment(nf, nc);
+    out.extra_mu = (s.kind == StepKind::Control && !has_loads) ? uu[nf + nc] : 0.0;
+  };
+  long chord_its = 0;
+  if (chord && tangent_factor(start)) {
+    Eigen::VectorXd uc = u;
+    const ChordOutcome co = chord_correct(*this, start, s, uc, kin.options().function_tolerance);
+    chord_its = co.iterations;
+    if (co.converged) {
+      ++chord_steps_;
+      finish(uc);
+      out.iterations = 0;
+      out.chord_iterations = chord_its;
+      out.by_chord = true;
+      report = fmt::format("chord: converged after {} iterations, |F| = {:.3e}", chord_its, co.residual_norm);
+      return true;
+    }
+    ++chord_fallbacks_;
+  }
   KinsolSummary sum;
   try {
     sum = kin.solve(
@@ -267,12 +293,10 @@ bool PathEquilibrium::solve(KinsolSolver& kin, const Converged& start, const Ste
   }
   report = sum.report();
   if (sum.status != KinsolStatus::Converged) return false;
-  const Eval e = state_of(start, s, u);
-  out.state = e.st;
-  out.lambda = e.lambda;
-  out.mu = u.segment(nf, nc);
-  out.extra_mu = (s.kind == StepKind::Control && !has_loads) ? u[nf + nc] : 0.0;
+  finish(u);
   out.iterations = sum.iterations;
+  out.chord_iterations = chord_its;
+  out.by_chord = false;
   return true;
 }
 
@@ -345,6 +369,20 @@ const Eigen::VectorXd& PathEquilibrium::tangent(const Converged& c) const {
   }
   cache_.has_tangent = true;
   return cache_.t;
+}
+
+const LuFactor* PathEquilibrium::tangent_factor(const Converged& c) const {
+  if (!cache_.valid || !cache_.has_tangent || !cache_.t.size() || !same_state(cache_.key, c)) return nullptr;
+  return &predictor_lu_;
+}
+
+Eigen::VectorXd PathEquilibrium::solve_with_tangent_factor(const Eigen::VectorXd& b) const {
+  auto& lu = predictor_lu_.solver();
+  const double irstep = lu.umfpackControl()(UMFPACK_IRSTEP);
+  lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
+  Eigen::VectorXd x = lu.solve(b);
+  lu.umfpackControl()(UMFPACK_IRSTEP) = irstep;
+  return x;
 }
 
 double PathEquilibrium::conjugate_slope(const Converged& c) const {

@@ -60,7 +60,9 @@ struct Converged {
   double lambda = 0.0;
   Eigen::VectorXd mu;         // slave constraint multipliers
   double extra_mu = 0.0;      // controlled DOF's reaction (imposed motion)
-  long iterations = 0;
+  long iterations = 0;        // the step's Newton iterations (KINSOL's; 0 when the chord converged)
+  long chord_iterations = 0;  // chord iterations of the step (solvers/path/corrector.hpp)
+  bool by_chord = false;      // found by the chord corrector (no factorisation of its own)
 };
 
 class PathEquilibrium {
@@ -97,13 +99,27 @@ class PathEquilibrium {
   void jacobian(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, SparseMatrix& J) const;
   Eigen::VectorXd fscale(const StepSpec& s) const;
   // Solves one step from `start` with initial guess u (the predictor). False on failure, with the
-  // solver's report.
+  // solver's report. With the chord corrector on (PathOptions::chord_corrector) and the start state's
+  // tangent factorised (tangent(start), as the predictor leaves it), chord iterations on that factor
+  // first (solvers/path/corrector.hpp); when they give up, full Newton (KINSOL) from the same u.
   bool solve(KinsolSolver& kin, const Converged& start, const StepSpec& s, Eigen::VectorXd u, Converged& out,
              std::string& report) const;
   // Tangent direction at a converged state: [dDelta (nf), dmu (nc), dextra] per unit lambda (loads)
   // or per unit control (imposed motion). Empty when the tangent is singular. Factorised once per
   // state (kept with evaluation_at's).
   const Eigen::VectorXd& tangent(const Converged& c) const;
+  // The LU of the tangent system at c when c is the state kept and its tangent was computed (by
+  // tangent(c)) and factorised successfully; null otherwise. No computation.
+  const LuFactor* tangent_factor(const Converged& c) const;
+  // Numeric LU factorisations of converged states' tangent systems so far (the predictor's factor).
+  // x = A^-1 b with that factor, b of its size, without UMFPACK's iterative refinement: each chord
+  // iteration is itself a refinement step against the true residual (solvers/path/corrector.hpp).
+  Eigen::VectorXd solve_with_tangent_factor(const Eigen::VectorXd& b) const;
+  long tangent_factorizations() const { return predictor_lu_.factorizations(); }
+  long tangent_symbolic_analyses() const { return predictor_lu_.symbolic_analyses(); }
+  // Steps solved by the chord corrector, and those where it gave up (full Newton then), so far.
+  long chord_steps() const { return chord_steps_; }
+  long chord_fallbacks() const { return chord_fallbacks_; }
   // The evaluation at a converged state (Delta = 0, the state's load factor, multipliers and
   // reaction): residual, tangent over gens, end forces. Computed once per state and kept while the
   // state is the last one asked for: the predictor of the next step, the stability analysis, the
@@ -150,6 +166,7 @@ class PathEquilibrium {
   Eigen::VectorXd f_ext;
   bool has_loads = false;
   int nf = 0, nc = 0;
+  bool chord = true;   // PathOptions::chord_corrector
 
  private:
   void select_independent_constraints();
@@ -169,6 +186,7 @@ class PathEquilibrium {
     SparseMatrix J;  // workspace of the tangent system (its storage kept between states)
   };
   mutable StateCache cache_;
+  mutable long chord_steps_ = 0, chord_fallbacks_ = 0;
 };
 
 }  // namespace beamfea

@@ -51,6 +51,9 @@ struct PathOptions {
   int frequency_modes = 0;
   MassKind frequency_mass = MassKind::Consistent;
   KinsolOptions newton;
+  // Correct each step by chord iterations on the start state's factor first, full Newton only when
+  // they give up (solvers/path/corrector.hpp); false: full Newton at every step (as before).
+  bool chord_corrector = true;
   std::function<void(const std::string&)> progress;  // may be empty
   void validate(const Model& model) const;
 };
@@ -61,7 +64,8 @@ struct PathStep {
   double control = 0.0;             // lambda (load control), the controlled DOF's value, or the path length
   double arc_length = 0.0;          // step size used
   PathControl step_control = PathControl::LoadFactor;  // the kind of step (arc length in a snap-back fall-back)
-  long iterations = 0;
+  long iterations = 0;              // Newton iterations of the step (each an assembly + LU; 0 by chord)
+  long chord_iterations = 0;        // chord iterations (solvers/path/corrector.hpp: residual + solves)
   std::vector<Vec6> track;          // per tracked node: (x - X, log R)
   double reaction = 0.0;            // imposed-motion control: reaction of the controlled DOF
   int negative_eigenvalues = -1;
@@ -121,7 +125,12 @@ struct PathResult {
   int termination_count = 0;
   std::string termination_detail;
   int free_dofs = 0;
+  // LU factorisations (numeric; symbolic analyses) of the path: the Newton iterations' and the
+  // converged states' tangent systems (the predictor's, shared by the chord corrector).
   long factorizations = 0, symbolic_analyses = 0;
+  // Steps (bisections and branch switches included) solved by the chord corrector, and those where
+  // it gave up and full Newton solved the step.
+  long chord_steps = 0, chord_fallbacks = 0;
   // Redundant constraint rows (over-constrained loops, supports on one rigid body), dropped from the
   // equations: their reactions are statically indeterminate (e.g. "joint 'jC' uz").
   std::vector<std::string> statically_indeterminate;

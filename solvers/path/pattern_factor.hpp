@@ -15,8 +15,12 @@ class PatternFactor {
   bool factorize(const SparseMatrix& A0) {
     A_ = A0;
     A_.makeCompressed();
-    if (!pattern_.same_or_remember(A_)) solver_.analyzePattern(A_);
+    if (!pattern_.same_or_remember(A_)) {
+      solver_.analyzePattern(A_);
+      ++symbolic_;
+    }
     solver_.factorize(A_);
+    ++numeric_;
     if (solver_.info() != Eigen::Success) {
       pattern_.forget();
       return false;
@@ -24,11 +28,17 @@ class PatternFactor {
     return true;
   }
   const Solver& solver() const { return solver_; }
+  Solver& solver() { return solver_; }  // (its solve options; the factor stays as it is)
+  Eigen::Index rows() const { return A_.rows(); }
+  // Symbolic analyses and numeric factorisations so far.
+  long symbolic_analyses() const { return symbolic_; }
+  long factorizations() const { return numeric_; }
 
  private:
   SparseMatrix A_;
   Solver solver_;
   PatternMemory pattern_;
+  long symbolic_ = 0, numeric_ = 0;
 };
 using LdltFactor = PatternFactor<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>>;
 using LuFactor = PatternFactor<Eigen::UmfPackLU<SparseMatrix>>;

@@ -71,8 +71,13 @@ bool StepControl::resume_displacement(const Converged& prev, const Converged& ne
   return true;
 }
 
-void StepControl::adapt(long iterations) {
-  const double ratio = std::sqrt(static_cast<double>(o_.desired_iterations) / std::max<long>(1, iterations));
+double adapt_count(const Converged& c) {
+  if (!c.by_chord) return static_cast<double>(c.iterations);
+  return kChordIterationsPerNewton > 0.0 ? static_cast<double>(c.chord_iterations) / kChordIterationsPerNewton : 0.0;
+}
+
+void StepControl::adapt(double iterations) {
+  const double ratio = std::sqrt(static_cast<double>(o_.desired_iterations) / std::max(1.0, iterations));
   const double hn = std::clamp(std::abs(h) * std::clamp(ratio, kMinStepGrowth, kMaxStepGrowth), hmin, hmax);
   h = h < 0 ? -hn : hn;
 }

@@ -31,6 +31,20 @@ inline constexpr double kMaxCorrectorRatio = 0.5;
 // (plus the same fraction of the first step).
 inline constexpr double kTargetTolerance = 1e-12;
 
+// The iteration count a converged step feeds to StepControl::adapt. A step full Newton solved (the
+// chord corrector gave up, or is off): its Newton iterations, the chord's wasted ones not counted.
+// A step the chord corrector solved (solvers/path/corrector.hpp): its chord iterations divided by
+// kChordIterationsPerNewton, i.e. two chord iterations count as one Newton iteration. Measured:
+// the steps full Newton solves in 2 iterations take 2-3 chord iterations on the frames of
+// bench_path_step and up to 6 on Williams' toggle; with this count the path tests take the same
+// steps as with full Newton (deep arch: limit point at step 63; Lee's frame: 15 and 30; Williams'
+// toggle: 5 steps), where counting each chord iteration as one shrank the toggle's steps (8 steps).
+// Since the count reaches desired_iterations (5) only at 10 chord iterations, beyond the chord's
+// limit (kMaxChordIterations, 8), the steps grow under the chord until it gives up and full Newton's
+// count takes over: the step sizes stay those of full Newton's regime.
+inline constexpr double kChordIterationsPerNewton = 2.0;
+double adapt_count(const Converged& c);
+
 class StepControl {
  public:
   // ds0: the first arc length (the user's, or the automatic one of solvers/path/path_scales.hpp).
@@ -46,7 +60,7 @@ class StepControl {
   // A step of size h was accepted: the path length grows by |h|.
   void advance() { path_length += std::abs(h); }
   // Adapts h to the iteration count of the last converged step, within [hmin, hmax].
-  void adapt(long iterations);
+  void adapt(double iterations);
 
   // Displacement control through a snap-back of the controlled DOF (where it turns back, no step
   // toward the target converges): the steps go on under arc length (first step ds, bounds relative

@@ -1,0 +1,56 @@
+#pragma once
+// The chord corrector of a path step: modified Newton iterations on the factor of the start
+// state's tangent (Crisfield 1991, vol. 1, sec. 9.3 and ch. 9's modified Newton-Raphson: the
+// tangent is not updated within the step).
+//
+// The predictor of every step comes from the converged start state's tangent system, assembled and
+// factorised once (PathEquilibrium::tangent; shared with the stability analysis and the record of
+// the step). The chord iterations solve with that same factor, so a step that converges here costs
+// no factorisation: per iteration one residual evaluation and one or two triangular solves.
+//
+//   load control, imposed motion   J0 du = -F                 (the factor is of the step's system)
+//   arc length, displacement       the bordered system [J0, -q0; a^T, b] [du; dlambda] = -[F; g]
+//   control with loads             by block elimination with J0 (Crisfield 1991, vol. 1, eq. 9.12:
+//                                  du = dū + dlambda du_t, dū = -J0^-1 F, du_t = J0^-1 q0 the
+//                                  tangent per unit load factor that the predictor already has), and
+//                                  dlambda from the linearised extra row,
+//                                  dlambda = -(g + a^T dū) / (a^T du_t + b)
+//                                  (arc length: a = W Delta / ds, b = psi^2 (lambda - lambda_0) / ds,
+//                                  the row of the full Newton Jacobian, i.e. the constraint of eq.
+//                                  9.13 linearised at the iterate; displacement: a the controlled
+//                                  DOF's row at the start, b = 0).
+//
+// J0 = [K_t, -C^T; C, 0] at the start state (lambda_0, its multipliers), q0 = [T^T f_ext; 0] there.
+// Convergence is tested exactly as KINSOL tests it (solvers/kinsol_solver.hpp): the scaled residual
+// max |fscale_i F_i| at most the function tolerance, so a converged point meets the same tolerance
+// whichever corrector found it. The chord gives up (and the caller falls back to full Newton from
+// the same predictor, solvers/path/equilibrium.hpp's solve) when the start factor is missing or
+// failed (a singular tangent), when an iterate cannot be evaluated, when the residual grows, or when
+// its observed contraction cannot reach the tolerance within kMaxChordIterations.
+#include <Eigen/Core>
+#include <string>
+
+#include "solvers/path/equilibrium.hpp"
+
+namespace beamfea {
+
+// At most this many chord iterations per step (each a residual evaluation and a solve, some 10-20 %
+// of an assembly + LU on the frames of bench_path_step); beyond, full Newton is cheaper.
+inline constexpr int kMaxChordIterations = 8;
+// The initial guess is accepted as KINSOL accepts it (KIN_INITIAL_GUESS_OK): scaled residual below
+// this fraction of the tolerance.
+inline constexpr double kInitialGuessFraction = 0.01;
+
+struct ChordOutcome {
+  bool converged = false;
+  int iterations = 0;            // chord iterations made (residual evaluations after the predictor's)
+  double residual_norm = 0.0;    // scaled max norm at the last iterate
+  std::string why;               // why the chord gave up (empty when converged)
+};
+
+// Chord iterations from the predictor u (overwritten with the last iterate) of step s from start.
+// tolerance: KINSOL's function tolerance (on the scaled max norm).
+ChordOutcome chord_correct(const PathEquilibrium& P, const Converged& start, const StepSpec& s, Eigen::VectorXd& u,
+                           double tolerance);
+
+}  // namespace beamfea
