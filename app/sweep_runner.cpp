@@ -132,12 +132,13 @@ class WorkerPool {
     for (int w = 0; w < jobs_; ++w)
       threads_.emplace_back([this] {
         SweepCaseDocument documents(sweep_);  // this worker's, reused case after case
+        SweepCaseResult result;               // likewise
         for (;;) {
           if (abort_ || stop_requested(options_)) break;
           const std::size_t k = next_++;
           if (k >= pending_.size()) break;
           Batch one;
-          run_one(pending_[k], one, documents);
+          run_one(pending_[k], one, documents, result);
           {
             std::lock_guard lock(mutex_);
             batch_.rows += one.rows;
@@ -170,7 +171,7 @@ class WorkerPool {
       Batch b;
       const auto t0 = std::chrono::steady_clock::now();
       while (next_ < pending_.size() && !stop_requested(options_) && std::chrono::steady_clock::now() - t0 < period)
-        run_one(pending_[next_++], b, *inline_documents_);
+        run_one(pending_[next_++], b, *inline_documents_, inline_result_);
       b.all_done = next_ >= pending_.size() || stop_requested(options_);
       return b;
     }
@@ -187,9 +188,10 @@ class WorkerPool {
   }
 
  private:
-  void run_one(std::size_t i, Batch& into, SweepCaseDocument& documents) const {
-    const SweepCaseResult r = run_sweep_case(sweep_, i, keep_dir(sweep_, options_, i), &documents);
-    into.rows += sweep_row(sweep_, i, columns_, r);
+  // `documents` and `r`: the calling thread's, reused case after case.
+  void run_one(std::size_t i, Batch& into, SweepCaseDocument& documents, SweepCaseResult& r) const {
+    run_sweep_case(sweep_, i, keep_dir(sweep_, options_, i), &documents, r);
+    append_sweep_row(into.rows, sweep_, i, columns_, r);
     ++into.count;
     if (r.status != SweepCaseResult::Status::Ok) ++into.failed;
   }
@@ -200,6 +202,7 @@ class WorkerPool {
   const std::vector<std::size_t>& pending_;
   int jobs_;  // worker threads; 0: the cases run inline in take()
   std::optional<SweepCaseDocument> inline_documents_;  // the inline cases' document
+  SweepCaseResult inline_result_;                      // and their result, reused
   std::vector<std::thread> threads_;
   std::mutex mutex_;
   std::condition_variable cv_;

@@ -139,7 +139,9 @@ ojson to_json(const Vec6& v) { return number_array(v.data(), 6); }
 ojson to_json(const Eigen::VectorXd& v) { return number_array(v.data(), static_cast<std::size_t>(v.size())); }
 ojson to_json(const Mat6& m) {
   ojson a = ojson::array();
-  for (int i = 0; i < 6; ++i) a.push_back(to_json(Vec6(m.row(i).transpose())));
+  auto& rows = a.get_ref<ojson::array_t&>();
+  rows.reserve(6);
+  for (int i = 0; i < 6; ++i) rows.push_back(to_json(Vec6(m.row(i).transpose())));
   return a;
 }
 

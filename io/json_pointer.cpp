@@ -2,9 +2,12 @@
 
 namespace beamfea::json_in {
 
+// The key of an index segment: an address no key (a view of the caller's text) can have.
+const char Pointer::kIndex[] = "";
+
 void Pointer::append(Segment s, std::string& out) const {
   out += '/';
-  if (s.is_index) {
+  if (s.key == kIndex) {
     out += std::to_string(s.value);
     return;
   }
@@ -22,13 +25,9 @@ std::string Pointer::str() const {
   return out;
 }
 
-Pointer Pointer::pushed(Segment s) const {
-  Pointer p = *this;
-  if (p.count_ < kMaxSegments) {
-    p.segments_[p.count_++] = s;
-    return p;
-  }
+Pointer Pointer::overflowed(Segment s) const {
   // Full: render everything into a new root that the result (and its copies) own.
+  Pointer p = *this;
   std::string text = str();
   append(s, text);
   p.owned_root_ = std::make_shared<const std::string>(std::move(text));
@@ -36,9 +35,5 @@ Pointer Pointer::pushed(Segment s) const {
   p.count_ = 0;
   return p;
 }
-
-Pointer Pointer::child(std::string_view key) const { return pushed({key.data(), key.size(), false}); }
-
-Pointer Pointer::child(std::size_t index) const { return pushed({nullptr, index, true}); }
 
 }  // namespace beamfea::json_in

@@ -34,9 +34,22 @@ class Pointer {
   Pointer(const char* rendered) : root_(rendered) {}
   Pointer(const std::string& rendered) : root_(rendered) {}
   Pointer(std::string&&) = delete;  // would view a string that dies at the end of the statement
+  // Copies only the segments in use (a child is made by copying its parent).
+  Pointer(const Pointer& o) : root_(o.root_), count_(o.count_), owned_root_(o.owned_root_) {
+    for (int i = 0; i < count_; ++i) segments_[i] = o.segments_[i];
+  }
+  Pointer& operator=(const Pointer& o) {
+    if (this != &o) {
+      root_ = o.root_;
+      count_ = o.count_;
+      owned_root_ = o.owned_root_;
+      for (int i = 0; i < count_; ++i) segments_[i] = o.segments_[i];
+    }
+    return *this;
+  }
 
-  Pointer child(std::string_view key) const;
-  Pointer child(std::size_t index) const;
+  Pointer child(std::string_view key) const { return pushed({key.data(), key.size()}); }
+  Pointer child(std::size_t index) const { return pushed({kIndex, index}); }
   template <class S>
     requires TemporaryString<S>
   Pointer child(S&&) const = delete;
@@ -48,15 +61,21 @@ class Pointer {
 
  private:
   struct Segment {
-    const char* key = nullptr;
-    std::size_t value = 0;  // the key's length, or the index
-    bool is_index = false;
+    const char* key;    // kIndex: an array index
+    std::size_t value;  // the key's length, or the index
   };
+  static const char kIndex[];
   void append(Segment s, std::string& out) const;
-  Pointer pushed(Segment s) const;
+  Pointer pushed(Segment s) const {
+    if (count_ == kMaxSegments) return overflowed(s);
+    Pointer p = *this;
+    p.segments_[p.count_++] = s;
+    return p;
+  }
+  Pointer overflowed(Segment s) const;
 
   std::string_view root_;
-  Segment segments_[kMaxSegments];
+  Segment segments_[kMaxSegments];  // the first count_ are set
   int count_ = 0;
   std::shared_ptr<const std::string> owned_root_;  // set only past kMaxSegments; root_ views it
 };

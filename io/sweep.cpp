@@ -19,27 +19,31 @@ namespace {
 constexpr std::size_t kMaxIndexDigits = 9;
 
 // An output value flattened into (column name, cell) pairs: name[i][j] for arrays, name.key for
-// objects.
+// objects, written over out[n], out[n + 1], ... (their strings' capacity reused; `n` counts them).
 // `name` is the caller's buffer: suffixes are appended and taken off again (no string per level).
-void flatten(const ojson& v, std::string& name, std::vector<std::pair<std::string, std::string>>& out) {
+void flatten(const ojson& v, std::string& name, std::vector<std::pair<std::string, std::string>>& out,
+             std::size_t& n) {
   const std::size_t length = name.size();
   if (v.is_array()) {
     for (std::size_t i = 0; i < v.size(); ++i) {
       name += '[';
       name += std::to_string(i);
       name += ']';
-      flatten(v[i], name, out);
+      flatten(v[i], name, out, n);
       name.resize(length);
     }
   } else if (v.is_object()) {
     for (const auto& [k, x] : v.items()) {
       name += '.';
       name += k;
-      flatten(x, name, out);
+      flatten(x, name, out, n);
       name.resize(length);
     }
   } else {
-    out.emplace_back(name, csv_cell(v));
+    if (n == out.size()) out.emplace_back();
+    out[n].first.assign(name);
+    csv_cell_into(out[n].second, v);
+    ++n;
   }
 }
 
@@ -124,9 +128,23 @@ const json& SweepCaseDocument::apply(std::size_t index) {
 
 SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir,
                                SweepCaseDocument* documents) {
-  const auto t0 = std::chrono::steady_clock::now();
   SweepCaseResult r;
+  run_sweep_case(sweep, index, keep_dir, documents, r);
+  return r;
+}
+
+void run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir,
+                    SweepCaseDocument* documents, SweepCaseResult& r) {
+  const auto t0 = std::chrono::steady_clock::now();
+  r.status = SweepCaseResult::Status::Ok;
+  r.message.clear();
   r.outputs.resize(sweep.outputs.size());
+  std::size_t done = 0;  // outputs written for this case; those after it still hold the last case's
+  auto fail = [&](SweepCaseResult::Status status, const char* what) {
+    r.status = status;
+    r.message = what;
+    for (std::size_t o = done; o < r.outputs.size(); ++o) r.outputs[o].clear();
+  };
   try {
     json copy;
     const json& doc = documents ? documents->apply(index) : (copy = sweep.document(index));
@@ -137,11 +155,17 @@ SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std:
     opt.only = sweep.analyses;
     const RunReport report = run_document(model, doc, opt);
     std::string missing;
-    for (std::size_t o = 0; o < sweep.outputs.size(); ++o) {
-      if (const ojson* v = find_path(report.results, sweep.outputs[o])) {
-        std::string name = sweep.outputs[o].name;
-        flatten(*v, name, r.outputs[o]);
-      } else missing += (missing.empty() ? "" : ", ") + sweep.outputs[o].name;
+    for (; done < sweep.outputs.size(); ++done) {
+      auto& out = r.outputs[done];
+      if (const ojson* v = find_path(report.results, sweep.outputs[done])) {
+        std::string name = sweep.outputs[done].name;
+        std::size_t n = 0;
+        flatten(*v, name, out, n);
+        out.resize(n);
+      } else {
+        out.clear();
+        missing += (missing.empty() ? "" : ", ") + sweep.outputs[done].name;
+      }
     }
     if (report.failed) {
       r.status = SweepCaseResult::Status::AnalysisFailed;
@@ -156,17 +180,13 @@ SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std:
       r.message = "not in the results: " + missing;
     }
   } catch (const InputError& e) {
-    r.status = SweepCaseResult::Status::BadInput;
-    r.message = e.what();
+    fail(SweepCaseResult::Status::BadInput, e.what());
   } catch (const ModelError& e) {
-    r.status = SweepCaseResult::Status::BadInput;
-    r.message = e.what();
+    fail(SweepCaseResult::Status::BadInput, e.what());
   } catch (const std::exception& e) {
-    r.status = SweepCaseResult::Status::AnalysisFailed;
-    r.message = e.what();
+    fail(SweepCaseResult::Status::AnalysisFailed, e.what());
   }
   r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return r;
 }
 
 }  // namespace beamfea

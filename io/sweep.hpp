@@ -124,5 +124,9 @@ const char* to_string(SweepCaseResult::Status s);
 // `documents` (may be null): the calling worker's SweepCaseDocument, reused from case to case.
 SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir = {},
                                SweepCaseDocument* documents = nullptr);
+// The same, written over `into` (the calling worker's, reused case after case: its output cells keep
+// their strings' capacity). Every field of `into` is the case's own afterwards.
+void run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir,
+                    SweepCaseDocument* documents, SweepCaseResult& into);
 
 }  // namespace beamfea

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 
@@ -89,6 +90,15 @@ std::string first_field(const std::string& row) { return csv_field_at(row, 0); }
 
 std::string csv_cell(const nlohmann::json& v) { return cell_text(v); }
 std::string csv_cell(const ojson& v) { return cell_text(v); }
+
+void csv_cell_into(std::string& out, const ojson& v) {
+  if (v.type() != ojson::value_t::number_float) {
+    out = cell_text(v);
+    return;
+  }
+  out.clear();
+  fmt::format_to(std::back_inserter(out), "{}", v.get<double>());  // as cell_text: shortest round trip
+}
 
 namespace {
 // Appends s to line as a CSV field (csv_field) without a copy of it.
@@ -199,8 +209,14 @@ SweepColumns sweep_columns_from_header(const Sweep& s, const std::vector<std::st
 }
 
 std::string sweep_row(const Sweep& s, std::size_t index, const SweepColumns& cols, const SweepCaseResult& r) {
-  // Written field by field into the line (csv_line's format), without a vector of cell copies.
   std::string line;
+  append_sweep_row(line, s, index, cols, r);
+  return line;
+}
+
+void append_sweep_row(std::string& line, const Sweep& s, std::size_t index, const SweepColumns& cols,
+                      const SweepCaseResult& r) {
+  // Written field by field onto the line (csv_line's format), without a vector of cell copies.
   bool first = true;
   auto add = [&](const std::string& cell) {
     if (!first) line += ',';
@@ -230,7 +246,6 @@ std::string sweep_row(const Sweep& s, std::size_t index, const SweepColumns& col
   add(without_line_breaks(r.message));
   add(fmt::format("{:.6f}", r.wall_time_s));
   line += '\n';
-  return line;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -25,6 +25,8 @@ std::string csv_line(const std::vector<std::string>& cells);
 // strings without line breaks, null as "".
 std::string csv_cell(const nlohmann::json& v);
 std::string csv_cell(const ojson& v);
+// The same text written over `out` (its capacity kept: a reused cell allocates no more).
+void csv_cell_into(std::string& out, const ojson& v);
 
 // The table's columns.
 struct SweepColumns {
@@ -42,6 +44,9 @@ SweepColumns sweep_columns_from_header(const Sweep& s, const std::vector<std::st
 
 // A case's row, with its '\n'. Outputs of another shape fill the columns they share.
 std::string sweep_row(const Sweep& s, std::size_t index, const SweepColumns& columns, const SweepCaseResult& r);
+// The same row appended to `out`.
+void append_sweep_row(std::string& out, const Sweep& s, std::size_t index, const SweepColumns& columns,
+                      const SweepCaseResult& r);
 
 // Case ids back to case indices (a grid's ids are its indices, a list's its "id"s).
 class SweepCaseIndex {

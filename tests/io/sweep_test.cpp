@@ -219,3 +219,50 @@ TEST(SweepCase, AReusedDocumentGivesEachCaseTheFreshCopysDocument) {
     EXPECT_EQ(reused.outputs, fresh.outputs);
   }
 }
+
+TEST(SweepCase, AReusedResultHoldsOnlyItsOwnCase) {
+  // One SweepCaseResult written over case after case (as a sweep's worker does) against a fresh
+  // result per case: the same status, message and cells, whatever the previous case left there
+  // (36 cells, none because the analysis found a mechanism, none because the input is bad).
+  json model = cantilever();
+  model["supports"][0]["fix"] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+  const json list = {
+      {"model", model},
+      {"cases", {json{{"id", "ok"}, {"set", {{"/loads/0/force/1", -5.0}}}},
+                 json{{"id", "mechanism"}, {"set", {{"/supports/0/fix/3", "ux"}}}},  // rx free
+                 json{{"id", "bad"}, {"set", {{"/supports/0/fix/3", "qx"}}}},        // no such DOF
+                 json{{"id", "longer"}, {"set", {{"/nodes/1/xyz/0", 3.0}}}}}},
+      {"outputs", {"analyses.K.matrix", "analyses.K.rank"}}};
+  const Sweep s = beamfea::read_sweep(list, fs::temp_directory_path());
+  beamfea::SweepCaseDocument documents(s);
+  SweepCaseResult reused;
+  std::size_t seen_ok = 0, seen_failed = 0, seen_bad = 0;
+  for (const std::size_t i : {0, 1, 2, 3, 0, 2, 1, 3, 3, 0}) {
+    beamfea::run_sweep_case(s, i, {}, &documents, reused);
+    const SweepCaseResult fresh = beamfea::run_sweep_case(s, i);
+    EXPECT_EQ(reused.status, fresh.status) << "case " << i;
+    EXPECT_EQ(reused.message, fresh.message) << "case " << i;
+    EXPECT_EQ(reused.outputs, fresh.outputs) << "case " << i;
+    switch (fresh.status) {
+      case SweepCaseResult::Status::Ok:
+        ++seen_ok;
+        ASSERT_EQ(fresh.outputs.size(), 2u);
+        EXPECT_EQ(fresh.outputs[0].size(), 36u);
+        EXPECT_EQ(fresh.outputs[0][7].first, "analyses.K.matrix[1][1]");
+        break;
+      case SweepCaseResult::Status::AnalysisFailed: ++seen_failed; break;
+      case SweepCaseResult::Status::BadInput: ++seen_bad; break;
+    }
+    // The row from the reused result is the fresh result's row.
+    const beamfea::SweepColumns columns = beamfea::sweep_columns(s, nullptr);
+    std::string row = "x";
+    beamfea::append_sweep_row(row, s, i, columns, reused);
+    std::string expected = beamfea::sweep_row(s, i, columns, fresh);
+    // wall_time_s (the last field) differs between the two runs: compare up to it.
+    expected = expected.substr(0, expected.rfind(','));
+    EXPECT_EQ(row.substr(0, row.rfind(',')), "x" + expected);
+  }
+  EXPECT_EQ(seen_ok, 6u);
+  EXPECT_EQ(seen_failed, 2u);
+  EXPECT_EQ(seen_bad, 2u);
+}
