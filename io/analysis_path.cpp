@@ -11,7 +11,7 @@
 //  "frequencies": {"modes": 3, "mass": "consistent" | "lumped"}}     natural frequencies at every step
 //
 // Result analyses.<id>: type, status, termination, completed, free_dofs, control,
-// steps[] {step, load_factor, control, arc_length, iterations, nodes.<tracked>.displacement,
+// steps[] {step, load_factor, control, arc_length, iterations, chord_iterations, nodes.<tracked>.displacement,
 //          negative_eigenvalues, stable, min_eigenvalue, stiffness, compliance, rank, null_space,
 //          rigid_directions (when stiffness_node), reaction
 //          (imposed motion), frequencies (Hz, with "frequencies"; null and frequencies_failure when the
@@ -232,7 +232,9 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
     j["load_factor"] = s.load_factor;
     j["control"] = s.control;
     j["arc_length"] = s.arc_length;
-    j["iterations"] = s.iterations;
+    // All corrector iterations of the step; those on the start state's factor also apart.
+    j["iterations"] = s.iterations + s.chord_iterations;
+    j["chord_iterations"] = s.chord_iterations;
     ojson nodes = ojson::object();
     for (std::size_t k = 0; k < o.track.size(); ++k)
       nodes[model.nodes[o.track[k]].id] = ojson{{"displacement", to_json(s.track[k])}};
@@ -292,7 +294,7 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
     csv << "\n";
     for (const auto& s : r.steps) {
       csv << fmt::format("{},{:.17g},{:.17g},{:.17g},{},{},{},{:.17g}", s.step, s.load_factor, s.control, s.arc_length,
-                         s.iterations, s.negative_eigenvalues, s.stable ? 1 : 0, s.min_eigenvalue);
+                         s.iterations + s.chord_iterations, s.negative_eigenvalues, s.stable ? 1 : 0, s.min_eigenvalue);
       if (imposed) csv << fmt::format(",{:.17g}", s.reaction);
       for (int k = 0; k < o.frequency_modes; ++k)  // empty cells where fewer (or none) were found
         csv << (k < s.frequencies.size() ? fmt::format(",{:.17g}", s.frequencies[k]) : std::string(","));
