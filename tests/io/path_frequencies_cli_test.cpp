@@ -68,6 +68,10 @@ TEST(PathFrequenciesCli, ColumnFrequenciesInResultsAndCsvFollowTheClosedForm) {
   const double f_start = steps[0]["frequencies"][0].get<double>();
   EXPECT_NEAR(f_start, f0, 1e-5 * f0);
   for (const auto& s : steps) {
+    // All corrector iterations, of which the chord's (docs/analyses/path.md).
+    ASSERT_TRUE(s.contains("chord_iterations")) << s.dump();
+    EXPECT_GE(s["iterations"].get<long>(), s["chord_iterations"].get<long>());
+    EXPECT_GE(s["chord_iterations"].get<long>(), 0);
     ASSERT_EQ(s["frequencies"].size(), 2u);
     const double lam = s["load_factor"].get<double>();
     EXPECT_NEAR(s["frequencies"][0].get<double>() / f_start, std::sqrt(1.0 - lam * cn), 2e-4) << "lambda " << lam;
