@@ -110,11 +110,7 @@ TEST(PathChord, DisplacementControlReachesTheSameTargetAndLimitPoint) {
 // step and full Newton solves it from the same predictor, so the fall-back is what this test checks.
 TEST(PathChord, LoadControlRollsTheCantileverIntoTheSameCircle) {
   const double L = 10.0, EI = 100.0;
-  json d = straight_member(L, 20, 1.0, 1.0, 1e4, EI, EI, EI);
-  d["materials"][0]["E"] = 1.0;
-  d["materials"][0]["G"] = 1.0;
-  d["supports"].push_back(fix("A", {"ux", "uy", "uz", "rx", "ry", "rz"}));
-  d["loads"].push_back(load("B", 0, 0, 0, 0, 0, 2 * pi * EI / L));
+  json d = rolled_cantilever(L, EI);
   const Model m = read_model(d);
   PathOptions o;
   o.control = PathControl::LoadFactor;

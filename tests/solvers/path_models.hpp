@@ -2,6 +2,7 @@
 // The classic snap-through benchmarks of path following, as users write them (a reference load P,
 // planar: out-of-plane DOFs held at every node).
 #include <cmath>
+#include <numbers>
 
 #include "nl_models.hpp"
 
@@ -75,6 +76,18 @@ inline json williams_toggle(int per_member, double P) {
                                 {"orientation", {0, 0, 1}}, {"divisions", per_member}}});
   d["supports"] = json::array({fix("L", {"ux", "uy", "uz", "rx", "ry", "rz"}), fix("R", {"ux", "uy", "uz", "rx", "ry", "rz"})});
   d["loads"] = json::array({load("apex", 0, -P, 0)});
+  return d;
+}
+
+// A cantilever A-B of 20 elements (EA = 1e4, EI = GJ = EI) fixed at A, with the end moment
+// M = 2 pi EI / L about z at B that rolls it into a full circle (Simo & Vu-Quoc 1986; Battini &
+// Pacoste 2002): the tip returns to the root, R = I.
+inline json rolled_cantilever(double L, double EI) {
+  json d = straight_member(L, 20, 1.0, 1.0, 1e4, EI, EI, EI);
+  d["materials"][0]["E"] = 1.0;
+  d["materials"][0]["G"] = 1.0;
+  d["supports"].push_back(fix("A", {"ux", "uy", "uz", "rx", "ry", "rz"}));
+  d["loads"].push_back(load("B", 0, 0, 0, 0, 0, 2 * std::numbers::pi * EI / L));
   return d;
 }
 
