@@ -31,6 +31,18 @@ PathResult run(const Model& m, PathOptions o, bool chord) {
   return r;
 }
 
+// Arc length fixed at ds (min = max, so both correctors take the same steps) for `steps` steps, the
+// apex of Williams' toggle tracked.
+PathOptions fixed_arc_length(const Model& m, double ds, int steps) {
+  PathOptions o;
+  o.control = PathControl::ArcLength;
+  o.arc_length = ds;
+  o.min_arc_length = o.max_arc_length = ds;
+  o.track = {m.find_node("apex")};
+  o.stop_steps = steps;
+  return o;
+}
+
 }  // namespace
 
 // Williams' toggle (16 elements per member, P = 1) under arc length with a fixed ds = 1 (min = max):
@@ -42,12 +54,7 @@ PathResult run(const Model& m, PathOptions o, bool chord) {
 // up and full Newton solves them: both paths are exercised.
 TEST(PathChord, ArcLengthStepsEqualFullNewtonsThroughWilliamsToggleLimitPoints) {
   const Model m = read_model(williams_toggle(16, 1.0));
-  PathOptions o;
-  o.control = PathControl::ArcLength;
-  o.arc_length = 1.0;
-  o.min_arc_length = o.max_arc_length = 1.0;
-  o.track = {m.find_node("apex")};
-  o.stop_steps = 14;
+  const PathOptions o = fixed_arc_length(m, 1.0, 14);
   const PathResult rn = run(m, o, false), rc = run(m, o, true);
   ASSERT_TRUE(rn.completed) << rn.brief_report();
   ASSERT_TRUE(rc.completed) << rc.brief_report();
@@ -156,12 +163,7 @@ TEST(PathChord, ImposedMotionGivesTheSameReaction) {
 // also gives the predictor and the stability analysis); full Newton adds one LU per iteration.
 TEST(PathChord, OneFactorisationPerStepWhereTheChordConverges) {
   const Model m = read_model(williams_toggle(16, 1.0));
-  PathOptions o;
-  o.control = PathControl::ArcLength;
-  o.arc_length = 0.03;
-  o.min_arc_length = o.max_arc_length = 0.03;
-  o.track = {m.find_node("apex")};
-  o.stop_steps = 20;
+  const PathOptions o = fixed_arc_length(m, 0.03, 20);
   const PathResult rn = run(m, o, false), rc = run(m, o, true);
   ASSERT_TRUE(rc.completed) << rc.brief_report();
   ASSERT_EQ(rc.steps.size(), 21u);
