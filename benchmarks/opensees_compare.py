@@ -29,7 +29,7 @@ Both answers are compared (roof displacement, 1e-6 relative) before any time is 
 table gives the median of each time and the median of the per-repetition paired ratios
 OpenSees / beamfea (above 1: beamfea faster).
 """
-import argparse, json, os, resource, statistics, subprocess, sys, tempfile, time
+import argparse, json, os, re, resource, statistics, subprocess, sys, tempfile, time
 
 OPENBLAS = "/usr/lib/x86_64-linux-gnu/openblas-pthread/libblas.so.3"
 
@@ -108,6 +108,25 @@ def global_symbol_library(name):
     return os.path.realpath(info.fname.decode())
 
 
+def openblas_core():
+    """The kernels of the OpenBLAS in this process's global scope (openblas_get_corename)."""
+    import ctypes
+    try:
+        f = ctypes.CDLL(None).openblas_get_corename
+    except AttributeError:
+        return "(no OpenBLAS in the global scope)"
+    f.restype = ctypes.c_char_p
+    return f().decode()
+
+
+def beamfea_core(exe):
+    """The OpenBLAS kernels beamfea runs on, as `beamfea --version` says (it may replace OpenBLAS's
+    own choice: app/openblas.hpp)."""
+    out = subprocess.run([exe, "--version"], capture_output=True, text=True, check=True).stdout
+    m = re.search(r"BLAS: OpenBLAS, (\S+) kernels", out)
+    return m.group(1) if m else None
+
+
 def run_beamfea(exe, model_path, probe):
     """Whole-process and analysis time of `beamfea run`, its roof ux, free DOFs and mapped BLAS."""
     with tempfile.TemporaryDirectory() as d:
@@ -180,13 +199,16 @@ def opensees_child(nx, ny, nz, system, write_results):
     # Several BLAS may be mapped (the wheel's and the preloaded one): say which one dgemm_ binds to
     # in the global scope (the preloaded library comes first in the lookup order).
     blas.append("dgemm_ from " + global_symbol_library("dgemm_"))
+    blas.append("kernels " + openblas_core())
     print(json.dumps(dict(ok=ok, analysis=dt, ux=ops.nodeDisp(probe, 1), blas=blas)))
 
 
-def run_opensees(python, size, system, blas_lib, write_results):
+def run_opensees(python, size, system, blas_lib, core, write_results):
     env = dict(os.environ)
     if blas_lib:
         env["LD_PRELOAD"] = blas_lib
+    if core:
+        env["OPENBLAS_CORETYPE"] = core
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     r = subprocess.run([python, os.path.abspath(__file__), "--opensees-child", "x".join(map(str, size)), system,
@@ -213,6 +235,9 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--systems", default="Mumps,UmfPack")
     ap.add_argument("--blas", default=OPENBLAS, help="BLAS preloaded into OpenSees ('' keeps the wheel's own)")
+    ap.add_argument("--openblas-core", default="beamfea",
+                    help="OPENBLAS_CORETYPE for OpenSees: 'beamfea' (default) gives it the kernels beamfea runs on "
+                         "(`beamfea --version`), '' lets its OpenBLAS choose, or a core name")
     ap.add_argument("--opensees-writes", action="store_true",
                     help="OpenSees also writes every node's displacement and reaction and every element's local "
                          "end forces to a JSON file (beamfea's results.json holds these and more), counted in its process")
@@ -222,6 +247,9 @@ def main():
         opensees_child(*parse_size(a.opensees_child[0]), a.opensees_child[1], a.opensees_child[2] == "1")
         return
     systems = a.systems.split(",")
+    core = beamfea_core(a.beamfea) if a.openblas_core == "beamfea" else a.openblas_core
+    print(f"beamfea: {a.beamfea} ({subprocess.run([a.beamfea, '--version'], capture_output=True, text=True).stdout.strip()})")
+    print(f"OpenSees: OPENBLAS_CORETYPE={core or '(unset)'}" + (f", LD_PRELOAD={a.blas}" if a.blas else "") + "\n")
     head = ["bays", "free DOFs", "beamfea process s (CPU s)", "beamfea analysis s"]
     for s in systems:
         head += [f"OpenSees {s} process s (CPU s)", f"OpenSees {s} analysis s",
@@ -243,7 +271,7 @@ def main():
                 order = sides[rep % len(sides):] + sides[:rep % len(sides)]
                 for s in order:
                     r = run_beamfea(a.beamfea, model_path, probe) if s == "beamfea" else \
-                        run_opensees(a.python, size, s, a.blas, a.opensees_writes)
+                        run_opensees(a.python, size, s, a.blas, core, a.opensees_writes)
                     runs[s].append(r)
                     blas_seen.setdefault(s, set()).update(r["blas"])
         bf = runs["beamfea"]

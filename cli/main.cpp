@@ -4,36 +4,21 @@
 //   beamfea sweep sweep.json --out DIR   many cases, one table DIR/cases.csv (cli/sweep_command.cpp)
 // Exit codes: 0 success, 1 an analysis failed, 2 bad input (DIR left as it was).
 #include <CLI/CLI.hpp>
-#include <dlfcn.h>
 
 #include <iostream>
 
+#include "app/openblas.hpp"
 #include "cli/sweep_command.hpp"
 #include "core/errors.hpp"
 #include "core/version.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
-#include "solvers/blas_threads.hpp"
 
 namespace {
 
 int report_error(const std::exception& e, int code) {
   std::cerr << "beamfea: error: " << e.what() << "\n";
   return code;
-}
-
-// The solvers' BLAS-thread hook (solvers/blas_threads.hpp) on OpenBLAS, when it is the BLAS loaded.
-void install_openblas_threads_hook() {
-  using Set = void (*)(int);
-  using Get = int (*)();
-  const auto set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  const auto get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-  if (!set || !get) return;
-  beamfea::install_blas_threads_hook([set, get](int threads) {
-    const int previous = get();
-    if (threads != previous) set(threads);
-    return previous;
-  });
 }
 
 // What a run holds until the program ends: the input document, the model and the results object
@@ -49,12 +34,23 @@ struct RunState {
 };
 RunState* volatile g_run_state = nullptr;
 
+// "OpenBLAS, SkylakeX kernels (OpenBLAS chose Prescott)": for --version and the progress lines.
+std::string describe(const beamfea::app::BlasCores& blas) {
+  if (!blas.openblas) return "not OpenBLAS with runtime kernel selection";
+  std::string s = "OpenBLAS, " + blas.core + " kernels";
+  if (!blas.replaced.empty())
+    s += " (OpenBLAS chose " + blas.replaced + " on this CPU; OPENBLAS_CORETYPE chooses otherwise)";
+  return s;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Before anything calls the BLAS (app/openblas.hpp).
+  const auto blas = beamfea::app::choose_openblas_core();
   CLI::App app{"beamfea: matrix structural analysis of 3-D frames of Euler-Bernoulli beams"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("beamfea ") + beamfea::kVersion);
+  app.set_version_flag("--version", std::string("beamfea ") + beamfea::kVersion + "\nBLAS: " + describe(blas));
 
   std::string model_path, out_dir = "out";
   bool no_vtk = false, quiet = false;
@@ -79,7 +75,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
 
-  install_openblas_threads_hook();
+  beamfea::app::install_openblas_threads_hook();
   if (*sweep->app) return beamfea::cli::run_sweep_command(*sweep);
   // Bad input (InputError, ModelError from validation) is exit 2 and writes nothing; anything
   // that escapes a run after validation is exit 1.
@@ -100,6 +96,7 @@ int main(int argc, char** argv) {
     opt.write_vtk = !no_vtk;
     opt.only = only;
     if (!quiet) opt.progress = [](const std::string& s) { std::cerr << s << "\n"; };
+    if (!quiet && !blas.replaced.empty()) std::cerr << "beamfea: BLAS: " << describe(blas) << "\n";
     opt.warning = [](const std::string& s) { std::cerr << "beamfea: warning: " << s << "\n"; };
     state.report = beamfea::run_document(state.model, state.document, opt);
     if (!quiet) std::cerr << "beamfea: wrote " << (opt.out_dir / "results.json").string() << "\n";

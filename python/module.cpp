@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "app/openblas.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
 #include "python/convert.hpp"
@@ -153,6 +154,16 @@ py::object sweep(const py::object& spec, int jobs) {
 PYBIND11_MODULE(_beamfea, m) {
   m.doc() = "beamfea's engine (use the beamfea package, not this module)";
   m.attr("__version__") = BEAMFEA_PYTHON_VERSION;
+  // As the program does at start (app/openblas.hpp): OpenBLAS's generic kernels replaced on a CPU
+  // it did not recognise. At import, before this module's engine calls the BLAS.
+  static const app::BlasCores blas = app::choose_openblas_core();
+  m.def("blas", [] {
+    py::dict d;
+    d["openblas"] = blas.openblas;
+    d["core"] = blas.core;
+    d["replaced"] = blas.replaced;
+    return d;
+  });
   init_conversions();
   register_error_translator();
   m.def("run", &run, py::arg("model"), py::arg("only"), py::arg("specs"), py::arg("out"), py::arg("vtk"));

@@ -16,7 +16,7 @@ from . import _beamfea
 from ._errors import Error, InputError, ModelError
 
 __version__: str = _beamfea.__version__
-__all__ = ["run", "check", "sweep", "Error", "InputError", "ModelError", "__version__"]
+__all__ = ["run", "check", "sweep", "blas", "Error", "InputError", "ModelError", "__version__"]
 
 Model = Union[Mapping[str, Any], str, "os.PathLike[str]"]
 
@@ -87,6 +87,22 @@ def check(model: Model) -> Dict[str, int]:
         InputError, ModelError: as run() does.
     """
     return _beamfea.check(model if _is_path(model) else _as_dict(model))
+
+
+def blas() -> Dict[str, Any]:
+    """The OpenBLAS kernels the engine runs on.
+
+    At import, beamfea replaces OpenBLAS's generic "Prescott" kernels with those the CPU supports
+    (AVX2: "Haswell", AVX-512: "SkylakeX") when OpenBLAS did not recognise the CPU (versions before
+    0.3.25 on recent Intel models) and OPENBLAS_CORETYPE is not set, as the program does
+    (docs/performance.md, "The BLAS"). This is process-wide: NumPy on the same OpenBLAS gains too.
+
+    Returns:
+        dict: {"openblas": whether the BLAS is OpenBLAS with runtime kernel selection,
+        "core": its kernels now, "replaced": the kernels OpenBLAS had chosen when beamfea replaced
+        them, else ""}.
+    """
+    return dict(_beamfea.blas())
 
 
 def sweep(spec: Union[Mapping[str, Any], str, "os.PathLike[str]"], jobs: Optional[int] = None) -> Any:

@@ -17,6 +17,20 @@ def test_version_is_the_cmake_project_version():
     assert beamfea.run(cantilever())["beamfea"] == beamfea.__version__
 
 
+def test_blas_reports_the_kernels_and_never_leaves_a_recent_cpu_on_generic_ones():
+    info = beamfea.blas()
+    assert set(info) == {"openblas", "core", "replaced"}
+    if not info["openblas"]:
+        pytest.skip("the BLAS is not OpenBLAS with runtime kernel selection")
+    with open("/proc/cpuinfo") as f:
+        flags = set(next(l for l in f if l.startswith("flags")).split())
+    if "OPENBLAS_CORETYPE" not in os.environ and {"avx2", "fma"} <= flags:
+        # OpenBLAS < 0.3.25 falls back to Prescott on Intel models it does not know (app/openblas.hpp).
+        assert info["core"].lower() != "prescott"
+    if info["replaced"]:
+        assert info["replaced"].lower() == "prescott"
+
+
 def test_arrays_are_float64_ndarrays_of_the_right_shapes():
     doc = cantilever(analyses=[{"id": "lin", "type": "linear_static"}, {"id": "K", "type": "stiffness", "node": "B"}])
     doc["elements"][0]["divisions"] = 3
