@@ -1,7 +1,5 @@
 #include "solvers/kinsol_solver.hpp"
-#include "solvers/sparse_factor.hpp"
 
-#include <Eigen/UmfPackSupport>
 #include <fmt/format.h>
 #include <kinsol/kinsol.h>
 #include <nvector/nvector_serial.h>
@@ -13,6 +11,7 @@
 #include <exception>
 
 #include "core/errors.hpp"
+#include "solvers/pattern_factor.hpp"
 
 namespace beamfea {
 
@@ -57,11 +56,9 @@ Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
 }  // namespace
 
 struct KinsolSolver::Impl {
-  // Persisting between solves: the factorisation with its symbolic analysis.
-  Eigen::UmfPackLU<SparseMatrix> lu;
-  SparseMatrix J;
-  PatternMemory pattern;  // of the last analysed matrix
-  long n_symbolic = 0, n_numeric = 0;
+  // Persisting between solves: the Jacobian (assembled in place) and its LU, with the symbolic
+  // analysis kept while the pattern stays.
+  LuFactor lu;
 
   // Per solve.
   const ResidualFn* residual = nullptr;
@@ -73,20 +70,8 @@ struct KinsolSolver::Impl {
   Eigen::VectorXd last_u, last_f;
   bool last_valid = false;
 
-  int factorize() {
-    J.makeCompressed();
-    if (!pattern.same_or_remember(J)) {
-      lu.analyzePattern(J);
-      ++n_symbolic;
-    }
-    lu.factorize(J);
-    ++n_numeric;
-    if (lu.info() != Eigen::Success) {
-      pattern.forget();  // retry a fresh analysis next time
-      return 1;          // recoverable: KINSOL may try again
-    }
-    return 0;
-  }
+  // 1 when the LU fails: recoverable, KINSOL may try again (with a fresh analysis).
+  int factorize() { return lu.factorize() ? 0 : 1; }
 
   // C callbacks.
   static int func(N_Vector u, N_Vector f, void* data) {
@@ -111,14 +96,14 @@ struct KinsolSolver::Impl {
     try {
       self->u_tmp = view(u);
       self->f_tmp = view(fu);
-      (*self->jacobian)(self->u_tmp, self->f_tmp, self->J);
+      (*self->jacobian)(self->u_tmp, self->f_tmp, self->lu.matrix());
       return 0;
     } catch (...) {
       self->error = std::current_exception();
       return -1;
     }
   }
-  // SUNMatrix ops: the content points at Impl; the matrix itself lives in Impl::J.
+  // SUNMatrix ops: the content points at Impl; the matrix itself lives in Impl::lu.matrix().
   static SUNMatrix_ID mat_id(SUNMatrix) { return SUNMATRIX_CUSTOM; }
   static int mat_zero(SUNMatrix) { return 0; }
   static void mat_destroy(SUNMatrix A) {
@@ -143,7 +128,7 @@ struct KinsolSolver::Impl {
     auto* self = static_cast<Impl*>(S->content);
     try {
       const Eigen::VectorXd rhs = view(b);
-      Eigen::VectorXd sol = self->lu.solve(rhs);
+      Eigen::VectorXd sol = self->lu.solver().solve(rhs);
       if (!sol.allFinite()) return 1;
       view(x) = sol;
       return 0;
@@ -184,8 +169,8 @@ KinsolSolver::KinsolSolver(KinsolOptions options) : impl_(std::make_unique<Impl>
 }
 KinsolSolver::~KinsolSolver() = default;
 
-long KinsolSolver::symbolic_analyses() const { return impl_->n_symbolic; }
-long KinsolSolver::factorizations() const { return impl_->n_numeric; }
+long KinsolSolver::symbolic_analyses() const { return impl_->lu.symbolic_analyses(); }
+long KinsolSolver::factorizations() const { return impl_->lu.factorizations(); }
 
 KinsolSummary KinsolSolver::solve(Eigen::VectorXd& u, const Eigen::VectorXd& fscale, const ResidualFn& residual,
                                   const JacobianFn& jacobian) {

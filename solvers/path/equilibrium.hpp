@@ -34,7 +34,7 @@
 #include "solvers/kinsol_solver.hpp"
 #include "solvers/nonlinear_structure.hpp"
 #include "solvers/path/path_types.hpp"
-#include "solvers/path/pattern_factor.hpp"
+#include "solvers/pattern_factor.hpp"
 
 namespace beamfea {
 

@@ -22,7 +22,7 @@
 
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/path/equilibrium.hpp"
-#include "solvers/path/pattern_factor.hpp"
+#include "solvers/pattern_factor.hpp"
 
 namespace beamfea {
 

@@ -1,6 +1,7 @@
 #pragma once
 // A sparse factorisation whose symbolic analysis is kept while the sparsity pattern does not change
-// (the path's tangent predictor LU and the inertia LDL^T refactor the same pattern at every step).
+// (KINSOL's Newton LU, the path's tangent LU and its inertia LDL^T refactor the same pattern at
+// every iteration or step), with counts of the symbolic analyses and numeric factorisations.
 #include <Eigen/SparseCholesky>
 #include <Eigen/UmfPackSupport>
 
@@ -11,9 +12,16 @@ namespace beamfea {
 template <class Solver>
 class PatternFactor {
  public:
-  // Returns false when the numeric factorisation fails.
+  // Factorises a copy of A0. Returns false when the numeric factorisation fails.
   bool factorize(const SparseMatrix& A0) {
     A_ = A0;
+    return factorize();
+  }
+  // The matrix the next factorize() reads: a caller may assemble into it (no copy).
+  SparseMatrix& matrix() { return A_; }
+  // Factorises matrix(). Returns false when the numeric factorisation fails (the next call then
+  // analyses the pattern afresh).
+  bool factorize() {
     A_.makeCompressed();
     if (!pattern_.same_or_remember(A_)) {
       solver_.analyzePattern(A_);
