@@ -62,6 +62,7 @@
 #include "solvers/linear_static.hpp"
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
+#include "bench_blas.hpp"
 #include "frame_models.hpp"
 
 namespace {
@@ -102,6 +103,9 @@ long proc_kb(const char* file, const char* key) {
     if (line.compare(0, n, key) == 0 && line.size() > n && line[n] == ':') return std::atol(line.c_str() + n + 1);
   return -1;
 }
+
+// The OpenBLAS kernels chosen at start (bench_blas.hpp).
+std::string g_kernels;
 
 // The BLAS library mapped into this process (CHOLMOD's supernodal kernels run on it).
 std::string blas_in_use() {
@@ -545,8 +549,8 @@ int run_all(const char* self, const Options& o) {
                std::isfinite(ldlt) ? tm(x, "ldlt") : "-", ratio(ldlt, chol), ratio(num(r, "ldlt_nnz"), num(r, "lnz")),
                sci(r, "ldlt_residual"), mb(r, "maxrss_kb"));
   }
-  fmt::print("\nBLAS: {}. Load average (1 min) at the start of each size: {}.\n",
-             recs.empty() ? "-" : str(recs.front(), "blas"), [&] {
+  fmt::print("\nBLAS: {}, {}. Load average (1 min) at the start of each size: {}.\n",
+             recs.empty() ? "-" : str(recs.front(), "blas"), g_kernels, [&] {
                std::string l;
                for (const auto& r : recs) l += (l.empty() ? "" : ", ") + str(r, "target") + ": " + str(r, "load_start");
                return l;
@@ -565,6 +569,7 @@ std::vector<long> parse_sizes(const std::string& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  g_kernels = beamfea::bench::choose_blas_kernels();  // as `beamfea` runs
   Options o;
   long single = 0;
   for (int i = 1; i < argc; ++i) {

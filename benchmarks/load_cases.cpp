@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_blas.hpp"
 #include "solvers/linear_static.hpp"
 
 using namespace beamfea;
@@ -103,6 +104,7 @@ std::string load_average() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  fmt::print(stderr, "BLAS: {}\n", beamfea::bench::choose_blas_kernels());  // as `beamfea` runs
   int cube = 10;
   std::vector<int> counts{1, 4, 16};
   for (int i = 1; i + 1 < argc; i += 2) {

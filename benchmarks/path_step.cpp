@@ -44,13 +44,9 @@
 #include <string>
 #include <vector>
 
-#include <dlfcn.h>
-
+#include "app/openblas.hpp"
+#include "bench_blas.hpp"
 #include "solvers/eigen_lowest.hpp"
-#if __has_include("solvers/blas_threads.hpp")  // (the bench also builds against older trees)
-#include "solvers/blas_threads.hpp"
-#define BEAMFEA_BLAS_HOOK 1
-#endif
 #include "solvers/nonlinear_structure.hpp"
 #include "solvers/path_following.hpp"
 // The benchmark models of the path tests (JSON written as users write them).
@@ -210,21 +206,9 @@ void classic(const char* name, const Model& m, const char* track, double P, int 
 }  // namespace
 
 int main(int argc, char** argv) {
-#ifdef BEAMFEA_BLAS_HOOK
-  // As the program does (cli/main.cpp): the solvers' BLAS-thread hook on OpenBLAS.
-  {
-    using Set = void (*)(int);
-    using Get = int (*)();
-    const auto set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-    const auto get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-    if (set && get)
-      install_blas_threads_hook([set, get](int threads) {
-        const int previous = get();
-        if (threads != previous) set(threads);
-        return previous;
-      });
-  }
-#endif
+  // As the program does (cli/main.cpp): its BLAS kernels and the solvers' BLAS-thread hook.
+  fmt::print(stderr, "BLAS: {}\n", bench::choose_blas_kernels());
+  app::install_openblas_threads_hook();
   for (int i = 1; i < argc; ++i)
     if (!std::strcmp(argv[i], "--classic")) {
       bool autostep = true;

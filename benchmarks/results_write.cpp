@@ -17,6 +17,7 @@
 #include <fstream>
 #include <vector>
 
+#include "bench_blas.hpp"
 #include "bench_timing.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json_writer.hpp"
@@ -40,6 +41,7 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  fmt::print(stderr, "BLAS: {}\n", beamfea::bench::choose_blas_kernels());  // as `beamfea` runs
   using namespace beamfea;
   if (argc < 2) {
     fmt::print(stderr, "usage: {} model.json [reps]\n", argv[0]);
