@@ -16,15 +16,37 @@ namespace {
 // Deepest nesting of arrays and objects accepted: a model needs 4 (a joint's stiffness matrix);
 // copying or printing a value nested without bound would overflow the stack.
 constexpr int kMaxNesting = 64;
+
+// nlohmann's DOM builder with the nesting limit. (A parse callback would do the same check, but
+// nlohmann's callback parser scans the enclosing array for discarded values after every object,
+// which made reading quadratic: 1.4 s of a 12 s run at 97,344 DOFs, docs/performance.md.)
+class NestingLimitedDom : public nlohmann::detail::json_sax_dom_parser<json> {
+ public:
+  NestingLimitedDom(json& result, const std::string& source) : json_sax_dom_parser(result, true), source_(source) {}
+  bool start_object(std::size_t n) { return open() && json_sax_dom_parser::start_object(n); }
+  bool start_array(std::size_t n) { return open() && json_sax_dom_parser::start_array(n); }
+  bool end_object() { --open_; return json_sax_dom_parser::end_object(); }
+  bool end_array() { --open_; return json_sax_dom_parser::end_array(); }
+
+ private:
+  // A container inside more than kMaxNesting others is refused before it is built.
+  bool open() {
+    if (open_ > kMaxNesting)
+      throw InputError("", source_ + ": malformed JSON: nested deeper than " + std::to_string(kMaxNesting) + " levels");
+    ++open_;
+    return true;
+  }
+  const std::string& source_;
+  int open_ = 0;  // containers open around the current value
+};
 }  // namespace
 
 json parse_json_text(const std::string& text, const std::string& source) {
   try {
-    return json::parse(text, [&](int depth, json::parse_event_t event, json&) {
-      if (depth > kMaxNesting && (event == json::parse_event_t::object_start || event == json::parse_event_t::array_start))
-        throw InputError("", source + ": malformed JSON: nested deeper than " + std::to_string(kMaxNesting) + " levels");
-      return true;
-    });
+    json result;
+    NestingLimitedDom dom(result, source);
+    json::sax_parse(text, &dom);  // strict: nothing but white space after the value
+    return result;
   } catch (const json::parse_error& e) {
     throw InputError("", source + ": malformed JSON at byte " + std::to_string(e.byte) + ": " + e.what());
   } catch (const json::exception& e) {
