@@ -150,6 +150,11 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   return out;
 }
 
+// The keys of a stiffness result (type, node, load_case, status, message, matrix, rank, null_space,
+// compliance, rigid_directions, statically_indeterminate, length_scale, scaled_eigenvalues), and
+// run_document's wall_time_s.
+constexpr std::size_t kStiffnessResultKeys = 14;
+
 void check_stiffness(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
   json_in::expect_keys(spec, p, {"id", "type", "description", "node", "load_case"});
   node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
@@ -165,6 +170,9 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
   const bool loaded = ctx.spec.contains("load_case");
   const CondensedStiffness k = loaded ? loaded_node_stiffness(model_for_load_case(model, ctx.spec), node)
                                       : linear_node_stiffness(model, node);
+  // Room for every key (and run_document's wall_time_s): an ordered_json object that grows deep
+  // copies what it already holds.
+  out.result = object_with_capacity(kStiffnessResultKeys);
   out.result["type"] = "stiffness";
   out.result["node"] = model.nodes[node].id;
   if (loaded) out.result["load_case"] = json_in::id(ctx.spec["load_case"], "", "load_case");

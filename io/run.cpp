@@ -55,12 +55,18 @@ AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx) {
 
 RunReport run_document(const Model& model, const nlohmann::json& document, const RunOptions& options) {
   RunReport report;
+  // Objects with room for their keys: an ordered_json object that grows deep copies what it holds
+  // (for a small model building the results costs as much as the analysis).
+  report.results = object_with_capacity(4);
   report.results["beamfea"] = kVersion;
-  report.results["model"] = {{"nodes", model.nodes.size()},
-                             {"elements", model.elements.size()},
-                             {"members", model.members.size()},
-                             {"joints", model.joints.size()}};
+  ojson counts = object_with_capacity(4);
+  append_new_key(counts, "nodes", model.nodes.size());
+  append_new_key(counts, "elements", model.elements.size());
+  append_new_key(counts, "members", model.members.size());
+  append_new_key(counts, "joints", model.joints.size());
+  report.results["model"] = std::move(counts);
   const auto& specs = document.at("analyses");
+  report.outcomes.reserve(specs.size());
   for (std::size_t k = 0; k < options.only.size(); ++k) {
     const bool known = std::any_of(specs.begin(), specs.end(), [&](const auto& s) {
       return json_in::id(s.at("id"), "", "analysis") == options.only[k];
@@ -69,7 +75,7 @@ RunReport run_document(const Model& model, const nlohmann::json& document, const
   }
   std::optional<StagingDir> staging;
   if (!options.out_dir.empty()) staging.emplace(options.out_dir);
-  ojson analyses = ojson::object();
+  ojson analyses = object_with_capacity(specs.size());
   RunCache cache;
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const auto& spec = specs[i];

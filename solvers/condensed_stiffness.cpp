@@ -150,16 +150,38 @@ bool saddle_point_lu(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::Mat
 
 // The same, first by the dense Schur complement (small model, K positive definite, well-posed rows:
 // solvers/dense_condensation.hpp), else by the saddle point.
-bool condense_rows(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz) {
+bool condense_rows(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz, DenseCondensationWorkspace&) {
   return condense_dense(K, A, Kz) || saddle_point_lu(K, A, Kz);
 }
-bool condense_rows(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz) {
-  return condense_dense(K, A, Kz) || saddle_point_lu(SparseMatrix(K.sparseView()), A, Kz);
+bool condense_rows(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz, DenseCondensationWorkspace& w) {
+  return condense_dense(K, A, Kz, {}, &w) || saddle_point_lu(SparseMatrix(K.sparseView()), A, Kz);
+}
+
+// The arrays of one node condensation. A thread keeps one set for models of up to kDenseMaxDofs
+// free DOFs (a sweep's cases then allocate none of them: the SVD keeps its storage while the sizes
+// stay); larger models use a set of their own, freed on return.
+struct NodeCondensationScratch {
+  Eigen::MatrixXd Tn, Ts, A, Kz;
+  Eigen::VectorXd col_scale;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd;
+  DenseCondensationWorkspace dense;
+};
+NodeCondensationScratch& thread_scratch() {
+  thread_local NodeCondensationScratch s;
+  return s;
 }
 
 template <class Matrix>
 CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
-                                      double L, const CondensedStiffnessOptions& options);
+                                      double L, const CondensedStiffnessOptions& options, NodeCondensationScratch& w);
+
+template <class Matrix>
+CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
+                                      double L, const CondensedStiffnessOptions& options) {
+  if (Tn.cols() <= kDenseMaxDofs) return node_compliance_of(K, Tn, col_scale, L, options, thread_scratch());
+  NodeCondensationScratch local;
+  return node_compliance_of(K, Tn, col_scale, L, options, local);
+}
 
 }  // namespace
 
@@ -176,22 +198,24 @@ namespace {
 
 template <class Matrix>
 CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
-                                      double L, const CondensedStiffnessOptions& options) {
+                                      double L, const CondensedStiffnessOptions& options, NodeCondensationScratch& w) {
   options.validate();
   CondensedStiffness out;
   Vec6 S;
   S << 1, 1, 1, L, L, L;
   // Directions the node can move: the range of the scaled rows (a zero column pads an empty Tn).
-  Eigen::MatrixXd Ts = Eigen::MatrixXd::Zero(6, std::max<Eigen::Index>(1, Tn.cols()));
+  Eigen::MatrixXd& Ts = w.Ts;
   if (Tn.cols() > 0) Ts = S.asDiagonal() * Tn * col_scale.asDiagonal();
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Ts, Eigen::ComputeFullU);
-  const Eigen::VectorXd sv = svd.singularValues();
+  else Ts.setZero(6, 1);
+  Eigen::JacobiSVD<Eigen::MatrixXd>& svd = w.svd;
+  svd.compute(Ts, Eigen::ComputeFullU);
+  const Eigen::VectorXd& sv = svd.singularValues();
   const double smax = sv.size() ? sv[0] : 0.0;
   int r = 0;
   // Relative to the largest, and to 1: the scaled rows of a node that moves at all are O(1) (a
   // translation, or a rotation times a lever arm over L), those of a held node rounding noise.
   while (r < sv.size() && sv[r] > options.motion_tolerance * std::max(smax, 1.0)) ++r;
-  const Eigen::MatrixXd U = svd.matrixU();  // 6 x 6
+  const Eigen::MatrixXd& U = svd.matrixU();  // 6 x 6
   for (int k = r; k < 6; ++k) out.rigid_directions.push_back(reproducible_direction(S.cwiseInverse().asDiagonal() * U.col(k)));
   if (r == 0) {  // held in every direction: nothing to condense
     analyse_rank(out.K, L, options.rank_tolerance, out);
@@ -203,10 +227,11 @@ CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn
   using Rows6 = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
   using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
   const Rows6 Ur = U.leftCols(r);
-  Eigen::MatrixXd A(r, Tn.cols());
+  Eigen::MatrixXd& A = w.A;
+  A.resize(r, Tn.cols());
   A.noalias() = (Ur.transpose() * S.asDiagonal()).lazyProduct(Tn);
-  Eigen::MatrixXd Kz;
-  if (!condense_rows(K, A, Kz)) return out;
+  Eigen::MatrixXd& Kz = w.Kz;
+  if (!condense_rows(K, A, Kz, w.dense)) return out;
   // Free directions of the node: the null space of K_z.
   const Small Kzs = Kz;
   Eigen::SelfAdjointEigenSolver<Small> es(Kzs);
@@ -249,17 +274,21 @@ CondensedStiffness condense_to_node_of(const Model& model, const DofMap& map, co
                                        const CondensedStiffnessOptions& options) {
   options.validate();
   const int n = map.free_size();
-  Eigen::MatrixXd Tn = Eigen::MatrixXd::Zero(6, n);
+  NodeCondensationScratch local;
+  NodeCondensationScratch& w = n <= kDenseMaxDofs ? thread_scratch() : local;
+  Eigen::MatrixXd& Tn = w.Tn;
+  Tn.setZero(6, n);
   for (int k = 0; k < 6; ++k)
     for (SparseRowMatrix::InnerIterator it(map.T_free(), map.raw_node(node, k)); it; ++it) Tn(k, it.col()) += it.value();
   const double L = model.length_scale();
-  Eigen::VectorXd col_scale(n);
+  Eigen::VectorXd& col_scale = w.col_scale;
+  col_scale.resize(n);
   for (int j = 0; j < n; ++j) {
     const DofRef& d = map.free_dofs()[j];
     const bool rotation = d.owner == DofRef::Owner::Node ? d.comp >= 3 : !model.joints[d.index].is_translation(d.comp);
     col_scale[j] = rotation ? 1.0 / L : 1.0;
   }
-  CondensedStiffness out = node_compliance(K, Tn, col_scale, L, options);
+  CondensedStiffness out = node_compliance_of(K, Tn, col_scale, L, options, w);
   if (!out.ok) {
     if constexpr (std::is_same_v<Matrix, SparseMatrix>) out.modes = zero_energy_modes(model, map, K, 12);
     else out.modes = zero_energy_modes(model, map, SparseMatrix(K.sparseView()), 12);

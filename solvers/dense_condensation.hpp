@@ -8,6 +8,7 @@
 // sparse structure, ordering or supernode bookkeeping is set up. On a chain (a banded matrix) the
 // factor is several times faster than Eigen's blocked LLT at 40 DOFs (docs/performance.md,
 // "Small models").
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <vector>
 
@@ -34,6 +35,7 @@ struct DenseCondensationWorkspace {
   Eigen::MatrixXd L, W, C;
   Eigen::VectorXd s;
   std::vector<int> last;
+  Eigen::LLT<Eigen::MatrixXd> llt;  // of C
 };
 
 // As condense_dense (solvers/sparse_factor.hpp) for a dense K (n x n, lower triangle read): Kz =
