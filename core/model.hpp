@@ -163,6 +163,7 @@ class IdIndex {
     return -1;
   }
   void clear() { map_.clear(); }
+  void reserve(std::size_t n) { map_.reserve(n); }
   std::size_t size() const { return map_.size(); }
 
  private:

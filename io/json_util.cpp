@@ -11,8 +11,8 @@ namespace beamfea::json_in {
 namespace {
 
 // `what` followed by `tail`: an error message.
-std::string msg(std::string_view what, std::string_view tail) {
-  std::string m(what);
+std::string msg(const What& what, std::string_view tail) {
+  std::string m = what.str();
   m += tail;
   return m;
 }
@@ -80,14 +80,14 @@ void expect_keys(const json& obj, const Pointer& pointer, std::initializer_list<
   }
 }
 
-const json& require(const json& obj, const Pointer& pointer, std::string_view key, std::string_view what) {
+const json& require(const json& obj, const Pointer& pointer, std::string_view key, const What& what) {
   if (!obj.is_object()) throw InputError(pointer, msg(what, ": expected an object"));
   auto it = obj.find(key);
   if (it == obj.end()) throw InputError(child(pointer, key), msg(what, ": missing field '").append(key) + "'");
   return *it;
 }
 
-double number(const json& v, const Pointer& pointer, std::string_view what) {
+double number(const json& v, const Pointer& pointer, const What& what) {
   if (!v.is_number()) throw InputError(pointer, msg(what, ": expected a number"));
   const double x = v.get<double>();
   if (!std::isfinite(x)) throw InputError(pointer, msg(what, ": must be finite"));
@@ -97,13 +97,13 @@ double number(const json& v, const Pointer& pointer, std::string_view what) {
   return x;
 }
 
-double positive(const json& v, const Pointer& pointer, std::string_view what) {
+double positive(const json& v, const Pointer& pointer, const What& what) {
   const double x = number(v, pointer, what);
   if (!(x > 0.0)) throw InputError(pointer, msg(what, ": must be positive (got ") + v.dump() + ")");
   return x;
 }
 
-int integer(const json& v, const Pointer& pointer, std::string_view what) {
+int integer(const json& v, const Pointer& pointer, const What& what) {
   if (!v.is_number_integer()) throw InputError(pointer, msg(what, ": expected an integer"));
   constexpr auto lo = std::numeric_limits<int>::min();
   constexpr auto hi = std::numeric_limits<int>::max();
@@ -113,13 +113,13 @@ int integer(const json& v, const Pointer& pointer, std::string_view what) {
   return v.get<int>();
 }
 
-int integer_at_least(const json& v, const Pointer& pointer, std::string_view what, int min) {
+int integer_at_least(const json& v, const Pointer& pointer, const What& what, int min) {
   const int x = integer(v, pointer, what);
   if (x < min) throw InputError(pointer, msg(what, " must be at least ") + std::to_string(min) + " (got " + std::to_string(x) + ")");
   return x;
 }
 
-int integer_in(const json& v, const Pointer& pointer, std::string_view what, int min, int max) {
+int integer_in(const json& v, const Pointer& pointer, const What& what, int min, int max) {
   const int x = integer(v, pointer, what);
   if (x < min || x > max)
     throw InputError(pointer, msg(what, " must be between ") + std::to_string(min) + " and " + std::to_string(max) +
@@ -127,17 +127,17 @@ int integer_in(const json& v, const Pointer& pointer, std::string_view what, int
   return x;
 }
 
-bool boolean(const json& v, const Pointer& pointer, std::string_view what) {
+bool boolean(const json& v, const Pointer& pointer, const What& what) {
   if (!v.is_boolean()) throw InputError(pointer, msg(what, ": expected true or false"));
   return v.get<bool>();
 }
 
-std::string string(const json& v, const Pointer& pointer, std::string_view what) {
+std::string string(const json& v, const Pointer& pointer, const What& what) {
   if (!v.is_string()) throw InputError(pointer, msg(what, ": expected a string"));
   return v.get<std::string>();
 }
 
-std::string id(const json& v, const Pointer& pointer, std::string_view what) {
+std::string id(const json& v, const Pointer& pointer, const What& what) {
   if (v.is_string()) {
     auto s = v.get<std::string>();
     if (s.empty()) throw InputError(pointer, msg(what, ": id must not be empty"));
@@ -148,26 +148,26 @@ std::string id(const json& v, const Pointer& pointer, std::string_view what) {
   throw InputError(pointer, msg(what, ": an id must be a string or an integer"));
 }
 
-Vec3 vec3(const json& v, const Pointer& pointer, std::string_view what) {
+Vec3 vec3(const json& v, const Pointer& pointer, const What& what) {
   if (!v.is_array() || v.size() != 3) throw InputError(pointer, msg(what, ": expected an array of 3 numbers"));
   Vec3 x;
   for (int i = 0; i < 3; ++i) x[i] = number(v[i], child(pointer, i), what);
   return x;
 }
 
-std::vector<double> numbers(const json& v, const Pointer& pointer, std::string_view what) {
+std::vector<double> numbers(const json& v, const Pointer& pointer, const What& what) {
   if (!v.is_array()) throw InputError(pointer, msg(what, ": expected an array of numbers"));
   std::vector<double> out;
   for (std::size_t i = 0; i < v.size(); ++i) out.push_back(number(v[i], child(pointer, i), what));
   return out;
 }
 
-const json& array(const json& v, const Pointer& pointer, std::string_view what) {
+const json& array(const json& v, const Pointer& pointer, const What& what) {
   if (!v.is_array()) throw InputError(pointer, msg(what, ": expected an array"));
   return v;
 }
 
-const json& object(const json& v, const Pointer& pointer, std::string_view what) {
+const json& object(const json& v, const Pointer& pointer, const What& what) {
   if (!v.is_object()) throw InputError(pointer, msg(what, ": expected an object"));
   return v;
 }

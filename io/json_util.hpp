@@ -26,27 +26,46 @@ void expect_keys(const json& obj, const Pointer& pointer, std::initializer_list<
 // The known key nearest to `key` by edit distance, or "" when none is close enough to suggest.
 std::string nearest_key(std::string_view key, std::initializer_list<std::string_view> known);
 
+// The entity named in a message ("element 'e1' material"), up to three parts joined only when a
+// message is built: a reader names every field it reads and almost never needs the name. The parts
+// are views (of literals, of the caller's strings, of a temporary string passed along): a What is
+// a parameter of the helpers below, never kept beyond the call.
+class What {
+ public:
+  What(std::string_view a, std::string_view b = {}, std::string_view c = {}) : a_(a), b_(b), c_(c) {}
+  What(const std::string& a) : a_(a) {}
+  What(const char* a) : a_(a) {}
+  std::string str() const {
+    std::string s;
+    s.reserve(a_.size() + b_.size() + c_.size());
+    return s.append(a_).append(b_).append(c_);
+  }
+
+ private:
+  std::string_view a_, b_, c_;
+};
+
 // Largest magnitude of an input number: squares and products of a few such values (lengths
 // squared, E I / L^3, ...) stay far inside double range (1.8e308). docs/input-format.md.
 inline constexpr double kMaxMagnitude = 1e100;
 
-const json& require(const json& obj, const Pointer& pointer, std::string_view key, std::string_view what);
+const json& require(const json& obj, const Pointer& pointer, std::string_view key, const What& what);
 // A finite number of magnitude at most kMaxMagnitude.
-double number(const json& v, const Pointer& pointer, std::string_view what);
-double positive(const json& v, const Pointer& pointer, std::string_view what);
+double number(const json& v, const Pointer& pointer, const What& what);
+double positive(const json& v, const Pointer& pointer, const What& what);
 // An integer that fits an int (values beyond it are an error, never wrapped).
-int integer(const json& v, const Pointer& pointer, std::string_view what);
+int integer(const json& v, const Pointer& pointer, const What& what);
 // An integer no smaller than `min`.
-int integer_at_least(const json& v, const Pointer& pointer, std::string_view what, int min);
+int integer_at_least(const json& v, const Pointer& pointer, const What& what, int min);
 // An integer in [min, max] (documented bounds on sizes that would exhaust memory or time).
-int integer_in(const json& v, const Pointer& pointer, std::string_view what, int min, int max);
-bool boolean(const json& v, const Pointer& pointer, std::string_view what);
-std::string string(const json& v, const Pointer& pointer, std::string_view what);
+int integer_in(const json& v, const Pointer& pointer, const What& what, int min, int max);
+bool boolean(const json& v, const Pointer& pointer, const What& what);
+std::string string(const json& v, const Pointer& pointer, const What& what);
 // An id: a string or an integer, returned as a string.
-std::string id(const json& v, const Pointer& pointer, std::string_view what);
-Vec3 vec3(const json& v, const Pointer& pointer, std::string_view what);
-std::vector<double> numbers(const json& v, const Pointer& pointer, std::string_view what);
-const json& array(const json& v, const Pointer& pointer, std::string_view what);
-const json& object(const json& v, const Pointer& pointer, std::string_view what);
+std::string id(const json& v, const Pointer& pointer, const What& what);
+Vec3 vec3(const json& v, const Pointer& pointer, const What& what);
+std::vector<double> numbers(const json& v, const Pointer& pointer, const What& what);
+const json& array(const json& v, const Pointer& pointer, const What& what);
+const json& object(const json& v, const Pointer& pointer, const What& what);
 
 }  // namespace beamfea::json_in

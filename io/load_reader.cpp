@@ -21,7 +21,7 @@ constexpr double kInertiaPsd = 1e-9;
 
 double fraction(const json& o, const json_in::Pointer& p, const char* key, double fallback, const std::string& what) {
   if (!o.contains(key)) return fallback;
-  const double v = number(o[key], child(p, key), what + " " + key);
+  const double v = number(o[key], child(p, key), What(what, " ", key));
   if (!(v >= 0.0 && v <= 1.0))
     throw InputError(child(p, key), what + ": '" + key + "' must lie in [0, 1] (a fraction of the member's length)");
   return v;
@@ -36,7 +36,7 @@ MemberLoad read_member_load(const Model& m, const json& o, const json_in::Pointe
   if (m.members[l.member].type != MemberType::Beam)
     throw InputError(child(p, "element"), what + ": a rigid link carries no member loads; load its nodes");
   if (o.contains("axes")) {
-    const std::string axes = string(o["axes"], child(p, "axes"), what + " axes");
+    const std::string axes = string(o["axes"], child(p, "axes"), What(what, " axes"));
     if (axes == "local") l.local = true;
     else if (axes != "global") throw InputError(child(p, "axes"), what + ": axes must be \"local\" or \"global\"");
   }
@@ -46,8 +46,8 @@ MemberLoad read_member_load(const Model& m, const json& o, const json_in::Pointe
     throw InputError(p, what + ": give either 'distributed' (force per unit length) or 'point'/'moment' with 'at'");
   if (dist) {
     l.kind = MemberLoad::Kind::Distributed;
-    l.q_from = vec3(o["distributed"], child(p, "distributed"), what + " distributed");
-    l.q_to = o.contains("distributed_end") ? vec3(o["distributed_end"], child(p, "distributed_end"), what + " distributed_end")
+    l.q_from = vec3(o["distributed"], child(p, "distributed"), What(what, " distributed"));
+    l.q_to = o.contains("distributed_end") ? vec3(o["distributed_end"], child(p, "distributed_end"), What(what, " distributed_end"))
                                            : l.q_from;
     l.from = fraction(o, p, "from", 0.0, what);
     l.to = fraction(o, p, "to", 1.0, what);
@@ -58,8 +58,8 @@ MemberLoad read_member_load(const Model& m, const json& o, const json_in::Pointe
     expect_keys(o, p, {"element", "distributed", "distributed_end", "from", "to", "axes"});
   } else {
     l.kind = MemberLoad::Kind::Point;
-    if (o.contains("point")) l.force = vec3(o["point"], child(p, "point"), what + " point");
-    if (o.contains("moment")) l.moment = vec3(o["moment"], child(p, "moment"), what + " moment");
+    if (o.contains("point")) l.force = vec3(o["point"], child(p, "point"), What(what, " point"));
+    if (o.contains("moment")) l.moment = vec3(o["moment"], child(p, "moment"), What(what, " moment"));
     if (!o.contains("at")) throw InputError(child(p, "at"), what + ": missing 'at' (fraction of the member's length)");
     l.at = fraction(o, p, "at", 0.5, what);
     expect_keys(o, p, {"element", "point", "moment", "at", "axes"});
@@ -77,10 +77,10 @@ PointMass read_mass(const Model& m, const json& o, const json_in::Pointer& p) {
   if (!(pm.mass >= 0.0)) throw InputError(child(p, "mass"), what + ": mass must not be negative");
   if (o.contains("inertia")) {
     const json_in::Pointer ip = child(p, "inertia");
-    const auto& rows = array(o["inertia"], ip, what + " inertia");
+    const auto& rows = array(o["inertia"], ip, What(what, " inertia"));
     if (rows.size() != 3) throw InputError(ip, what + ": inertia must be a 3x3 matrix");
     for (int r = 0; r < 3; ++r) {
-      const auto v = numbers(rows[r], child(ip, r), what + " inertia");
+      const auto v = numbers(rows[r], child(ip, r), What(what, " inertia"));
       if (v.size() != 3) throw InputError(child(ip, r), what + ": inertia must be a 3x3 matrix");
       for (int c = 0; c < 3; ++c) pm.inertia(r, c) = v[c];
     }
@@ -123,8 +123,8 @@ LoadSet read_load_list(const Model& m, const json& list, const json_in::Pointer&
     NodalLoad l;
     l.node = node_ref(m, require(o, p, "node", "load"), child(p, "node"));
     const std::string what = "load at node '" + m.nodes[l.node].id + "'";
-    if (o.contains("force")) l.force = vec3(o["force"], child(p, "force"), what + " force");
-    if (o.contains("moment")) l.moment = vec3(o["moment"], child(p, "moment"), what + " moment");
+    if (o.contains("force")) l.force = vec3(o["force"], child(p, "force"), What(what, " force"));
+    if (o.contains("moment")) l.moment = vec3(o["moment"], child(p, "moment"), What(what, " moment"));
     expect_keys(o, p, {"node", "force", "moment"});
     s.nodal.push_back(l);
   }
@@ -192,7 +192,7 @@ void read_loads_and_cases(const json& doc, Model& m) {
 
 double read_density(const json& o, const json_in::Pointer& p, const std::string& what) {
   if (!o.contains("density")) return 0.0;
-  const double rho = number(o["density"], child(p, "density"), what + " density");
+  const double rho = number(o["density"], child(p, "density"), What(what, " density"));
   if (!(rho >= 0.0)) throw InputError(child(p, "density"), what + ": density must not be negative");
   return rho;
 }

@@ -89,12 +89,15 @@ const json& collection(const json& doc, const char* key, bool required) {
   return array(*it, Pointer().child(key), key);
 }
 
-void check_unique(std::map<std::string, std::size_t>& seen, const std::string& kind, const Pointer& base,
-                  const std::string& id, std::size_t i) {
-  auto [it, inserted] = seen.emplace(id, i);
-  if (!inserted)
+void check_unique(int first, const std::string& kind, const Pointer& base, const std::string& id, std::size_t i) {
+  if (first >= 0)
     throw InputError(child(child(base, i), "id"),
-                     "duplicate " + kind + " id '" + id + "' (first at " + child(base, it->second).str() + ")");
+                     "duplicate " + kind + " id '" + id + "' (first at " + child(base, static_cast<std::size_t>(first)).str() + ")");
+}
+
+int index_of(const std::unordered_map<std::string, int>& index, const std::string& id) {
+  auto it = index.find(id);
+  return it == index.end() ? -1 : it->second;
 }
 
 DofRef read_dof_target(const Model& m, const json& e, const json_in::Pointer& p, const std::string& what) {

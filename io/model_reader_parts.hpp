@@ -34,10 +34,11 @@ BeamTheory beam_theory(const std::string& name, const json_in::Pointer& pointer,
 // The array at doc[key] (pointer "/key"); an empty array when absent and not required.
 const json& collection(const json& doc, const char* key, bool required);
 
-// Records `id` of item `i` of the collection at `base`; a repeated id is an InputError naming
-// both places.
-void check_unique(std::map<std::string, std::size_t>& seen, const std::string& kind, const json_in::Pointer& base,
-                  const std::string& id, std::size_t i);
+// Item `i` of the collection at `base` has id `id`, already held by item `first` (-1: by none, the
+// id index of the model or of the reader answers): a repeated id is an InputError naming both places.
+void check_unique(int first, const std::string& kind, const json_in::Pointer& base, const std::string& id, std::size_t i);
+// The position of `id` in a reader's id index, or -1.
+int index_of(const std::unordered_map<std::string, int>& index, const std::string& id);
 
 // A node DOF {"node", "dof"} or a joint coordinate {"joint", "coordinate"} named in object `e`.
 DofRef read_dof_target(const Model& m, const json& e, const json_in::Pointer& p, const std::string& what);

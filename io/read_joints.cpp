@@ -38,11 +38,11 @@ void read_axes(Joint& j, const json& o, const json_in::Pointer& p, const std::st
   const int naxes = j.type == JointType::VirtualSpring ? 3 : nc;
   std::vector<Vec3> axes_in;
   if (o.contains("axes")) {
-    const auto& axes = array(o["axes"], child(p, "axes"), what + " axes");
+    const auto& axes = array(o["axes"], child(p, "axes"), What(what, " axes"));
     if (static_cast<int>(axes.size()) != naxes)
       throw InputError(child(p, "axes"), what + ": a " + type + " joint needs " + std::to_string(naxes) + " axes");
     for (std::size_t k = 0; k < axes.size(); ++k) {
-      Vec3 a = vec3(axes[k], child(child(p, "axes"), k), what + " axis");
+      Vec3 a = vec3(axes[k], child(child(p, "axes"), k), What(what, " axis"));
       if (a.norm() == 0.0) throw InputError(child(child(p, "axes"), k), what + ": axis is zero");
       axes_in.push_back(a.normalized());
     }
@@ -74,7 +74,7 @@ void read_stiffness(Joint& j, const json& st, const json_in::Pointer& sp, const 
       throw InputError(sp, what + ": expected a " + std::to_string(nc) + "x" + std::to_string(nc) + " stiffness matrix");
     Eigen::MatrixXd K(nc, nc);
     for (int r = 0; r < nc; ++r) {
-      auto row = numbers(st[r], child(sp, r), what + " stiffness");
+      auto row = numbers(st[r], child(sp, r), What(what, " stiffness"));
       if (static_cast<int>(row.size()) != nc)
         throw InputError(child(sp, r), what + ": expected " + std::to_string(nc) + " values in each row");
       for (int c = 0; c < nc; ++c) K(r, c) = row[c];
@@ -87,7 +87,7 @@ void read_stiffness(Joint& j, const json& st, const json_in::Pointer& sp, const 
     j.stiffness_matrix = K;
     for (int c = 0; c < nc; ++c) j.stiffness[c] = K(c, c);
   } else {
-    auto k = numbers(st, sp, what + " stiffness");
+    auto k = numbers(st, sp, What(what, " stiffness"));
     if (static_cast<int>(k.size()) != nc)
       throw InputError(sp, what + ": expected " + std::to_string(nc) + " stiffness value(s)");
     for (int c = 0; c < nc; ++c)
@@ -105,15 +105,15 @@ void read_stiffness_from_beam(Joint& j, const ReadState& s, const json& o, const
   if (o.contains("stiffness"))
     throw InputError(child(p, "stiffness_from_beam"), what + ": give \"stiffness\" or \"stiffness_from_beam\", not both");
   const json_in::Pointer bp = child(p, "stiffness_from_beam");
-  const auto& b = object(o["stiffness_from_beam"], bp, what + " stiffness_from_beam");
+  const auto& b = object(o["stiffness_from_beam"], bp, What(what, " stiffness_from_beam"));
   expect_keys(b, bp, {"material", "section", "length", "theory"});
-  const std::string mid = json_in::id(require(b, bp, "material", what), child(bp, "material"), what + " material");
-  const std::string sid = json_in::id(require(b, bp, "section", what), child(bp, "section"), what + " section");
+  const std::string mid = json_in::id(require(b, bp, "material", what), child(bp, "material"), What(what, " material"));
+  const std::string sid = json_in::id(require(b, bp, "section", what), child(bp, "section"), What(what, " section"));
   const auto mi = s.materials.find(mid);
   const auto si = s.sections.find(sid);
   if (mi == s.materials.end()) throw InputError(child(bp, "material"), what + ": unknown material '" + mid + "'");
   if (si == s.sections.end()) throw InputError(child(bp, "section"), what + ": unknown section '" + sid + "'");
-  const double L = positive(require(b, bp, "length", what), child(bp, "length"), what + " length");
+  const double L = positive(require(b, bp, "length", what), child(bp, "length"), What(what, " length"));
   const auto& mat = m.materials[mi->second];
   const auto& sec = m.sections[si->second];
   BeamSection bs{mat.E, mat.G, sec.A, sec.Iy, sec.Iz, sec.J};
@@ -121,7 +121,7 @@ void read_stiffness_from_beam(Joint& j, const ReadState& s, const json& o, const
     // A shear-deformable link: the Timoshenko cantilever's tip stiffness (its compliance adds
     // k L/(G A) to the transverse terms).
     const json_in::Pointer tp = child(bp, "theory");
-    if (beam_theory(string(b["theory"], tp, what + " theory"), tp, what) == BeamTheory::Timoshenko) {
+    if (beam_theory(string(b["theory"], tp, What(what, " theory")), tp, what) == BeamTheory::Timoshenko) {
       if (!(sec.ky > 0.0 && sec.kz > 0.0))
         throw InputError(tp, what + ": a Timoshenko beam needs the shear factors of section '" + sec.id +
                                  "' (give \"k\" or \"ky\" and \"kz\", or a \"shape\")");
@@ -138,14 +138,14 @@ void read_stiffness_from_beam(Joint& j, const ReadState& s, const json& o, const
 void read_joints(ReadState& s) {
   Model& m = s.model;
   const auto& arr = collection(s.doc, "joints", false);
-  std::map<std::string, std::size_t> seen;
+  m.joint_index.reserve(arr.size());
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/joints", i);
     const auto& o = object(arr[i], p, "joint");
     expect_keys(o, p, {"id", "type", "nodes", "axes", "stiffness", "stiffness_from_beam"});
     Joint j;
     j.id = json_in::id(require(o, p, "id", "joint"), child(p, "id"), "joint");
-    check_unique(seen, "joint", "/joints", j.id, i);
+    check_unique(m.find_joint(j.id), "joint", "/joints", j.id, i);  // joint i is at position i
     const std::string what = "joint '" + j.id + "'";
     const std::string type = string(require(o, p, "type", what), child(p, "type"), what);
     j.type = joint_type(type, child(p, "type"), what);

@@ -37,15 +37,15 @@ BeamTheory beam_theory(const std::string& name, const json_in::Pointer& pointer,
 void read_members(ReadState& s) {
   Model& m = s.model;
   const auto& arr = collection(s.doc, "elements", false);
-  std::map<std::string, std::size_t> seen;
   m.members.reserve(arr.size());
+  m.member_index.reserve(arr.size());
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/elements", i);
     const auto& o = object(arr[i], p, "element");
     expect_keys(o, p, {"id", "type", "nodes", "material", "section", "orientation", "divisions", "theory"});
     Member mem;
     mem.id = json_in::id(require(o, p, "id", "element"), child(p, "id"), "element");
-    check_unique(seen, "element", "/elements", mem.id, i);
+    check_unique(m.find_member(mem.id), "element", "/elements", mem.id, i);  // member i is element i
     const std::string what = "element '" + mem.id + "'";
     const std::string type = string(require(o, p, "type", what), child(p, "type"), what);
     if (type == "beam") mem.type = MemberType::Beam;
@@ -60,15 +60,15 @@ void read_members(ReadState& s) {
       throw InputError(child(p, "nodes"), what + ": zero length (nodes '" + m.nodes[mem.nodes[0]].id + "' and '" +
                                               m.nodes[mem.nodes[1]].id + "' coincide)");
     if (mem.type == MemberType::Beam) {
-      const std::string mid = json_in::id(require(o, p, "material", what), child(p, "material"), what + " material");
+      const std::string mid = json_in::id(require(o, p, "material", what), child(p, "material"), What(what, " material"));
       mem.material = find_property(s.materials, mid);
       if (mem.material < 0) throw InputError(child(p, "material"), what + ": unknown material '" + mid + "'");
-      const std::string sid = json_in::id(require(o, p, "section", what), child(p, "section"), what + " section");
+      const std::string sid = json_in::id(require(o, p, "section", what), child(p, "section"), What(what, " section"));
       mem.section = find_property(s.sections, sid);
       if (mem.section < 0) throw InputError(child(p, "section"), what + ": unknown section '" + sid + "'");
       const Vec3 ex = (x2 - x1) / L;
       if (o.contains("orientation")) {
-        mem.orientation = vec3(o["orientation"], child(p, "orientation"), what + " orientation");
+        mem.orientation = vec3(o["orientation"], child(p, "orientation"), What(what, " orientation"));
         if (mem.orientation.norm() == 0.0 || mem.orientation.normalized().cross(ex).norm() < kParallelOrientation)
           throw InputError(child(p, "orientation"), what + ": orientation is zero or parallel to the member");
       } else {
@@ -76,10 +76,10 @@ void read_members(ReadState& s) {
         mem.orientation = std::abs(ex.z()) > 1.0 - kParallelOrientation ? Vec3(1, 0, 0) : Vec3(0, 0, 1);
       }
       if (o.contains("divisions"))
-        mem.divisions = integer_in(o["divisions"], child(p, "divisions"), what + " divisions", 1, kMaxDivisions);
+        mem.divisions = integer_in(o["divisions"], child(p, "divisions"), What(what, " divisions"), 1, kMaxDivisions);
       if (o.contains("theory")) {
         const json_in::Pointer tp = child(p, "theory");
-        mem.theory = beam_theory(string(o["theory"], tp, what + " theory"), tp, what);
+        mem.theory = beam_theory(string(o["theory"], tp, What(what, " theory")), tp, what);
         const Section& sec = m.sections[mem.section];
         if (mem.theory == BeamTheory::Timoshenko && !(sec.ky > 0.0 && sec.kz > 0.0))
           throw InputError(tp, what + ": a Timoshenko beam needs the shear factors of section '" + sec.id +

@@ -12,16 +12,17 @@ using namespace json_in;
 void read_nodes(ReadState& s) {
   Model& m = s.model;
   const auto& arr = collection(s.doc, "nodes", true);
-  std::map<std::string, std::size_t> seen;
   m.nodes.reserve(arr.size());
+  m.node_index.reserve(arr.size());
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/nodes", i);
     const auto& n = object(arr[i], p, "node");
     expect_keys(n, p, {"id", "xyz"});
     Node node;
     node.id = json_in::id(require(n, p, "id", "node"), child(p, "id"), "node");
-    check_unique(seen, "node", "/nodes", node.id, i);
-    node.x = vec3(require(n, p, "xyz", "node '" + node.id + "'"), child(p, "xyz"), "node '" + node.id + "' xyz");
+    // The user's nodes come first: node i is at position i of the model's nodes.
+    check_unique(m.find_node(node.id), "node", "/nodes", node.id, i);
+    node.x = vec3(require(n, p, "xyz", What("node '", node.id, "'")), child(p, "xyz"), What("node '", node.id, "' xyz"));
     m.add_node(std::move(node));
   }
 }
@@ -29,20 +30,19 @@ void read_nodes(ReadState& s) {
 void read_materials(ReadState& s) {
   Model& m = s.model;
   const auto& arr = collection(s.doc, "materials", false);
-  std::map<std::string, std::size_t> seen;
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/materials", i);
     const auto& o = object(arr[i], p, "material");
     expect_keys(o, p, {"id", "E", "G", "nu", "density"});
     Material mat;
     mat.id = json_in::id(require(o, p, "id", "material"), child(p, "id"), "material");
-    check_unique(seen, "material", "/materials", mat.id, i);
+    check_unique(index_of(s.materials, mat.id), "material", "/materials", mat.id, i);
     const std::string what = "material '" + mat.id + "'";
-    mat.E = positive(require(o, p, "E", what), child(p, "E"), what + " E");
+    mat.E = positive(require(o, p, "E", what), child(p, "E"), What(what, " E"));
     if (o.contains("G")) {
-      mat.G = positive(o["G"], child(p, "G"), what + " G");
+      mat.G = positive(o["G"], child(p, "G"), What(what, " G"));
     } else if (o.contains("nu")) {
-      const double nu = number(o["nu"], child(p, "nu"), what + " nu");
+      const double nu = number(o["nu"], child(p, "nu"), What(what, " nu"));
       if (!(nu > -1.0 && nu < 0.5)) throw InputError(child(p, "nu"), what + ": nu must lie in (-1, 0.5)");
       mat.G = mat.E / (2.0 * (1.0 + nu));
     } else {
@@ -64,17 +64,17 @@ Section read_section(const json& o, const json_in::Pointer& p, const std::string
     const std::string shape = string(o["shape"], child(p, "shape"), what);
     SectionProperties sp;
     if (shape == "rectangle") {
-      const double b = positive(require(o, p, "b", what), child(p, "b"), what + " b");
-      const double h = positive(require(o, p, "h", what), child(p, "h"), what + " h");
+      const double b = positive(require(o, p, "b", what), child(p, "b"), What(what, " b"));
+      const double h = positive(require(o, p, "h", what), child(p, "h"), What(what, " h"));
       sp = rectangle_section(b, h);
     } else if (shape == "circle") {
       double r;
-      if (o.contains("d")) r = 0.5 * positive(o["d"], child(p, "d"), what + " d");
-      else r = positive(require(o, p, "r", what), child(p, "r"), what + " r");
+      if (o.contains("d")) r = 0.5 * positive(o["d"], child(p, "d"), What(what, " d"));
+      else r = positive(require(o, p, "r", what), child(p, "r"), What(what, " r"));
       sp = circle_section(r);
     } else if (shape == "tube") {
-      const double d = positive(require(o, p, "d", what), child(p, "d"), what + " d");
-      const double t = positive(require(o, p, "t", what), child(p, "t"), what + " t");
+      const double d = positive(require(o, p, "d", what), child(p, "d"), What(what, " d"));
+      const double t = positive(require(o, p, "t", what), child(p, "t"), What(what, " t"));
       if (!(t < 0.5 * d)) throw InputError(child(p, "t"), what + ": wall thickness must be below the radius");
       sp = tube_section(d, t);
     } else {
@@ -89,7 +89,7 @@ Section read_section(const json& o, const json_in::Pointer& p, const std::string
   }
   // Explicit properties override the shape's.
   auto prop = [&](const char* key, double& out, bool required) {
-    if (o.contains(key)) out = positive(o[key], child(p, key), what + " " + key);
+    if (o.contains(key)) out = positive(o[key], child(p, key), What(what, " ", key));
     else if (required && !o.contains("shape"))
       throw InputError(child(p, key), what + ": missing field '" + std::string(key) + "'");
   };
@@ -97,7 +97,7 @@ Section read_section(const json& o, const json_in::Pointer& p, const std::string
   prop("Iy", sec.Iy, true);
   prop("Iz", sec.Iz, true);
   prop("J", sec.J, true);
-  if (o.contains("k")) sec.ky = sec.kz = positive(o["k"], child(p, "k"), what + " k");
+  if (o.contains("k")) sec.ky = sec.kz = positive(o["k"], child(p, "k"), What(what, " k"));
   prop("ky", sec.ky, false);
   prop("kz", sec.kz, false);
   return sec;
@@ -108,13 +108,12 @@ Section read_section(const json& o, const json_in::Pointer& p, const std::string
 void read_sections(ReadState& s) {
   Model& m = s.model;
   const auto& arr = collection(s.doc, "sections", false);
-  std::map<std::string, std::size_t> seen;
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/sections", i);
     const auto& o = object(arr[i], p, "section");
     expect_keys(o, p, {"id", "shape", "b", "h", "d", "r", "t", "A", "Iy", "Iz", "J", "k", "ky", "kz"});
     const std::string id = json_in::id(require(o, p, "id", "section"), child(p, "id"), "section");
-    check_unique(seen, "section", "/sections", id, i);
+    check_unique(index_of(s.sections, id), "section", "/sections", id, i);
     s.sections.emplace(id, static_cast<int>(m.sections.size()));
     m.sections.push_back(read_section(o, p, id));
   }
