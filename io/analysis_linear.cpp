@@ -168,8 +168,8 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
   AnalysisOutcome out;
   // With a load case, the loaded-mode stiffness about its preload (K + K_g).
   const bool loaded = ctx.spec.contains("load_case");
-  const CondensedStiffness k = loaded ? loaded_node_stiffness(model_for_load_case(model, ctx.spec), node)
-                                      : linear_node_stiffness(model, node);
+  CondensedStiffness k = loaded ? loaded_node_stiffness(model_for_load_case(model, ctx.spec), node)
+                                : linear_node_stiffness(model, node);
   // Room for every key (and run_document's wall_time_s): an ordered_json object that grows deep
   // copies what it already holds.
   out.result = object_with_capacity(kStiffnessResultKeys);
@@ -178,7 +178,7 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
   if (loaded) out.result["load_case"] = json_in::id(ctx.spec["load_case"], "", "load_case");
   out.result["status"] = k.ok ? "ok" : "mechanism";
   out.result["message"] = k.message;
-  out.message = k.message;
+  out.message = std::move(k.message);
   if (!k.ok) {
     out.termination = AnalysisTermination::Mechanism;
     out.result["mechanism"] = mechanism_json(model, k.modes);

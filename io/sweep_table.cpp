@@ -224,7 +224,14 @@ void append_sweep_row(std::string& line, const Sweep& s, std::size_t index, cons
     append_csv_field(line, cell);
   };
   add(s.case_id(index));
-  for (const auto& p : s.parameters(index)) add(p.is_null() ? "" : cell_text(p));
+  if (!s.grid.empty()) {  // a grid case's values, read in place (Sweep::parameters copies them)
+    for (std::size_t a = 0; a < s.grid.size(); ++a) {
+      const nlohmann::json& p = s.grid[a].values[s.grid_value(index, a)];
+      add(p.is_null() ? "" : cell_text(p));
+    }
+  } else {
+    for (const auto& p : s.parameters(index)) add(p.is_null() ? "" : cell_text(p));
+  }
   for (std::size_t o = 0; o < cols.outputs.size(); ++o) {
     const auto& names = cols.outputs[o];
     static const std::vector<std::pair<std::string, std::string>> none;
@@ -244,7 +251,8 @@ void append_sweep_row(std::string& line, const Sweep& s, std::size_t index, cons
   }
   add(to_string(r.status));
   add(without_line_breaks(r.message));
-  add(fmt::format("{:.6f}", r.wall_time_s));
+  line += ',';  // digits, a point and maybe a sign: no quoting
+  fmt::format_to(std::back_inserter(line), "{:.6f}", r.wall_time_s);
   line += '\n';
 }
 
@@ -347,13 +355,18 @@ SweepTableCounts finish_sweep_table(const Sweep& s, const std::filesystem::path&
   SweepTable t = read_sweep_table(table);
   const SweepCaseIndex index(s);
   std::vector<std::pair<std::size_t, std::string>> rows;
-  std::map<std::size_t, std::size_t> where;
+  rows.reserve(t.rows.size());
+  constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> where(s.size(), kNone);  // case index -> its row in `rows`
   for (auto& row : t.rows) {
     std::size_t i;
     if (!index.find(first_field(row), i)) continue;
-    auto [it, fresh] = where.emplace(i, rows.size());
-    if (fresh) rows.emplace_back(i, std::move(row));
-    else rows[it->second].second = std::move(row);
+    if (where[i] == kNone) {
+      where[i] = rows.size();
+      rows.emplace_back(i, std::move(row));
+    } else {
+      rows[where[i]].second = std::move(row);
+    }
   }
   std::sort(rows.begin(), rows.end());
   SweepTableCounts counts;

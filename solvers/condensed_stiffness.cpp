@@ -322,8 +322,14 @@ CondensedStiffness linear_node_stiffness(const Model& model, int node, const Con
     out.statically_indeterminate = map.redundant_constraints();
     return out;
   };
-  // Small models: assembled into a dense matrix and condensed by the dense Schur complement.
-  if (map.free_size() <= kDenseMaxDofs) return condensed(DenseAssembler(map));
+  // Small models: assembled into a dense matrix and condensed by the dense Schur complement. The
+  // thread keeps the assembler (its n x n array, at most kDenseMaxDofs square, and its scratch), so
+  // that a sweep's cases allocate none of it; reset to this call's map before each use.
+  if (map.free_size() <= kDenseMaxDofs) {
+    thread_local DenseAssembler dense(map);
+    dense.reset(map);
+    return condensed(dense);
+  }
   return condensed(SystemAssembler(map));
 }
 
