@@ -16,23 +16,37 @@ namespace beamfea {
 
 namespace {
 
+// Objects here are built with room for all their keys (object_with_capacity) and filled by moves:
+// an ordered_json object that grows deep copies what it holds, which at 97,344 DOFs cost a tenth
+// of the whole run (the result object copying its nodes and elements when its tenth key came).
+
 ojson mechanism_json(const Model& model, const std::vector<ZeroEnergyMode>& modes) {
   ojson out = ojson::array();
   for (const auto& m : modes) {
-    ojson o;
+    ojson o = object_with_capacity(5);
     o["description"] = m.description;
     ojson nodes = ojson::array(), elements = ojson::array(), joints = ojson::array(), dofs = ojson::array();
     for (int n : m.nodes) nodes.push_back(model.nodes[n].id);
     for (int e : m.elements) elements.push_back(model.elements[e].id);
     for (int j : m.joints) joints.push_back(model.joints[j].id);
     for (const auto& d : m.dofs) dofs.push_back(model.describe(d));
-    o["nodes"] = nodes;
-    o["elements"] = elements;
-    o["joints"] = joints;
-    o["dofs"] = dofs;
-    out.push_back(o);
+    o["nodes"] = std::move(nodes);
+    o["elements"] = std::move(elements);
+    o["joints"] = std::move(joints);
+    o["dofs"] = std::move(dofs);
+    out.push_back(std::move(o));
   }
   return out;
+}
+
+// [first six, last six] of a 12-vector: a pair of 6-vectors (end 1, end 2).
+ojson ends_json(const Vec12& v) {
+  ojson a = ojson::array();
+  auto& items = a.get_ref<ojson::array_t&>();
+  items.reserve(2);
+  items.push_back(to_json(Vec6(v.head<6>())));
+  items.push_back(to_json(Vec6(v.tail<6>())));
+  return a;
 }
 
 // Member-level output: a member meshed into several elements reports the forces at its own
@@ -47,25 +61,33 @@ ojson element_json(const Model& model, const LinearStaticResult& r, int interior
     Vec12 ends;
     ends << first.head<6>(), last.tail<6>();
     const Vec12 s = section_forces(ends);
-    ojson o;
-    o["end_forces"] = ojson::array({to_json(Vec6(ends.head<6>())), to_json(Vec6(ends.tail<6>()))});
-    o["section_forces"] = ojson::array({to_json(Vec6(s.head<6>())), to_json(Vec6(s.tail<6>()))});
+    ojson o = object_with_capacity(4);
+    append_new_key(o, "end_forces", ends_json(ends));
+    append_new_key(o, "section_forces", ends_json(s));
     if (mem.type == MemberType::Beam) {
       const auto stations = member_stations(model, static_cast<int>(mi), end_forces, r.element_loads, interior_stations);
       ojson st = ojson::array();
-      st.get_ref<ojson::array_t&>().reserve(stations.size());
-      for (const auto& x : stations) st.push_back(ojson{{"x", x.x}, {"forces", to_json(x.forces)}});
-      o["stations"] = std::move(st);
+      auto& items = st.get_ref<ojson::array_t&>();
+      items.reserve(stations.size());
+      for (const auto& x : stations) {
+        ojson station = object_with_capacity(2);
+        append_new_key(station, "x", x.x);
+        append_new_key(station, "forces", to_json(x.forces));
+        items.push_back(std::move(station));
+      }
+      append_new_key(o, "stations", std::move(st));
     }
     if (mem.elements.size() > 1) {
       ojson segs = ojson::array();
-      segs.get_ref<ojson::array_t&>().reserve(mem.elements.size());
+      auto& items = segs.get_ref<ojson::array_t&>();
+      items.reserve(mem.elements.size());
       for (int e : mem.elements) {
-        const Vec12& f = end_forces[e];
-        segs.push_back(ojson{{"id", model.elements[e].id},
-                             {"end_forces", ojson::array({to_json(Vec6(f.head<6>())), to_json(Vec6(f.tail<6>()))})}});
+        ojson seg = object_with_capacity(2);
+        append_new_key(seg, "id", model.elements[e].id);
+        append_new_key(seg, "end_forces", ends_json(end_forces[e]));
+        items.push_back(std::move(seg));
       }
-      o["segments"] = std::move(segs);
+      append_new_key(o, "segments", std::move(segs));
     }
     append_new_key(out, mem.id, std::move(o));
   }
@@ -84,9 +106,14 @@ void check_linear_static(const Model&, const nlohmann::json& spec, const json_in
   }
 }
 
+// The keys of a linear_static result (type, load_case, status, message, free_dofs, factorizations,
+// mechanism, nodes, elements, joints, statically_indeterminate, vtk) and run_document's wall_time_s.
+constexpr std::size_t kLinearStaticResultKeys = 13;
+
 AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   const Model& model = ctx.model;
   AnalysisOutcome out;
+  out.result = object_with_capacity(kLinearStaticResultKeys);
   // One factorisation for every linear case of the run.
   std::shared_ptr<const LinearSystem> system;
   if (ctx.cache && ctx.cache->linear) system = ctx.cache->linear;
@@ -112,9 +139,9 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   }
   ojson nodes = object_with_capacity(model.nodes.size());
   for (std::size_t n = 0; n < model.nodes.size(); ++n) {
-    ojson o;
-    o["displacement"] = to_json(Vec6(r.u.segment<6>(6 * n)));
-    if (r.supported[n]) o["reaction"] = to_json(r.reactions[n]);
+    ojson o = object_with_capacity(2);
+    append_new_key(o, "displacement", to_json(Vec6(r.u.segment<6>(6 * n))));
+    if (r.supported[n]) append_new_key(o, "reaction", to_json(r.reactions[n]));
     append_new_key(nodes, model.nodes[n].id, std::move(o));
   }
   out.result["nodes"] = std::move(nodes);
@@ -123,9 +150,10 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   int offset = 6 * static_cast<int>(model.nodes.size());
   for (std::size_t j = 0; j < model.joints.size(); ++j) {
     const int nc = model.joints[j].coordinates();
-    append_new_key(joints, model.joints[j].id,
-                   ojson{{"coordinates", to_json(Eigen::VectorXd(r.u.segment(offset, nc)))},
-                         {"reaction", to_json(r.joint_forces[j])}});
+    ojson o = object_with_capacity(2);
+    append_new_key(o, "coordinates", to_json(Eigen::VectorXd(r.u.segment(offset, nc))));
+    append_new_key(o, "reaction", to_json(r.joint_forces[j]));
+    append_new_key(joints, model.joints[j].id, std::move(o));
     offset += nc;
   }
   out.result["joints"] = std::move(joints);
