@@ -30,6 +30,9 @@ AnalysisOutcome run_buckling(const AnalysisContext& ctx) {
   // The reference load: the analysis's load case, or the default loads.
   const BucklingResult r = solve_buckling(model_for_load_case(model, ctx.spec), opt);
   AnalysisOutcome out;
+  // Room for every key (type, load_case, status, message, free_dofs, load_factors, modes, vtk,
+  // vtk_scale, wall_time_s): an ordered_json object that grows deep copies what it holds.
+  out.result = object_with_capacity(10);
   out.result["type"] = "buckling";
   if (ctx.spec.contains("load_case")) out.result["load_case"] = json_in::id(ctx.spec["load_case"], "", "load_case");
   out.result["status"] = to_string(r.status);
@@ -45,11 +48,13 @@ AnalysisOutcome run_buckling(const AnalysisContext& ctx) {
   out.result["load_factors"] = to_json(r.load_factors);
   ojson modes = ojson::array();
   for (std::size_t k = 0; k < r.modes.size(); ++k) {
-    modes.push_back(ojson{{"mode", k + 1},
-                          {"load_factor", r.load_factors[static_cast<Eigen::Index>(k)]},
-                          {"nodes", mode_nodes_json(model, r.modes[k])}});
+    ojson mode = object_with_capacity(3);
+    append_new_key(mode, "mode", k + 1);
+    append_new_key(mode, "load_factor", r.load_factors[static_cast<Eigen::Index>(k)]);
+    append_new_key(mode, "nodes", mode_nodes_json(model, r.modes[k]));
+    modes.push_back(std::move(mode));
   }
-  out.result["modes"] = modes;
+  out.result["modes"] = std::move(modes);
   if (!ctx.out_dir.empty() && ctx.write_vtk) {
     // Modes are normalised already (largest translation 1): the writer draws them at 10 % of the
     // model size, load factors as field data.

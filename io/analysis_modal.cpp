@@ -57,6 +57,9 @@ AnalysisOutcome run_modal(const AnalysisContext& ctx) {
   const ModalOptions opt = read_options(ctx.spec);
   const ModalResult r = solve_modal(model_for_load_case(model, ctx.spec), opt);
   AnalysisOutcome out;
+  // Room for every key (16 with run_document's wall_time_s): an ordered_json object that grows
+  // deep copies what it holds.
+  out.result = object_with_capacity(16);
   out.result["type"] = "modal";
   out.result["status"] = to_string(r.status);
   out.result["message"] = r.message;
@@ -76,25 +79,27 @@ AnalysisOutcome run_modal(const AnalysisContext& ctx) {
   out.result["eigenvalues"] = to_json(r.eigenvalues);
   ojson kinds = ojson::array();
   for (ModeKind k : r.kinds) kinds.push_back(to_string(k));
-  out.result["kinds"] = kinds;
+  out.result["kinds"] = std::move(kinds);
   out.result["total_mass"] = per_direction(r.total_mass);
   ojson eff = ojson::object(), eff_sum = ojson::object();
   for (int d = 0; d < 6; ++d) {
     eff[kDirections[d]] = to_json(Eigen::VectorXd(r.effective_mass.col(d)));
     eff_sum[kDirections[d]] = r.effective_mass.col(d).sum();
   }
-  out.result["effective_mass"] = eff;
-  out.result["effective_mass_sum"] = eff_sum;
+  out.result["effective_mass"] = std::move(eff);
+  out.result["effective_mass_sum"] = std::move(eff_sum);
   ojson modes = ojson::array();
   for (Eigen::Index k = 0; k < count; ++k) {
-    modes.push_back(ojson{{"mode", k + 1},
-                          {"frequency", r.frequencies[k]},
-                          {"kind", to_string(r.kinds[static_cast<std::size_t>(k)])},
-                          {"participation", to_json(Vec6(r.participation.row(k).transpose()))},
-                          {"effective_mass", to_json(Vec6(r.effective_mass.row(k).transpose()))},
-                          {"nodes", mode_nodes_json(model, r.modes[static_cast<std::size_t>(k)])}});
+    ojson mode = object_with_capacity(6);
+    append_new_key(mode, "mode", k + 1);
+    append_new_key(mode, "frequency", r.frequencies[k]);
+    append_new_key(mode, "kind", to_string(r.kinds[static_cast<std::size_t>(k)]));
+    append_new_key(mode, "participation", to_json(Vec6(r.participation.row(k).transpose())));
+    append_new_key(mode, "effective_mass", to_json(Vec6(r.effective_mass.row(k).transpose())));
+    append_new_key(mode, "nodes", mode_nodes_json(model, r.modes[static_cast<std::size_t>(k)]));
+    modes.push_back(std::move(mode));
   }
-  out.result["modes"] = modes;
+  out.result["modes"] = std::move(modes);
   if (!ctx.out_dir.empty() && ctx.write_vtk) {
     const double scale = write_mode_shapes(model, ctx.out_dir, ctx.id, r.modes, "frequency", r.frequencies);
     out.result["vtk"] = ctx.id + ".pvd";

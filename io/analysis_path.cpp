@@ -216,6 +216,9 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
                        std::any_of(r.steps.begin(), r.steps.end(), [](const PathStep& s) { return s.reaction != 0.0; });
 
   AnalysisOutcome out;
+  // Room for every key (13 with run_document's wall_time_s): an ordered_json object that grows
+  // deep copies what it holds (here the steps).
+  out.result = object_with_capacity(16);
   out.result["type"] = "path";
   out.result["status"] = r.completed ? "ok" : "failed";
   out.result["termination"] = r.brief_report();
@@ -227,7 +230,7 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
   out.message = fmt::format("path: {} steps, {}", r.steps.empty() ? 0 : r.steps.size() - 1, r.brief_report());
   ojson steps = ojson::array();
   for (const auto& s : r.steps) {
-    ojson j;
+    ojson j = object_with_capacity(20);  // a step's keys (at most 19)
     j["step"] = s.step;
     j["load_factor"] = s.load_factor;
     j["control"] = s.control;
@@ -238,7 +241,7 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
     ojson nodes = ojson::object();
     for (std::size_t k = 0; k < o.track.size(); ++k)
       nodes[model.nodes[o.track[k]].id] = ojson{{"displacement", to_json(s.track[k])}};
-    j["nodes"] = nodes;
+    j["nodes"] = std::move(nodes);
     j["negative_eigenvalues"] = s.negative_eigenvalues;
     j["stable"] = s.stable;
     j["min_eigenvalue"] = s.min_eigenvalue;
@@ -252,8 +255,8 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
         for (const auto& v : s.node_stiffness->null_space) ns.push_back(to_json(v));
         for (const auto& v : s.node_stiffness->rigid_directions) rd.push_back(to_json(v));
       }
-      j["null_space"] = ns;
-      j["rigid_directions"] = rd;
+      j["null_space"] = std::move(ns);
+      j["rigid_directions"] = std::move(rd);
     }
     if (imposed) j["reaction"] = s.reaction;
     if (o.frequency_modes > 0) {
@@ -262,12 +265,12 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
     }
     // Displacement control: "arc_length" on the steps taken through a snap-back of the controlled DOF.
     if (o.control == PathControl::Displacement) j["step_control"] = control_name(s.step_control);
-    steps.push_back(j);
+    steps.push_back(std::move(j));
   }
-  out.result["steps"] = steps;
+  out.result["steps"] = std::move(steps);
   ojson cps = ojson::array();
   for (const auto& c : r.critical_points) {
-    ojson j;
+    ojson j = object_with_capacity(11);  // a critical point's keys
     j["type"] = to_string(c.type);
     j["load_factor"] = c.load_factor;
     j["step"] = c.step;
@@ -278,9 +281,9 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
     if (imposed) j["reaction"] = c.reaction;
     j["branch_switched"] = c.branch_switched;
     j["mode"] = c.mode.size() ? ojson{{"nodes", node_map(model, c.mode)}} : ojson(nullptr);
-    cps.push_back(j);
+    cps.push_back(std::move(j));
   }
-  out.result["critical_points"] = cps;
+  out.result["critical_points"] = std::move(cps);
   out.result["factorizations"] = r.factorizations;
   out.result["symbolic_analyses"] = r.symbolic_analyses;
 
@@ -329,7 +332,7 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
       write_pvd((ctx.out_dir / (ctx.id + ".pvd")).string(), entries);
       files["vtk"] = ctx.id + ".pvd";
     }
-    out.result["files"] = files;
+    out.result["files"] = std::move(files);
   }
   return out;
 }
