@@ -152,12 +152,11 @@ PathRun time_path(const Model& m, int steps, bool stability, const std::function
   }
   out.step = least(d);
   out.ratio = median(q);
-  long its = 0;
-  long chord = 0;
-  for (const auto& s : r.steps) its += s.iterations;
-#if __has_include("solvers/path/corrector.hpp")  // chord iterations (issue 15's chord corrector)
-  for (const auto& s : r.steps) chord += s.chord_iterations;
-#endif
+  long its = 0, chord = 0;
+  for (const auto& s : r.steps) {
+    its += s.iterations;
+    chord += s.chord_iterations;
+  }
   out.iterations = static_cast<double>(its) / std::max<int>(1, static_cast<int>(r.steps.size()) - 1);
   out.chord_iterations = static_cast<double>(chord) / std::max<int>(1, static_cast<int>(r.steps.size()) - 1);
   return out;

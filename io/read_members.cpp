@@ -21,11 +21,6 @@ constexpr double kZeroLength = 1e-12;
 // |sin| of the angle between orientation and member below which they are parallel.
 constexpr double kParallelOrientation = 1e-8;
 
-int find_property(const std::unordered_map<std::string, int>& index, const std::string& id) {
-  auto it = index.find(id);
-  return it == index.end() ? -1 : it->second;
-}
-
 }  // namespace
 
 BeamTheory beam_theory(const std::string& name, const json_in::Pointer& pointer, const std::string& what) {
@@ -61,10 +56,10 @@ void read_members(ReadState& s) {
                                               m.nodes[mem.nodes[1]].id + "' coincide)");
     if (mem.type == MemberType::Beam) {
       const std::string mid = json_in::id(require(o, p, "material", what), child(p, "material"), What(what, " material"));
-      mem.material = find_property(s.materials, mid);
+      mem.material = index_of(s.materials, mid);
       if (mem.material < 0) throw InputError(child(p, "material"), what + ": unknown material '" + mid + "'");
       const std::string sid = json_in::id(require(o, p, "section", what), child(p, "section"), What(what, " section"));
-      mem.section = find_property(s.sections, sid);
+      mem.section = index_of(s.sections, sid);
       if (mem.section < 0) throw InputError(child(p, "section"), what + ": unknown section '" + sid + "'");
       const Vec3 ex = (x2 - x1) / L;
       if (o.contains("orientation")) {

@@ -76,6 +76,9 @@ struct Sweep {
   std::string case_id(std::size_t index) const;
   // Parameter values of a case, one per parameter_names entry (null where a list case has none).
   std::vector<nlohmann::json> parameters(std::size_t index) const;
+  // The value of parameter `k` (parameter_names[k]) in case `index`, in place (null where a list
+  // case has none).
+  const nlohmann::json& parameter(std::size_t index, std::size_t k) const;
   // The changes of a case, in the order they are applied.
   std::vector<SweepChange> changes(std::size_t index) const;
   // The case's document: the base with the case's changes applied (throws InputError).

@@ -196,17 +196,17 @@ std::vector<std::size_t> grid_indices(const std::vector<SweepAxis>& grid, std::s
 
 std::vector<json> Sweep::parameters(std::size_t index) const {
   std::vector<json> out;
-  if (!grid.empty()) {
-    const auto k = grid_indices(grid, index);
-    for (std::size_t a = 0; a < grid.size(); ++a) out.push_back(grid[a].values[k[a]]);
-    return out;
-  }
-  const auto& c = list[index];
-  for (const auto& n : parameter_names) {
-    auto it = c.parameters.find(n);
-    out.push_back(it == c.parameters.end() ? json() : *it);
-  }
+  out.reserve(parameter_names.size());
+  for (std::size_t k = 0; k < parameter_names.size(); ++k) out.push_back(parameter(index, k));
   return out;
+}
+
+const json& Sweep::parameter(std::size_t index, std::size_t k) const {
+  if (!grid.empty()) return grid[k].values[grid_value(index, k)];
+  static const json none;
+  const auto& c = list[index];
+  auto it = c.parameters.find(parameter_names[k]);
+  return it == c.parameters.end() ? none : *it;
 }
 
 std::vector<SweepChange> Sweep::changes(std::size_t index) const {

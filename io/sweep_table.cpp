@@ -224,13 +224,9 @@ void append_sweep_row(std::string& line, const Sweep& s, std::size_t index, cons
     append_csv_field(line, cell);
   };
   add(s.case_id(index));
-  if (!s.grid.empty()) {  // a grid case's values, read in place (Sweep::parameters copies them)
-    for (std::size_t a = 0; a < s.grid.size(); ++a) {
-      const nlohmann::json& p = s.grid[a].values[s.grid_value(index, a)];
-      add(p.is_null() ? "" : cell_text(p));
-    }
-  } else {
-    for (const auto& p : s.parameters(index)) add(p.is_null() ? "" : cell_text(p));
+  for (std::size_t k = 0; k < s.parameter_names.size(); ++k) {  // read in place, not copied
+    const nlohmann::json& p = s.parameter(index, k);
+    add(p.is_null() ? "" : cell_text(p));
   }
   for (std::size_t o = 0; o < cols.outputs.size(); ++o) {
     const auto& names = cols.outputs[o];

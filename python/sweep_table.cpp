@@ -92,10 +92,8 @@ py::dict sweep_columns(const Sweep& sweep, int jobs) {
   table["case"] = ids;
 
   std::vector<std::vector<nlohmann::ordered_json>> params(sweep.parameter_names.size());
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto p = sweep.parameters(i);
-    for (std::size_t k = 0; k < p.size() && k < params.size(); ++k) params[k].emplace_back(p[k]);
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = 0; k < params.size(); ++k) params[k].emplace_back(sweep.parameter(i, k));
   for (std::size_t k = 0; k < params.size(); ++k) table[py::str(sweep.parameter_names[k])] = parameter_column(params[k]);
 
   // Output columns as in DIR/cases.csv (docs/sweep.md): those of the first case that ends ok,

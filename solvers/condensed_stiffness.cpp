@@ -166,9 +166,10 @@ struct NodeCondensationScratch {
   Eigen::JacobiSVD<Eigen::MatrixXd> svd;
   DenseCondensationWorkspace dense;
 };
-NodeCondensationScratch& thread_scratch() {
+// The thread's set for n free DOFs up to kDenseMaxDofs, else `local`.
+NodeCondensationScratch& scratch_for(Eigen::Index n, NodeCondensationScratch& local) {
   thread_local NodeCondensationScratch s;
-  return s;
+  return n <= kDenseMaxDofs ? s : local;
 }
 
 template <class Matrix>
@@ -178,9 +179,8 @@ CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn
 template <class Matrix>
 CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
                                       double L, const CondensedStiffnessOptions& options) {
-  if (Tn.cols() <= kDenseMaxDofs) return node_compliance_of(K, Tn, col_scale, L, options, thread_scratch());
   NodeCondensationScratch local;
-  return node_compliance_of(K, Tn, col_scale, L, options, local);
+  return node_compliance_of(K, Tn, col_scale, L, options, scratch_for(Tn.cols(), local));
 }
 
 }  // namespace
@@ -275,7 +275,7 @@ CondensedStiffness condense_to_node_of(const Model& model, const DofMap& map, co
   options.validate();
   const int n = map.free_size();
   NodeCondensationScratch local;
-  NodeCondensationScratch& w = n <= kDenseMaxDofs ? thread_scratch() : local;
+  NodeCondensationScratch& w = scratch_for(n, local);
   Eigen::MatrixXd& Tn = w.Tn;
   Tn.setZero(6, n);
   for (int k = 0; k < 6; ++k)

@@ -92,10 +92,10 @@ bool condense_dense(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::M
   const Eigen::LLT<Eigen::MatrixXd>& lc = w.llt.compute(w.C);
   if (lc.info() != Eigen::Success || cholesky_rcond(lc.matrixLLT()) < options.singular_rcond) return false;
   Kz = lc.solve(Eigen::MatrixXd::Identity(r, r));
-  // Symmetric part, in place (each coefficient 0.5 (a + b) as before; no temporary).
+  // Symmetric part, in place (each off-diagonal pair 0.5 (a + b) as before; the diagonal is its
+  // own mirror; no temporary).
   for (Eigen::Index j = 0; j < r; ++j)
     for (Eigen::Index i = j + 1; i < r; ++i) Kz(i, j) = Kz(j, i) = 0.5 * (Kz(i, j) + Kz(j, i));
-  for (Eigen::Index i = 0; i < r; ++i) Kz(i, i) = 0.5 * (Kz(i, i) + Kz(i, i));
   return Kz.allFinite();
 }
 

@@ -111,10 +111,10 @@ class PathEquilibrium {
   // The LU of the tangent system at c when c is the state kept and its tangent was computed (by
   // tangent(c)) and factorised successfully; null otherwise. No computation.
   const LuFactor* tangent_factor(const Converged& c) const;
-  // Numeric LU factorisations of converged states' tangent systems so far (the predictor's factor).
   // x = A^-1 b with that factor, b of its size, without UMFPACK's iterative refinement: each chord
   // iteration is itself a refinement step against the true residual (solvers/path/corrector.hpp).
   Eigen::VectorXd solve_with_tangent_factor(const Eigen::VectorXd& b) const;
+  // Numeric LU factorisations of converged states' tangent systems so far (the predictor's factor).
   long tangent_factorizations() const { return predictor_lu_.factorizations(); }
   long tangent_symbolic_analyses() const { return predictor_lu_.symbolic_analyses(); }
   // Steps solved by the chord corrector, and those where it gave up (full Newton then), so far.

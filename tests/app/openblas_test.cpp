@@ -37,12 +37,18 @@ TEST(OpenBlasCore, OtherwiseOpenBlasKeepsItsChoice) {
 
 // On the loaded BLAS: after the choice, OpenBLAS is not left on the generic kernels of a CPU with
 // AVX2, and CHOLMOD (supernodal, dgemm/dsyrk/dpotrf on the new kernels) still solves exactly.
+// Another BLAS is reported as such (no core, nothing replaced) and must solve exactly too.
 TEST(OpenBlasCore, ChosenKernelsFactoriseCorrectly) {
   const char* set = std::getenv("OPENBLAS_CORETYPE");
   const auto blas = beamfea::app::choose_openblas_core();
-  if (!blas.openblas) GTEST_SKIP() << "the BLAS is not OpenBLAS with runtime kernel selection";
-  if (!set && beamfea::app::cpu_vector_units().avx2_fma) {
+  if (!blas.openblas) {
+    EXPECT_EQ(blas.core, "");
+    EXPECT_EQ(blas.replaced, "");
+  } else if (!set && beamfea::app::cpu_vector_units().avx2_fma) {
     EXPECT_STRCASENE(blas.core.c_str(), "Prescott");
+  }
+  if (!blas.replaced.empty()) {
+    EXPECT_STRCASEEQ(blas.replaced.c_str(), "Prescott");
   }
   EXPECT_EQ(std::getenv("OPENBLAS_CORETYPE") == nullptr, set == nullptr);  // environment as it was
 
