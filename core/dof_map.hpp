@@ -121,6 +121,12 @@ class DofMap {
   // message of the first conflict for these values, or "" when consistent.
   std::string check_consistency(const Eigen::VectorXd& u_prescribed) const;
 
+  // Points the map at `model`, which must equal the model it was built from in everything the
+  // constructor reads (the per-thread cache of solvers/structure_cache.hpp checks that before it
+  // reuses a map for a sweep's next case): the map's later calls (messages, constraint forces)
+  // then read the live model instead of a destroyed one.
+  void rebind(const Model& model) { model_ = &model; }
+
  private:
   struct Term {
     int ind;

@@ -5,6 +5,7 @@
 #include <Eigen/UmfPackSupport>
 #include <fmt/format.h>
 
+#include <optional>
 #include <type_traits>
 
 #include "core/assembly.hpp"
@@ -14,6 +15,7 @@
 #include "solvers/linear_static.hpp"
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
+#include "solvers/structure_cache.hpp"
 
 namespace beamfea {
 
@@ -312,8 +314,14 @@ CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const
 }
 
 CondensedStiffness linear_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options) {
-  const DofMap map(model);
-  const LinearStructure structure(model);
+  // Small models: the thread's map and element matrices when the model's content that they read is
+  // that of the last call (a sweep over joint springs), solvers/structure_cache.hpp.
+  std::optional<LinearStructureCache::Parts> own;
+  const LinearStructureCache::Parts& parts = LinearStructureCache::keeps(model)
+                                                 ? thread_structure_cache().get(model)
+                                                 : own.emplace(LinearStructureCache::Parts{DofMap(model), LinearStructure(model)});
+  const DofMap& map = parts.map;
+  const LinearStructure& structure = parts.structure;
   auto condensed = [&](auto&& assembler) {
     assembler.begin();
     structure.assemble(map, assembler);

@@ -32,6 +32,10 @@ class LinearStructure {
 
   const std::optional<LinearBeam>& beam(int element) const { return beams_[element]; }
   const Model& model() const { return *model_; }
+  // Points the structure at `model`, which must equal the model it was built from in everything
+  // the constructor reads (solvers/structure_cache.hpp checks that): `assemble` then reads the
+  // joint springs of `model`, which the beams' matrices do not depend on.
+  void rebind(const Model& model) { model_ = &model; }
 
  private:
   template <class Assembler>

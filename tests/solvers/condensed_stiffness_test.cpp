@@ -2,7 +2,12 @@
 // passive joints, equality of a virtual-spring joint and the beam it stands for.
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <functional>
+#include <thread>
+
 #include "solvers/condensed_stiffness.hpp"
+#include "solvers/structure_cache.hpp"
 #include "support/models.hpp"
 
 using namespace beamfea;
@@ -90,4 +95,115 @@ TEST(CondensedStiffness, VirtualSpringFromBeamEqualsTheBeamTipStiffness) {
   EXPECT_EQ(kv.rank, 6);
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j) EXPECT_NEAR(kv.K(i, j), kb.K(i, j), 1e-8 * kb.K.cwiseAbs().maxCoeff()) << i << "," << j;
+}
+
+// The per-thread cache of DofMap + LinearStructure (solvers/structure_cache.hpp) must never hand
+// out a stale pair. A chain of two links on revolute joints with springs, a rigid link, a Timoshenko
+// section, a prescribed rotation: every field of the key has a value to change.
+namespace {
+
+json cache_chain() {
+  return {{"nodes", json::array({{{"id", "G"}, {"xyz", {0, 0, 0}}}, {{"id", "A"}, {"xyz", {0, 0, 0}}}, {{"id", "B"}, {"xyz", {0.4, 0, 0}}},
+                                 {{"id", "C"}, {"xyz", {0.4, 0, 0}}}, {{"id", "D"}, {"xyz", {0.7, 0.1, 0}}}, {{"id", "T"}, {"xyz", {0.8, 0.1, 0}}}})},
+          {"materials", json::array({{{"id", "m"}, {"E", E}, {"G", G}}})},
+          {"sections", json::array({{{"id", "s"}, {"A", A}, {"Iy", Iy}, {"Iz", Iz}, {"J", J}, {"ky", 1.2}, {"kz", 1.2}}})},
+          {"elements", json::array({{{"id", "l1"}, {"type", "beam"}, {"nodes", {"A", "B"}}, {"material", "m"}, {"section", "s"}},
+                                    {{"id", "l2"}, {"type", "beam"}, {"nodes", {"C", "D"}}, {"material", "m"}, {"section", "s"},
+                                     {"theory", "timoshenko"}, {"orientation", {0, 0, 1}}},
+                                    {{"id", "r"}, {"type", "rigid"}, {"nodes", {"D", "T"}}}})},
+          {"joints", json::array({{{"id", "q1"}, {"type", "revolute"}, {"nodes", {"G", "A"}}, {"axes", {{0, 0, 1}}}, {"stiffness", {2e3}}},
+                                  {{"id", "q2"}, {"type", "revolute"}, {"nodes", {"B", "C"}}, {"axes", {{0, 0, 1}}}, {"stiffness", {3e3}}}})},
+          {"supports", json::array({{{"node", "G"}, {"fix", "all"}}})},
+          {"prescribed", json::array({{{"joint", "q2"}, {"coordinate", 0}, {"value", 0.0}}})}};
+}
+
+// The node stiffness computed on a new thread (an empty cache: a map and structure built afresh).
+CondensedStiffness fresh_stiffness(const Model& m, int node) {
+  CondensedStiffness k;
+  std::thread([&] { k = linear_node_stiffness(m, node); }).join();
+  return k;
+}
+
+bool same_bits(const Mat6& a, const Mat6& b) { return std::memcmp(a.data(), b.data(), sizeof(double) * 36) == 0; }
+
+}  // namespace
+
+TEST(LinearStructureCache, ReusesItsPairOnlyForAModelEqualInEverythingThePairReads) {
+  LinearStructureCache cache;
+  const Model base = test::model_from(cache_chain());
+  cache.get(base);
+  EXPECT_FALSE(cache.last_was_hit());
+  // An equal model read again (another object): reused, and bound to the asked model.
+  const Model same = test::model_from(cache_chain());
+  const auto& parts = cache.get(same);
+  EXPECT_TRUE(cache.last_was_hit());
+  EXPECT_EQ(&parts.structure.model(), &same);
+  // Joint springs are not read by the pair: reused.
+  json d = cache_chain();
+  d["joints"][0]["stiffness"] = {5e3};
+  const Model other_spring = test::model_from(d);
+  cache.get(other_spring);
+  EXPECT_TRUE(cache.last_was_hit());
+  // Each change of a field that the map or the beams read: a new pair (the chain again between two
+  // changes, so that each is compared with the base).
+  const std::vector<std::function<void(json&)>> changes = {
+      [](json& j) { j["nodes"][4]["xyz"][1] = 0.1000001; },
+      [](json& j) { j["nodes"][4]["xyz"][2] = -0.0; },  // bits differ from 0.0
+      [](json& j) { j["nodes"][5]["id"] = "T2"; j["elements"][2]["nodes"][1] = "T2"; },
+      [](json& j) { j["materials"][0]["E"] = 2.0 * E; },
+      [](json& j) { j["materials"][0]["G"] = 2.0 * G; },
+      [](json& j) { j["sections"][0]["Iz"] = 2.0 * Iz; },
+      [](json& j) { j["sections"][0]["ky"] = 1.3; },
+      [](json& j) { j["elements"][1]["orientation"] = {0, 0.1, 1}; },
+      [](json& j) { j["elements"][1]["theory"] = "euler_bernoulli"; },
+      [](json& j) { j["elements"][1]["divisions"] = 2; },
+      [](json& j) { j["elements"][2]["type"] = "beam"; j["elements"][2]["material"] = "m"; j["elements"][2]["section"] = "s"; },
+      [](json& j) { j["joints"][1]["axes"] = {{0, 1, 0}}; },
+      [](json& j) { j["joints"][1]["type"] = "universal"; j["joints"][1]["axes"] = {{0, 0, 1}, {0, 1, 0}}; j["joints"][1]["stiffness"] = {3e3, 0}; },
+      [](json& j) { j["supports"][0]["fix"] = {"ux", "uy", "uz", "rx", "ry"}; },
+      [](json& j) { j["prescribed"][0]["value"] = 0.01; },
+      [](json& j) { j["prescribed"] = json::array(); },
+  };
+  for (std::size_t i = 0; i < changes.size(); ++i) {
+    json c = cache_chain();
+    changes[i](c);
+    const Model changed = test::model_from(c);
+    cache.get(changed);
+    EXPECT_FALSE(cache.last_was_hit()) << "change " << i;
+    cache.get(base);
+    EXPECT_FALSE(cache.last_was_hit()) << "change " << i;
+  }
+}
+
+// A sequence of models through the thread's cache (hits and misses in turn) gives, bit for bit,
+// the stiffness of a map and structure built afresh; a hit takes the asked model's springs.
+TEST(LinearStructureCache, NodeStiffnessThroughTheCacheIsBitForBitTheFreshOne) {
+  std::vector<Model> models;
+  for (double k : {2e3, 7e3}) {
+    for (double y : {0.1, 0.15}) {
+      json d = cache_chain();
+      d["joints"][0]["stiffness"] = {k};
+      d["nodes"][4]["xyz"][1] = y;
+      d["nodes"][5]["xyz"][1] = y;
+      models.push_back(test::model_from(d));
+    }
+  }
+  const std::vector<int> order = {0, 2, 2, 0, 1, 3, 3, 1, 0};  // 0 -> 2 same geometry, 0 -> 1 not
+  std::vector<Mat6> K(models.size());
+  for (int i : order) {
+    const Model& m = models[i];
+    const int tip = m.find_node("T");
+    const CondensedStiffness k = linear_node_stiffness(m, tip);
+    const CondensedStiffness f = fresh_stiffness(m, tip);
+    ASSERT_TRUE(k.ok) << k.message;
+    EXPECT_TRUE(same_bits(k.K, f.K)) << "model " << i;
+    EXPECT_TRUE(same_bits(k.compliance, f.compliance)) << "model " << i;
+    EXPECT_EQ(k.rank, f.rank);
+    EXPECT_EQ(k.message, f.message);
+    EXPECT_EQ(k.statically_indeterminate, f.statically_indeterminate);
+    K[i] = k.K;
+  }
+  // The springs reached the result: a stiffer base joint, a stiffer tip (same geometry).
+  EXPECT_GT(K[2].norm(), K[0].norm() * (1 + 1e-6));
+  EXPECT_GT(K[3].norm(), K[1].norm() * (1 + 1e-6));
 }
