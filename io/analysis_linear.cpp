@@ -1,6 +1,8 @@
 // Analyses "linear_static" and "stiffness".
 #include <fmt/format.h>
 
+#include <utility>
+
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
 #include "io/json_util.hpp"
@@ -216,11 +218,11 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
   out.result["rank"] = k.rank;
   ojson ns = ojson::array();
   for (const auto& v : k.null_space) ns.push_back(to_json(v));
-  out.result["null_space"] = ns;
+  out.result["null_space"] = std::move(ns);  // moved: a copy would deep-copy its arrays
   out.result["compliance"] = to_json(k.compliance);
   ojson rd = ojson::array();
   for (const auto& v : k.rigid_directions) rd.push_back(to_json(v));
-  out.result["rigid_directions"] = rd;
+  out.result["rigid_directions"] = std::move(rd);
   out.result["statically_indeterminate"] = k.statically_indeterminate;
   out.result["length_scale"] = model.length_scale();
   out.result["scaled_eigenvalues"] = to_json(k.eigenvalues);

@@ -3,6 +3,7 @@
 #include <string_view>
 
 #include <fcntl.h>
+#include <fmt/compile.h>
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -22,6 +23,8 @@ namespace {
 
 // Case ids of a grid are indices; more digits than this cannot be one (and would overflow).
 constexpr std::size_t kMaxGridIdDigits = 18;
+// The longest shortest-round-trip text of a double is 24 characters ("-2.2250738585072014e-308").
+constexpr std::size_t kMaxDoubleChars = 32;
 
 std::string without_line_breaks(std::string s) {
   for (char& c : s)
@@ -96,14 +99,19 @@ void csv_cell_into(std::string& out, const ojson& v) {
     out = cell_text(v);
     return;
   }
-  out.clear();
-  fmt::format_to(std::back_inserter(out), "{}", v.get<double>());  // as cell_text: shortest round trip
+  // As cell_text's fmt::format("{}") (shortest round trip), with the format compiled and the digits
+  // written into a buffer on the stack: a sweep formats every number of every case's outputs, and
+  // the runtime format's parsing and the appends one character at a time were most of that cost.
+  char digits[kMaxDoubleChars];
+  const auto written = fmt::format_to_n(digits, sizeof digits, FMT_COMPILE("{}"), v.get<double>());
+  if (written.size <= sizeof digits) out.assign(digits, written.size);
+  else out = cell_text(v);  // cannot happen (see kMaxDoubleChars); kept exact anyway
 }
 
 namespace {
 // Appends s to line as a CSV field (csv_field) without a copy of it.
-void append_csv_field(std::string& line, const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) {
+void append_csv_field(std::string& line, std::string_view s) {
+  if (s.find_first_of(",\"\n\r") == std::string_view::npos) {
     line += s;
     return;
   }
@@ -218,7 +226,7 @@ void append_sweep_row(std::string& line, const Sweep& s, std::size_t index, cons
                       const SweepCaseResult& r) {
   // Written field by field onto the line (csv_line's format), without a vector of cell copies.
   bool first = true;
-  auto add = [&](const std::string& cell) {
+  auto add = [&](std::string_view cell) {
     if (!first) line += ',';
     first = false;
     append_csv_field(line, cell);
@@ -242,11 +250,13 @@ void append_sweep_row(std::string& line, const Sweep& s, std::size_t index, cons
     for (const auto& g : got) byname.emplace(g.first, &g.second);
     for (const auto& n : names) {
       auto it = byname.find(n);
-      add(it == byname.end() ? std::string() : *it->second);
+      add(it == byname.end() ? std::string_view() : std::string_view(*it->second));
     }
   }
   add(to_string(r.status));
-  add(without_line_breaks(r.message));
+  // The message as is unless it has line breaks (a copy then): most cases have none.
+  if (r.message.find_first_of("\n\r") == std::string::npos) add(r.message);
+  else add(without_line_breaks(r.message));
   line += ',';  // digits, a point and maybe a sign: no quoting
   fmt::format_to(std::back_inserter(line), "{:.6f}", r.wall_time_s);
   line += '\n';
@@ -276,27 +286,34 @@ bool SweepCaseIndex::find(const std::string& id, std::size_t& index) const {
 // ---------------------------------------------------------------------------------------------
 // The file
 
-SweepTable read_sweep_table(const std::filesystem::path& path) {
-  SweepTable t;
-  const std::string text = read_text(path);
+namespace {
+// The header and the rows (views into `text`, each with its '\n') of a table's text; a last line
+// without a line break is not a row (returns true then).
+bool split_table(const std::string& text, std::vector<std::string>& header, std::vector<std::string_view>& rows) {
   std::size_t pos = 0;
   bool first = true;
   while (pos < text.size()) {
     const auto nl = text.find('\n', pos);
-    if (nl == std::string::npos) {
-      t.partial_tail = true;
-      break;
-    }
-    std::string line = text.substr(pos, nl - pos + 1);
+    if (nl == std::string::npos) return true;
+    const std::string_view line(text.data() + pos, nl - pos + 1);
     pos = nl + 1;
     if (first) {
-      line.pop_back();
-      t.header = csv_split(line);
+      header = csv_split(std::string(line.substr(0, line.size() - 1)));
       first = false;
     } else if (line.size() > 1) {
-      t.rows.push_back(std::move(line));
+      rows.push_back(line);
     }
   }
+  return false;
+}
+}  // namespace
+
+SweepTable read_sweep_table(const std::filesystem::path& path) {
+  SweepTable t;
+  const std::string text = read_text(path);
+  std::vector<std::string_view> rows;
+  t.partial_tail = split_table(text, t.header, rows);
+  t.rows.assign(rows.begin(), rows.end());
   return t;
 }
 
@@ -348,26 +365,31 @@ void SweepTableAppender::append(const std::string& rows) {
 }
 
 SweepTableCounts finish_sweep_table(const Sweep& s, const std::filesystem::path& table) {
-  SweepTable t = read_sweep_table(table);
+  // The rows stay views into the file's text (no string per row): the whole table is re-read once.
+  const std::string old_text = read_text(table);
+  std::vector<std::string> header;
+  std::vector<std::string_view> table_rows;
+  split_table(old_text, header, table_rows);
   const SweepCaseIndex index(s);
-  std::vector<std::pair<std::size_t, std::string>> rows;
-  rows.reserve(t.rows.size());
+  std::vector<std::pair<std::size_t, std::string_view>> rows;
+  rows.reserve(table_rows.size());
   constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   std::vector<std::size_t> where(s.size(), kNone);  // case index -> its row in `rows`
-  for (auto& row : t.rows) {
+  for (const auto row : table_rows) {
     std::size_t i;
-    if (!index.find(first_field(row), i)) continue;
+    if (!index.find(csv_field_at(row, 0), i)) continue;
     if (where[i] == kNone) {
       where[i] = rows.size();
-      rows.emplace_back(i, std::move(row));
+      rows.emplace_back(i, row);
     } else {
-      rows[where[i]].second = std::move(row);
+      rows[where[i]].second = row;  // the last row of a case wins
     }
   }
   std::sort(rows.begin(), rows.end());
   SweepTableCounts counts;
-  const std::size_t status_col = t.header.size() >= 3 ? t.header.size() - 3 : 0;
-  std::string text = csv_line(t.header);
+  const std::size_t status_col = header.size() >= 3 ? header.size() - 3 : 0;
+  std::string text = csv_line(header);
+  text.reserve(old_text.size());
   for (const auto& [i, row] : rows) {
     text += row;
     const std::string status = csv_field_at(row, status_col);

@@ -130,6 +130,24 @@ TEST(SweepTable, CsvFieldsAreQuotedOnlyWhenNeededAndSplitBack) {
   EXPECT_EQ(beamfea::csv_cell(json(nullptr)), "");
 }
 
+// The sweep's cells are formatted into a reused string with a compiled format (csv_cell_into): the
+// same text as csv_cell's runtime "{}" (shortest round trip), at the limits of fixed and exponent
+// notation, for the longest texts and the special values, and written over a longer old cell.
+TEST(SweepTable, ACellFormattedInPlaceIsTheCsvCell) {
+  const double values[] = {0.1, -0.0, 0.0, 1.0, 100.0, 1e15, 1e16, 1.5e16, 9.999999999999999e15, 1e-4, 1e-5,
+                           123456.789, -2.2250738585072014e-308, 4.9406564584124654e-324, 1.7976931348623157e308,
+                           -1.2345678901234567e-100, 2.0 / 3.0, std::nan(""), INFINITY, -INFINITY};
+  std::string cell = "an old cell longer than any number written over it";
+  for (double v : values) {
+    beamfea::csv_cell_into(cell, beamfea::ojson(v));
+    EXPECT_EQ(cell, beamfea::csv_cell(beamfea::ojson(v))) << v;
+  }
+  EXPECT_EQ((beamfea::csv_cell_into(cell, beamfea::ojson(1e16)), cell), "1e+16");
+  EXPECT_EQ((beamfea::csv_cell_into(cell, beamfea::ojson(-0.0)), cell), "-0");
+  beamfea::csv_cell_into(cell, beamfea::ojson("text, quoted later"));
+  EXPECT_EQ(cell, "text, quoted later");
+}
+
 TEST(SweepTable, ResumeFindsTheCasesOfThisSweepAndRejectsAnotherTable) {
   const auto dir = temp_dir("resume_io");
   const Sweep s = beamfea::read_sweep_file(write_sweep(dir, three_cases()).string());
