@@ -23,7 +23,8 @@ namespace {
 
 // Case ids of a grid are indices; more digits than this cannot be one (and would overflow).
 constexpr std::size_t kMaxGridIdDigits = 18;
-// The longest shortest-round-trip text of a double is 24 characters ("-2.2250738585072014e-308").
+// The longest shortest-round-trip text of a double is 24 characters ("-2.2250738585072014e-308":
+// 17 significant digits, a sign, a point, "e-308"); "-inf" and "nan" are shorter. Room to spare.
 constexpr std::size_t kMaxDoubleChars = 32;
 
 std::string without_line_breaks(std::string s) {
@@ -43,6 +44,18 @@ std::string cell_text(const J& v) {
     case J::value_t::number_float: return fmt::format("{}", v.template get<double>());  // shortest round trip
     default: return v.dump();
   }
+}
+
+// Appends x as cell_text's fmt::format("{}") writes it (shortest round trip), with the format
+// compiled and the digits written into a buffer on the stack: a sweep formats every number of every
+// case's outputs, and the runtime format's parsing and its appends one character at a time were
+// most of that cost. (format_to_n's truncating iterator also writes a character at a time: the
+// buffer has room for the longest text instead.) Digits, a point, a sign, "e", "inf" or "nan": a
+// CSV field that never needs quotes.
+void append_number(std::string& line, double x) {
+  char digits[kMaxDoubleChars];
+  char* end = fmt::format_to(digits, FMT_COMPILE("{}"), x);
+  line.append(digits, static_cast<std::size_t>(end - digits));
 }
 
 std::string read_text(const std::filesystem::path& path) {
@@ -99,19 +112,16 @@ void csv_cell_into(std::string& out, const ojson& v) {
     out = cell_text(v);
     return;
   }
-  // As cell_text's fmt::format("{}") (shortest round trip), with the format compiled and the digits
-  // written into a buffer on the stack: a sweep formats every number of every case's outputs, and
-  // the runtime format's parsing and the appends one character at a time were most of that cost.
-  char digits[kMaxDoubleChars];
-  const auto written = fmt::format_to_n(digits, sizeof digits, FMT_COMPILE("{}"), v.get<double>());
-  if (written.size <= sizeof digits) out.assign(digits, written.size);
-  else out = cell_text(v);  // cannot happen (see kMaxDoubleChars); kept exact anyway
+  out.clear();
+  append_number(out, v.get<double>());
 }
 
 namespace {
 // Appends s to line as a CSV field (csv_field) without a copy of it.
 void append_csv_field(std::string& line, std::string_view s) {
-  if (s.find_first_of(",\"\n\r") == std::string_view::npos) {
+  // One pass over the characters (string_view::find_first_of calls memchr over the set for each one).
+  const bool plain = std::none_of(s.begin(), s.end(), [](char c) { return c == ',' || c == '"' || c == '\n' || c == '\r'; });
+  if (plain) {
     line += s;
     return;
   }
@@ -234,7 +244,12 @@ void append_sweep_row(std::string& line, const Sweep& s, std::size_t index, cons
   add(s.case_id(index));
   for (std::size_t k = 0; k < s.parameter_names.size(); ++k) {  // read in place, not copied
     const nlohmann::json& p = s.parameter(index, k);
-    add(p.is_null() ? "" : cell_text(p));
+    if (p.type() == nlohmann::json::value_t::number_float) {  // the usual parameter: onto the line
+      add("");
+      append_number(line, p.get<double>());
+    } else {
+      add(p.is_null() ? "" : cell_text(p));
+    }
   }
   for (std::size_t o = 0; o < cols.outputs.size(); ++o) {
     const auto& names = cols.outputs[o];
