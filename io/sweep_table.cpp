@@ -69,6 +69,22 @@ std::string read_text(const std::filesystem::path& path) {
 // without splitting the other fields: finishing a table reads two fields of every row.
 std::string csv_field_at(std::string_view line, std::size_t k) {
   if (!line.empty() && line.back() == '\n') line.remove_suffix(1);
+  if (line.find('"') == std::string_view::npos) {
+    // No quotes (a sweep's usual row): the fields lie between commas, found by memchr rather than
+    // character by character; '\r' is dropped as below.
+    std::size_t begin = 0;
+    for (std::size_t field = 0; field < k; ++field) {
+      const std::size_t comma = line.find(',', begin);
+      if (comma == std::string_view::npos) return std::string();
+      begin = comma + 1;
+    }
+    const std::string_view f = line.substr(begin, line.find(',', begin) - begin);
+    std::string out;
+    out.reserve(f.size());
+    for (char c : f)
+      if (c != '\r') out += c;
+    return out;
+  }
   std::string f;
   std::size_t field = 0;
   bool quoted = false, in_quotes = false, has = false;  // has: the current field has text
@@ -412,7 +428,9 @@ SweepTableCounts finish_sweep_table(const Sweep& s, const std::filesystem::path&
     else if (status == to_string(SweepCaseResult::Status::BadInput)) ++counts.bad_input;
     else ++counts.analysis_failed;
   }
-  write_text_atomic(table, text);
+  // Rows already in order, one per case, under the same header (a fresh `--jobs 1` run): the text
+  // is the file's, and its atomic rewrite (a copy, a sync, a rename) would change nothing.
+  if (text != old_text) write_text_atomic(table, text);
   return counts;
 }
 

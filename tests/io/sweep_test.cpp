@@ -205,6 +205,14 @@ TEST(SweepTable, FinishSortsByCaseKeepsTheLastRowOfACaseAndCounts) {
   EXPECT_EQ(t.rows[0][t.col("status")], "ok");
   EXPECT_EQ(t.rows[1][0], "bad");
   EXPECT_EQ(t.rows[2][0], "p2");
+  // Finishing a finished table (rows in order, one per case: left as it is) counts the same and
+  // leaves the same text; the status of the unquoted rows and of the quoted bad-input row is read.
+  const std::string finished = read(table);
+  const auto again = beamfea::finish_sweep_table(s, table);
+  EXPECT_EQ(again.ok, 2u);
+  EXPECT_EQ(again.bad_input, 1u);
+  EXPECT_EQ(again.analysis_failed, 0u);
+  EXPECT_EQ(read(table), finished);
 }
 
 // A worker's reused document (SweepCaseDocument) gives every case the same document as a fresh
