@@ -78,15 +78,17 @@ const char* to_string(SweepCaseResult::Status s) {
 }
 
 bool SweepCaseDocument::set(const json::json_pointer& p, const json& value) {
+  // One traversal: `at` throws (out_of_range, or parse_error for an index that is not one) exactly
+  // where `contains` says false, and a sweep sets its pointers for every case.
+  json* slot = nullptr;
   try {
-    if (!doc_.contains(p)) return false;
-    json& slot = doc_.at(p);
-    saved_.emplace_back(&p, std::move(slot));
-    slot = value;
-    return true;
+    slot = &doc_.at(p);
   } catch (const json::exception&) {
     return false;  // Sweep::document names the error
   }
+  saved_.emplace_back(&p, std::move(*slot));
+  *slot = value;
+  return true;
 }
 
 void SweepCaseDocument::restore() {
