@@ -19,6 +19,9 @@ namespace beamfea {
 
 using ojson = nlohmann::ordered_json;
 
+// The documented bound of "modes" of the buckling and modal analyses (docs/analyses/).
+inline constexpr int kMaxModes = 1000;
+
 // Where messages go: progress lines and warnings reach the caller through sinks it chooses (the
 // program prints them on stderr; a library caller may collect or drop them). Empty: dropped.
 using MessageSink = std::function<void(const std::string&)>;

@@ -15,7 +15,6 @@ namespace beamfea {
 
 namespace {
 
-constexpr int kMaxModes = 1000;  // documented bound of "modes" (docs/analyses/buckling.md)
 
 void check_buckling(const Model& model, const nlohmann::json& spec, const std::string& p) {
   json_in::expect_keys(spec, p, {"id", "type", "description", "modes", "load_case"});

@@ -16,7 +16,6 @@ namespace beamfea {
 
 namespace {
 
-constexpr int kMaxModes = 1000;
 constexpr const char* kDirections[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
 
 ModalOptions read_options(const nlohmann::json& spec) {

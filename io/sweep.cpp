@@ -14,10 +14,6 @@ using json = nlohmann::json;
 
 namespace {
 
-// Array indices in output paths have at most this many digits (no array is that long; more would
-// overflow the conversion).
-constexpr std::size_t kMaxIndexDigits = 9;
-
 // An output value flattened into (column name, cell) pairs: name[i][j] for arrays, name.key for
 // objects, written over out[n], out[n + 1], ... (their strings' capacity reused; `n` counts them).
 // `name` is the caller's buffer: suffixes are appended and taken off again (no string per level).
@@ -52,7 +48,7 @@ const ojson* find_path(const ojson& root, const SweepOutput& o) {
   for (const auto& t : o.path) {
     if (t.index >= 0 || (v->is_array() && !t.key.empty() &&
                          t.key.find_first_not_of("0123456789") == std::string::npos)) {
-      if (t.index < 0 && t.key.size() > kMaxIndexDigits) return nullptr;  // beyond any array
+      if (t.index < 0 && t.key.size() > SweepOutput::kMaxIndexDigits) return nullptr;  // beyond any array
       const std::size_t i = t.index >= 0 ? static_cast<std::size_t>(t.index) : std::stoul(t.key);
       if (!v->is_array() || i >= v->size()) return nullptr;
       v = &(*v)[i];

@@ -55,6 +55,9 @@ struct SweepListCase {
 // One collected output: a path into the case's results ("analyses.K.matrix",
 // "analyses.lin.nodes.D.displacement[1]" or a JSON pointer "/analyses/K/matrix").
 struct SweepOutput {
+  // Array indices in output paths have at most this many digits (no array is that long; more would
+  // overflow the conversion).
+  static constexpr std::size_t kMaxIndexDigits = 9;
   std::string name;  // column name (prefix of the flattened columns)
   struct Token {
     std::string key;

@@ -18,10 +18,6 @@ using json_in::child;
 
 namespace {
 
-// Array indices in output paths have at most this many digits (no array is that long; more would
-// overflow the conversion).
-constexpr std::size_t kMaxIndexDigits = 9;
-
 // ---------------------------------------------------------------------------------------------
 // Reading the sweep file
 
@@ -157,7 +153,7 @@ SweepOutput read_output(const json& v, const std::string& where) {
       const std::string digits = close == std::string::npos ? "" : path.substr(i + 1, close - i - 1);
       if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos)
         throw InputError(where, "output path '" + path + "': expected [index] at character " + std::to_string(i));
-      if (digits.size() > kMaxIndexDigits)
+      if (digits.size() > SweepOutput::kMaxIndexDigits)
         throw InputError(where, "output path '" + path + "': index " + digits + " is out of range");
       o.path.push_back({"", std::stol(digits)});
       i = close + 1;

@@ -26,23 +26,20 @@ void FactorOptions::validate() const {
   if (dense_max_dofs < 0) throw Error("FactorOptions: dense_max_dofs must not be negative");
 }
 
-namespace {
-// Gives access to CHOLMOD's factor for the reciprocal condition estimate.
-class Cholesky : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
- public:
-  double rcond() { return m_cholmodFactor ? cholmod_rcond(m_cholmodFactor, &this->cholmod()) : 0.0; }
-  // METIS alone, or CHOLMOD's default trials (nmethods = 0: AMD, then METIS if AMD's fill is poor).
-  void metis_only(bool on) {
-    cholmod_common& c = this->cholmod();
-    c.nmethods = on ? 1 : 0;
-    c.method[0].ordering = on ? CHOLMOD_METIS : CHOLMOD_GIVEN;  // GIVEN: cholmod_defaults' value
-    c.postorder = 1;
-  }
-};
-
-}  // namespace
-
 struct SparseFactor::Impl {
+  // Gives access to CHOLMOD's factor for the reciprocal condition estimate.
+  class Cholesky : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
+   public:
+    double rcond() { return m_cholmodFactor ? cholmod_rcond(m_cholmodFactor, &this->cholmod()) : 0.0; }
+    // METIS alone, or CHOLMOD's default trials (nmethods = 0: AMD, then METIS if AMD's fill is poor).
+    void metis_only(bool on) {
+      cholmod_common& c = this->cholmod();
+      c.nmethods = on ? 1 : 0;
+      c.method[0].ordering = on ? CHOLMOD_METIS : CHOLMOD_GIVEN;  // GIVEN: cholmod_defaults' value
+      c.postorder = 1;
+    }
+  };
+
   // The dense factor (solvers/dense_condensation.hpp), kept between factorisations: no
   // allocation while the size stays.
   Eigen::MatrixXd dense_l;

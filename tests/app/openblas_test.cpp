@@ -8,6 +8,8 @@
 
 #include "solvers/sparse_factor.hpp"
 
+namespace openblas_test {
+
 using beamfea::app::better_openblas_core;
 using beamfea::app::CpuVectorUnits;
 
@@ -81,3 +83,5 @@ TEST(OpenBlasCore, ChosenKernelsFactoriseCorrectly) {
   // K is well conditioned (eigenvalues in [1, 13]): the error is a few ulps of |x|.
   EXPECT_LT((factor.solve(f) - x).norm() / x.norm(), 1e-13);
 }
+
+}  // namespace openblas_test

@@ -11,6 +11,8 @@
 #include "core/errors.hpp"
 #include "support/sweep_util.hpp"
 
+namespace sweep_runner_test {
+
 using namespace sweep_test;
 using beamfea::InputError;
 using beamfea::Sweep;
@@ -252,3 +254,5 @@ TEST(SweepRunner, StopFlagEndsTheSweepWithASortedTableOfTheFinishedCases) {
   EXPECT_EQ(rest.skipped, t.rows.size());
   EXPECT_EQ(rest.ok, 2000u);
 }
+
+}  // namespace sweep_runner_test

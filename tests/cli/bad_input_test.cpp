@@ -4,6 +4,8 @@
 #include "support/cli_case.hpp"
 #include "support/models.hpp"
 
+namespace bad_input_test {
+
 using namespace beamfea;
 using nlohmann::json;
 
@@ -157,3 +159,5 @@ TEST(AnalysisFailure, MechanismExitsWithOneAndNamesTheJoint) {
   EXPECT_EQ(o.code, 1) << o.message;
   EXPECT_TRUE(o.results_written());
 }
+
+}  // namespace bad_input_test

@@ -7,6 +7,8 @@
 
 #include "support/sweep_util.hpp"
 
+namespace modal_sweep_cli_test {
+
 using namespace sweep_test;
 
 namespace {
@@ -56,3 +58,5 @@ TEST(ModalSweep, FirstFrequencyOverAGridOfLengthsAndMassesIsTheClosedForm) {
     EXPECT_NEAR(std::stod(r[c2]), f2, 1e-9 * f2) << "L " << L << ", m " << m;
   }
 }
+
+}  // namespace modal_sweep_cli_test

@@ -12,7 +12,9 @@
 
 #include "support/sweep_util.hpp"
 
-extern char** environ;
+extern char** environ;  // POSIX: the process environment, for posix_spawn
+
+namespace sweep_cli_test {
 
 using namespace sweep_test;
 
@@ -183,3 +185,5 @@ TEST(SweepCommand, UnderMpirunRanksShareTheCasesAndWriteTheSerialTable) {
     EXPECT_NE(log.find("on " + std::to_string(ranks) + " processes"), std::string::npos) << log;
   }
 }
+
+}  // namespace sweep_cli_test

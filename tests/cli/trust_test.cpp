@@ -11,6 +11,8 @@
 #include "support/cli_case.hpp"
 #include "support/models.hpp"
 
+namespace trust_test {
+
 using namespace beamfea;
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -339,3 +341,5 @@ TEST(Contradictions, ModelWithoutElements) {
   d["elements"] = json::array();
   expect_bad_in_check_and_run("no_elements", d, {"/elements", "no elements"});
 }
+
+}  // namespace trust_test

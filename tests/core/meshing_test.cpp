@@ -3,6 +3,8 @@
 
 #include "core/meshing.hpp"
 
+namespace meshing_test {
+
 using namespace beamfea;
 
 namespace {
@@ -61,3 +63,5 @@ TEST(ModelIndex, LookupsStayRightWhenNodesArePushedDirectly) {
   EXPECT_EQ(m.find_node("D"), 3);
   EXPECT_EQ(m.find_node("nope"), -1);
 }
+
+}  // namespace meshing_test

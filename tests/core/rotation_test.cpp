@@ -9,7 +9,7 @@
 
 #include "core/rotation.hpp"
 
-namespace beamfea {
+namespace beamfea::rotation_test {
 namespace {
 
 using std::numbers::pi;
@@ -161,4 +161,4 @@ TEST(Rotation, OrthonormalizeProjectsANearlyOrthonormalMatrixOntoSO3) {
 }
 
 }  // namespace
-}  // namespace beamfea
+}  // namespace beamfea::rotation_test

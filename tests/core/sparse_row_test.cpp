@@ -9,7 +9,7 @@
 
 #include "core/sparse_row.hpp"
 
-namespace beamfea {
+namespace beamfea::sparse_row_test {
 namespace {
 
 void expect_same(const SparseRow& row, const std::map<int, double>& ref) {
@@ -134,4 +134,4 @@ TEST(SparseRow, AppendRowMatchesSetFromTripletsAndPrune) {
 }
 
 }  // namespace
-}  // namespace beamfea
+}  // namespace beamfea::sparse_row_test

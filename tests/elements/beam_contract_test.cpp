@@ -6,6 +6,8 @@
 
 #include "elements/beam.hpp"
 
+namespace beam_contract_test {
+
 using namespace beamfea;
 
 namespace {
@@ -61,3 +63,5 @@ TEST(LinearBeam, CubicShapeReproducesTheCantileverDeflectionCurve) {
     EXPECT_NEAR(beam_displacement_at(R, L, u, xi).y(), P * x * x * (3 * L - x) / (6 * E * I), 1e-12);
   }
 }
+
+}  // namespace beam_contract_test

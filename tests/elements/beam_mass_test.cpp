@@ -7,6 +7,8 @@
 
 #include "elements/beam_mass.hpp"
 
+namespace beam_mass_test {
+
 using namespace beamfea;
 
 namespace {
@@ -162,3 +164,5 @@ TEST(BeamMass, LumpedMatrixIsDiagonalWithHalvesAtEachNode) {
   EXPECT_DOUBLE_EQ(M(5, 5), 0.5 * rho * s.Iz * L);
   EXPECT_DOUBLE_EQ(M(10, 10), 0.5 * rho * s.Iy * L);
 }
+
+}  // namespace beam_mass_test

@@ -13,7 +13,7 @@
 #include "core/errors.hpp"
 #include "elements/corotational_beam.hpp"
 
-namespace beamfea {
+namespace beamfea::corotational_beam_test {
 namespace {
 
 using std::numbers::pi;
@@ -360,4 +360,4 @@ TEST(CorotationalBeam, CantileverUnderEndMomentRollsIntoAFullCircleAndBeyond) {
 }
 
 }  // namespace
-}  // namespace beamfea
+}  // namespace beamfea::corotational_beam_test

@@ -15,7 +15,7 @@
 #include "elements/beam.hpp"
 #include "elements/geometric_stiffness.hpp"
 
-namespace beamfea {
+namespace beamfea::geometric_stiffness_test {
 namespace {
 
 using Eigen::MatrixXd;
@@ -213,4 +213,4 @@ TEST(GeometricStiffness, AxialTranslationAndTwistAreInTheNullSpaceOfTheAxialGeom
 }
 
 }  // namespace
-}  // namespace beamfea
+}  // namespace beamfea::geometric_stiffness_test

@@ -11,6 +11,8 @@
 
 #include "elements/member_loads.hpp"
 
+namespace member_loads_test {
+
 using namespace beamfea;
 
 namespace {
@@ -158,3 +160,5 @@ TEST(MemberLoads, DeadLoadVectorEqualsTheLocalLoadsTurnedAndItsDerivativeTheFini
     EXPECT_LT((D.col(c) - fd).cwiseAbs().maxCoeff(), 1e-6 * want.cwiseAbs().maxCoeff() / d.norm()) << "column " << c;
   }
 }
+
+}  // namespace member_loads_test

@@ -14,6 +14,8 @@
 #include "support/models.hpp"
 #include "support/sweep_util.hpp"
 
+namespace corpus_replay_test {
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 
@@ -102,3 +104,5 @@ TEST(FuzzCorpus, EverySweepEndsByTheRules) {
   std::cout << "[corpus_sweep] " << files.size() << " sweep files: " << n_ok << " exit 0, " << n_failed << " exit 1, "
             << n_bad << " exit 2\n";
 }
+
+}  // namespace corpus_replay_test

@@ -10,6 +10,8 @@
 #include <string>
 #include <sys/wait.h>
 
+namespace actuator_allocation_cli_test {
+
 namespace {
 
 using json = nlohmann::json;
@@ -140,3 +142,5 @@ TEST(ActuatorAllocationCli, LoadCaseReportsEffortsDisplacementAndLoadedStiffness
 }
 
 }  // namespace
+
+}  // namespace actuator_allocation_cli_test

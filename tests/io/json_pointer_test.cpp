@@ -12,7 +12,7 @@
 #include "io/json_util.hpp"
 #include "io/model_reader.hpp"
 
-namespace beamfea::json_in {
+namespace beamfea::json_in::json_pointer_test {
 namespace {
 
 TEST(JsonPointer, RendersRootKeysAndIndices) {
@@ -120,4 +120,4 @@ TEST(JsonPointer, ModelErrorsKeepTheirPointers) {
 }
 
 }  // namespace
-}  // namespace beamfea::json_in
+}  // namespace beamfea::json_in::json_pointer_test

@@ -8,6 +8,8 @@
 #include "core/errors.hpp"
 #include "io/model_reader.hpp"
 
+namespace json_text_test {
+
 using beamfea::InputError;
 using beamfea::parse_json_text;
 using nlohmann::json;
@@ -63,3 +65,5 @@ TEST(JsonText, SameDocumentAsNlohmannsParser) {
   EXPECT_EQ(doc, json::parse(many));
   EXPECT_EQ(doc.size(), 20000u);
 }
+
+}  // namespace json_text_test

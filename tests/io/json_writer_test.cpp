@@ -13,6 +13,8 @@
 #include "core/errors.hpp"
 #include "io/json_writer.hpp"
 
+namespace json_writer_test {
+
 using namespace beamfea;
 using ojson = nlohmann::ordered_json;
 
@@ -109,3 +111,5 @@ TEST(JsonWriter, AFileThatCannotBeWrittenIsAnErrorAndLeavesNothing) {
   EXPECT_THROW(write_results_json_file(ojson{{"a", 1}}, dir / "results.json"), Error);
   EXPECT_FALSE(std::filesystem::exists(dir));
 }
+
+}  // namespace json_writer_test

@@ -11,6 +11,8 @@
 #include "io/run.hpp"
 #include "support/models.hpp"
 
+namespace loads_input_test {
+
 using namespace beamfea;
 using nlohmann::json;
 
@@ -138,3 +140,5 @@ TEST(LoadsInput, ResultsCarryStationsFixedEndForcesAndOneFactorisation) {
   EXPECT_NE(vtu.find("\"diagram_My\""), std::string::npos);
   EXPECT_NE(vtu.find("\"section_forces\""), std::string::npos);
 }
+
+}  // namespace loads_input_test

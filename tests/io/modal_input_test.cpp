@@ -8,6 +8,8 @@
 #include "solvers/condensed_stiffness.hpp"
 #include "support/models.hpp"
 
+namespace modal_input_test {
+
 using namespace beamfea;
 using nlohmann::json;
 
@@ -130,3 +132,5 @@ TEST(ModalInput, ModelWithoutMassFailsWithAReason) {
   EXPECT_EQ(res["analyses"]["m"]["status"], "no mass");
   EXPECT_TRUE(res["analyses"]["m"]["frequencies"].empty());
 }
+
+}  // namespace modal_input_test

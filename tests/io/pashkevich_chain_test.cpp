@@ -16,6 +16,8 @@
 #include "io/run.hpp"
 #include "pashkevich_vjm.hpp"
 
+namespace pashkevich_chain_test {
+
 namespace {
 
 using nlohmann::json;
@@ -280,3 +282,5 @@ TEST(PashkevichChain, BeamMeshAndLumpedSpringCountConvergeToTheEulerLoad) {
     EXPECT_GT(P, PE);
   }
 }
+
+}  // namespace pashkevich_chain_test

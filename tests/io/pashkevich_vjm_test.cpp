@@ -15,6 +15,8 @@
 #include "pashkevich_vjm.hpp"
 #include "solvers/condensed_stiffness.hpp"
 
+namespace pashkevich_vjm_test {
+
 namespace {
 
 using nlohmann::json;
@@ -271,3 +273,5 @@ TEST(PashkevichVjm, LossOfStabilityOnTheFundamentalBranchMatchesEq22) {
   }
   EXPECT_TRUE(saw_stable && saw_unstable);
 }
+
+}  // namespace pashkevich_vjm_test

@@ -9,6 +9,8 @@
 
 #include "support/models.hpp"
 
+namespace path_frequencies_cli_test {
+
 using namespace beamfea;
 using nlohmann::json;
 
@@ -113,3 +115,5 @@ TEST(PathFrequenciesCli, BadFrequencySpecsExitTwoNamingTheField) {
                          {"frequencies", {{"modes", 1}}}}};
   expect_bad(nomass, "path_freq_nomass", {"/analyses/0/frequencies", "no mass"});
 }
+
+}  // namespace path_frequencies_cli_test

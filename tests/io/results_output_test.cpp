@@ -6,6 +6,8 @@
 
 #include "support/models.hpp"
 
+namespace results_output_test {
+
 using namespace beamfea;
 using nlohmann::json;
 
@@ -82,3 +84,5 @@ TEST(ResultsOutput, VtuOpensInVtksOwnReader) {
   EXPECT_NEAR(min_uy, -1000.0 * 8.0 / (3 * 2.1e11 * 3e-6), 1e-12);  // tip: P L^3 / 3EI
   EXPECT_EQ(components, 6);
 }
+
+}  // namespace results_output_test

@@ -12,6 +12,8 @@
 #include "io/sweep_table.hpp"
 #include "support/sweep_util.hpp"
 
+namespace sweep_test {
+
 using namespace sweep_test;
 using beamfea::InputError;
 using beamfea::Sweep;
@@ -292,3 +294,5 @@ TEST(SweepCase, AReusedResultHoldsOnlyItsOwnCase) {
   EXPECT_EQ(seen_failed, 2u);
   EXPECT_EQ(seen_bad, 2u);
 }
+
+}  // namespace sweep_test

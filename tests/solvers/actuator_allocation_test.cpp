@@ -21,7 +21,7 @@
 #include "solvers/structure.hpp"
 #include "core/assembly.hpp"
 
-namespace beamfea {
+namespace beamfea::actuator_allocation_test {
 namespace {
 
 using json = nlohmann::json;
@@ -252,4 +252,4 @@ TEST(ActuatorAllocation, SingularAndNonSquareJacobiansGetAnAnswerNotACrash) {
 }
 
 }  // namespace
-}  // namespace beamfea
+}  // namespace beamfea::actuator_allocation_test

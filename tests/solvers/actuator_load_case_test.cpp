@@ -15,7 +15,7 @@
 #include "solvers/actuator_allocation.hpp"
 #include "solvers/actuator_load_case.hpp"
 
-namespace beamfea {
+namespace beamfea::actuator_load_case_test {
 namespace {
 
 using json = nlohmann::json;
@@ -220,9 +220,9 @@ TEST(ActuatorLoadCase, LoadedStiffnessOfAColumnOnASpringMatchesTheExactBeamColum
 }
 
 }  // namespace
-}  // namespace beamfea
+}  // namespace beamfea::actuator_load_case_test
 
-namespace beamfea {
+namespace beamfea::actuator_load_case_test {
 namespace {
 
 // Five-bar (a closed loop): bases A1 = (-0.3, 0), A2 = (0.3, 0), proximal links l1 = 0.5 driven
@@ -303,4 +303,4 @@ TEST(ActuatorLoadCase, FiveBarEffortsAreMinusJacobianTransposeTimesThePlatformFo
 }
 
 }  // namespace
-}  // namespace beamfea
+}  // namespace beamfea::actuator_load_case_test

@@ -9,6 +9,8 @@
 #include "solvers/blas_threads.hpp"
 #include "solvers/path_following.hpp"
 
+namespace blas_threads_test {
+
 using namespace beamfea;
 using namespace beamfea::test;
 
@@ -65,3 +67,5 @@ TEST(BlasThreads, ScopeSetsOneThreadAndRestoresThePreviousNumber) {
   { const SingleBlasThread one; }
   EXPECT_TRUE(blas.calls.empty());
 }
+
+}  // namespace blas_threads_test

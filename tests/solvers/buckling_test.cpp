@@ -7,6 +7,8 @@
 #include "solvers/buckling.hpp"
 #include "nl_models.hpp"
 
+namespace buckling_test {
+
 using namespace beamfea;
 using namespace beamfea::test;
 
@@ -137,3 +139,5 @@ TEST(Buckling, SparseShiftInvertPathGivesEulerLoadsOfAFineMesh) {
   EXPECT_NEAR(r.load_factors[2] / (9 * exact), 1.0, 1e-5);
   EXPECT_NEAR(r.load_factors[3] / (9 * exact), 1.0, 1e-5);
 }
+
+}  // namespace buckling_test

@@ -8,6 +8,8 @@
 #include "solvers/path_following.hpp"
 #include "loop_models.hpp"
 
+namespace closed_loop_path_test {
+
 using namespace beamfea;
 using namespace beamfea::test;
 
@@ -141,3 +143,5 @@ TEST(ClosedLoopPath, SwayFramePostBucklingAfterBranchSwitching) {
                 ground_link, cp.load_factor, k / (h * P), post, max_theta, worst);
   }
 }
+
+}  // namespace closed_loop_path_test

@@ -9,6 +9,8 @@
 #include "solvers/linear_static.hpp"
 #include "loop_models.hpp"
 
+namespace closed_loop_test {
+
 using namespace beamfea;
 using namespace beamfea::test;
 
@@ -131,3 +133,5 @@ TEST(ClosedLoop, InconsistentPrescribedValuesOnALoopNameTheLink) {
     EXPECT_NE(std::string(e.what()).find("element 'ground'"), std::string::npos) << e.what();
   }
 }
+
+}  // namespace closed_loop_test

@@ -10,6 +10,8 @@
 #include "solvers/structure_cache.hpp"
 #include "support/models.hpp"
 
+namespace condensed_stiffness_test {
+
 using namespace beamfea;
 using nlohmann::json;
 
@@ -207,3 +209,5 @@ TEST(LinearStructureCache, NodeStiffnessThroughTheCacheIsBitForBitTheFreshOne) {
   EXPECT_GT(K[2].norm(), K[0].norm() * (1 + 1e-6));
   EXPECT_GT(K[3].norm(), K[1].norm() * (1 + 1e-6));
 }
+
+}  // namespace condensed_stiffness_test

@@ -16,6 +16,8 @@
 #include "solvers/path_following.hpp"
 #include "support/models.hpp"
 
+namespace dead_load_path_test {
+
 using namespace beamfea;
 using nlohmann::json;
 
@@ -114,3 +116,5 @@ TEST(DeadLoadPath, StepEndForcesIncludeTheMemberLoadsFixedEndForcesAsLinearStati
       // elongation is ~1e-9 of EA/L x 1e-16 (below it).
       EXPECT_NEAR(step.end_forces[e][k], lin.end_forces[e][k], 1e-4 * scale) << "element " << e << " component " << k;
 }
+
+}  // namespace dead_load_path_test

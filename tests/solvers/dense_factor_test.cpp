@@ -17,6 +17,8 @@
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
 
+namespace dense_factor_test {
+
 using namespace beamfea;
 namespace fs = std::filesystem;
 
@@ -233,3 +235,5 @@ TEST(DenseFactor, DenseAssemblyAndCondensationAgreeWithTheSparseOnTheSuiteModels
   }
   EXPECT_GE(compared, 12);
 }
+
+}  // namespace dense_factor_test

@@ -38,6 +38,8 @@
 #include "solvers/generalized_eigen.hpp"
 #include "solvers/modal.hpp"
 
+namespace frame3dd_modal_test {
+
 using namespace beamfea;
 using namespace beamfea::test;
 
@@ -299,3 +301,5 @@ TEST(Frame3ddExampleB, ShearAndGeometricStiffnessPyramidFrequenciesFromRebuiltMa
   EXPECT_GT(shear_effect, 3.0);
   EXPECT_GT(kg_effect, 5.0);
 }
+
+}  // namespace frame3dd_modal_test

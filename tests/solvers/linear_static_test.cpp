@@ -6,6 +6,8 @@
 #include "solvers/linear_static.hpp"
 #include "support/models.hpp"
 
+namespace linear_static_test {
+
 using namespace beamfea;
 using nlohmann::json;
 
@@ -301,3 +303,5 @@ TEST(Mechanism, LoneNodeWithoutElementsIsDiagnosedNotCrashedOn) {
   EXPECT_EQ(r.modes.size(), 6u) << r.message;
   EXPECT_NE(r.message.find("node '1' dof ux"), std::string::npos) << r.message;
 }
+
+}  // namespace linear_static_test

@@ -47,7 +47,7 @@
 #include "solvers/linear_static.hpp"
 #include "solvers/member_loading.hpp"
 
-namespace beamfea {
+namespace beamfea::member_load_references_test {
 namespace {
 
 using json = nlohmann::json;
@@ -263,4 +263,4 @@ TEST(MemberLoadReferences, AnaStructContinuousBeamMatchesTheThreeMomentEquation)
 }
 
 }  // namespace
-}  // namespace beamfea
+}  // namespace beamfea::member_load_references_test

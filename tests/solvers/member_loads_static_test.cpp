@@ -14,6 +14,8 @@
 #include "solvers/member_loading.hpp"
 #include "support/models.hpp"
 
+namespace member_loads_static_test {
+
 using namespace beamfea;
 using nlohmann::json;
 
@@ -200,3 +202,5 @@ TEST(MemberLoadsBuckling, ColumnUnderItsOwnWeightBucklesAtGreenhillsLoad) {
   }
   EXPECT_LT(prev_err, 1e-3);
 }
+
+}  // namespace member_loads_static_test

@@ -8,6 +8,8 @@
 #include "solvers/linear_static.hpp"
 #include "solvers/modal.hpp"
 
+namespace modal_test {
+
 using namespace beamfea;
 using namespace beamfea::test;
 
@@ -301,3 +303,5 @@ TEST(Modal, TimoshenkoCantileverTipDeflectionIsExactWithOneElementInLinearStatic
   EXPECT_NEAR(r.u[6 + 1], vy, 1e-10 * vy);
   EXPECT_NEAR(r.u[6 + 2], vz, 1e-10 * vz);
 }
+
+}  // namespace modal_test

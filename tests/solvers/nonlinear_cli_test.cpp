@@ -8,6 +8,8 @@
 
 #include "nl_models.hpp"
 
+namespace nonlinear_cli_test {
+
 using namespace beamfea::test;
 namespace fs = std::filesystem;
 
@@ -80,3 +82,5 @@ TEST(NonlinearCli, PathWritesStepsCriticalPointsCsvAndVtuPerStep) {
   EXPECT_TRUE(fs::exists(dir / "out" / ("p_step" + std::to_string(n - 1) + ".vtu")));
   fs::remove_all(dir);
 }
+
+}  // namespace nonlinear_cli_test

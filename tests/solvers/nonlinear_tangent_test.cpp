@@ -9,6 +9,8 @@
 #include "solvers/path_following.hpp"
 #include "nl_models.hpp"
 
+namespace nonlinear_tangent_test {
+
 using namespace beamfea;
 using namespace beamfea::test;
 
@@ -286,3 +288,5 @@ TEST(NonlinearStructure, TangentMatchesFiniteDifferenceOfResidualWithLoopClosure
   const Eigen::MatrixXd Gc(ns.closure_curvature(s, tw, mu));
   EXPECT_GT(Gc.cwiseAbs().maxCoeff(), 1e3 * worst_k);
 }
+
+}  // namespace nonlinear_tangent_test

@@ -11,6 +11,8 @@
 #include "path_models.hpp"
 #include "solvers/path_following.hpp"
 
+namespace path_benchmarks_test {
+
 using namespace beamfea;
 using namespace beamfea::test;
 
@@ -184,3 +186,5 @@ TEST(PathBenchmarks, MaxStepsReachedIsAnIncompletePath) {
   EXPECT_EQ(r.brief_report(), "max_steps (3) reached");
   EXPECT_EQ(r.steps.size(), 4u);
 }
+
+}  // namespace path_benchmarks_test

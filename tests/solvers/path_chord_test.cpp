@@ -14,6 +14,8 @@
 #include "path_models.hpp"
 #include "solvers/path_following.hpp"
 
+namespace path_chord_test {
+
 using namespace beamfea;
 using namespace beamfea::test;
 
@@ -177,3 +179,5 @@ TEST(PathChord, OneFactorisationPerStepWhereTheChordConverges) {
     EXPECT_NEAR(rc.steps[i].load_factor, rn.steps[i].load_factor, 1e-6 * std::abs(rn.steps[i].load_factor));
   }
 }
+
+}  // namespace path_chord_test

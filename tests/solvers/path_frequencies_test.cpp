@@ -10,6 +10,8 @@
 #include "solvers/path_following.hpp"
 #include "solvers/path/vibration.hpp"
 
+namespace path_frequencies_test {
+
 using namespace beamfea;
 using namespace beamfea::test;
 
@@ -190,3 +192,5 @@ TEST(PathFrequencies, DeformedMassKeepsTheTotalMassAndTurnsInertias) {
     for (int j = 0; j < 3; ++j)
       EXPECT_NEAR(M.coeff(6 * b + 3 + i, 6 * b + 3 + j), i == j ? expected[i] : 0.0, 1e-3) << i << "," << j;
 }
+
+}  // namespace path_frequencies_test

@@ -14,6 +14,8 @@
 #include "solvers/path/stability.hpp"
 #include "solvers/path_following.hpp"
 
+namespace path_stability_test {
+
 using namespace beamfea;
 using namespace beamfea::test;
 
@@ -57,3 +59,5 @@ TEST(PathStability, LargeModelAnalysisAgreesWithDenseThroughALimitPoint) {
   EXPECT_GT(stable, 50);
   EXPECT_GE(unstable, 2);
 }
+
+}  // namespace path_stability_test

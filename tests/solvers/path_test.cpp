@@ -13,6 +13,8 @@
 #include <cstdlib>
 #include <iostream>
 
+namespace path_test {
+
 using namespace beamfea;
 using namespace beamfea::test;
 
@@ -333,3 +335,5 @@ TEST(PathFollowing, BadInputNamesItsEntity) {
   const Model held_apart = read_model(d);
   EXPECT_EQ(entity_of([&] { follow_path(held_apart, PathOptions{}); }), "supports and prescribed values");
 }
+
+}  // namespace path_test

@@ -9,6 +9,8 @@
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/path_following.hpp"
 
+namespace timoshenko_test {
+
 using namespace beamfea;
 using namespace beamfea::test;
 
@@ -94,3 +96,5 @@ TEST(Timoshenko, StubbyPinnedColumnBucklesAtEngessersLoad) {
   }
   EXPECT_GT(PE / engesser - 1.0, 0.02);
 }
+
+}  // namespace timoshenko_test
