@@ -24,6 +24,9 @@ inline constexpr std::array<const char*, 6> kDofNames{"ux", "uy", "uz", "rx", "r
 // Index of a DOF name ("ux" ... "rz"), or -1.
 int dof_index(const std::string& name);
 
+// Node, Material, Section, Element, Joint, Support and Prescribed: a field added here that the
+// DofMap or LinearStructure constructors read must join the cache key's comparison in
+// solvers/structure_cache.cpp, or a sweep would reuse a stale map.
 struct Node {
   std::string id;
   Vec3 x;                     // reference position

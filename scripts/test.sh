@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Fresh machine -> a tested build: install, build, and run the whole test suite (C++ and Python)
 # under GCC's AddressSanitizer and UndefinedBehaviorSanitizer, in build-asan/:
-# -fsanitize=address,undefined with every undefined behaviour fatal, libraries at -O1 (no debug information: reports name functions, not lines) with
-# assertions on, the tests' own code at -O0; leak detection with OpenMPI's own leaks suppressed
+# -fsanitize=address,undefined with every undefined behaviour fatal, libraries and tests at -O1 (no debug information: reports name
+# functions, not lines) with assertions on, unity batches; leak detection with OpenMPI's own leaks suppressed
 # (tests/fuzz/lsan.supp); the Python suites load the sanitized module into Debian's Python with the
 # ASan runtime preloaded. No benchmarks. One build instead of a Release one and a sanitized one
 # keeps CI within its budget (docs/testing.md has the times).
