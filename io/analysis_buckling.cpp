@@ -15,7 +15,6 @@ namespace beamfea {
 
 namespace {
 
-
 void check_buckling(const Model& model, const nlohmann::json& spec, const std::string& p) {
   json_in::expect_keys(spec, p, {"id", "type", "description", "modes", "load_case"});
   if (spec.contains("modes")) json_in::integer_in(spec["modes"], json_in::child(p, "modes"), "buckling modes", 1, kMaxModes);

@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -24,9 +23,6 @@ namespace {
 
 // Case ids of a grid are indices; more digits than this cannot be one (and would overflow).
 constexpr std::size_t kMaxGridIdDigits = 18;
-// The longest shortest-round-trip text of a double is 24 characters ("-2.2250738585072014e-308":
-// 17 significant digits, a sign, a point, "e-308"); "-inf" and "nan" are shorter. Room to spare.
-constexpr std::size_t kMaxDoubleChars = 32;
 
 std::string without_line_breaks(std::string s) {
   for (char& c : s)
@@ -47,17 +43,20 @@ std::string cell_text(const J& v) {
   }
 }
 
-// Appends x as cell_text's fmt::format("{}") writes it (shortest round trip), with the format
-// compiled and the digits written into a buffer on the stack: a sweep formats every number of every
-// case's outputs, and the runtime format's parsing and its appends one character at a time were
-// most of that cost. (format_to_n's truncating iterator also writes a character at a time: the
-// buffer has room for the longest text instead.) Digits, a point, a sign, "e", "inf" or "nan": a
-// CSV field that never needs quotes.
-void append_number(std::string& line, double x) {
-  char digits[kMaxDoubleChars];
-  char* end = fmt::format_to(digits, FMT_COMPILE("{}"), x);
-  line.append(digits, static_cast<std::size_t>(end - digits));
+// Appends x as the compiled format `f` writes it, the digits first into fmt's buffer (on the stack
+// up to 500 characters) and then onto the line at once: a sweep formats every number of every
+// case's outputs, and a runtime format's parsing and appends one character at a time (a
+// std::string back_inserter, or format_to_n's truncating iterator) were most of that cost.
+template <class CompiledFormat>
+void append_formatted(std::string& line, const CompiledFormat& f, double x) {
+  fmt::memory_buffer digits;
+  fmt::format_to(fmt::appender(digits), f, x);
+  line.append(digits.data(), digits.size());
 }
+
+// x as cell_text's fmt::format("{}") writes it (shortest round trip). Digits, a point, a sign, "e",
+// "inf" or "nan": a CSV field that never needs quotes.
+void append_number(std::string& line, double x) { append_formatted(line, FMT_COMPILE("{}"), x); }
 
 std::string read_text(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -290,13 +289,7 @@ void append_sweep_row(std::string& line, const Sweep& s, std::size_t index, cons
   if (r.message.find_first_of("\n\r") == std::string::npos) add(r.message);
   else add(without_line_breaks(r.message));
   line += ',';  // digits, a point and maybe a sign: no quoting
-  if (std::abs(r.wall_time_s) < 1e15) {  // at most 22 characters: compiled, into a buffer (append_number)
-    char digits[kMaxDoubleChars];
-    char* end = fmt::format_to(digits, FMT_COMPILE("{:.6f}"), r.wall_time_s);
-    line.append(digits, static_cast<std::size_t>(end - digits));
-  } else {
-    fmt::format_to(std::back_inserter(line), "{:.6f}", r.wall_time_s);
-  }
+  append_formatted(line, FMT_COMPILE("{:.6f}"), r.wall_time_s);
   line += '\n';
 }
 
