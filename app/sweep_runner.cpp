@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <memory>
 #include <mutex>
-#include <optional>
 #include <nlohmann/json.hpp>
 #include <thread>
 #include <vector>
@@ -63,7 +62,9 @@ std::filesystem::path keep_dir(const Sweep& s, const SweepOptions& o, std::size_
 
 // Rank 0: reads the table to resume, or starts a new one whose columns are those of the first
 // case that ends ok (the probe). Errors are returned in the plan, to be broadcast.
-Plan make_plan(const Sweep& sweep, const SweepOptions& options, const std::filesystem::path& table) {
+// `workspace`: the calling thread's, for the probe's cases (and then for the inline cases).
+Plan make_plan(const Sweep& sweep, const SweepOptions& options, const std::filesystem::path& table,
+               SweepWorkspace& workspace) {
   Plan plan;
   try {
     std::filesystem::create_directories(options.out_dir);
@@ -74,11 +75,10 @@ Plan make_plan(const Sweep& sweep, const SweepOptions& options, const std::files
       plan.columns = resumed.columns;
     } else {
       std::vector<std::pair<std::size_t, SweepCaseResult>> probe;
-      SweepCaseDocument documents(sweep);
       const SweepCaseResult* ok = nullptr;
       for (std::size_t i = 0; i < sweep.size() && probe.size() < kProbeLimit && !stop_requested(options); ++i) {
         if (done[i]) continue;
-        probe.emplace_back(i, run_sweep_case(sweep, i, keep_dir(sweep, options, i), &documents));
+        run_sweep_case(sweep, i, keep_dir(sweep, options, i), workspace, probe.emplace_back(i, SweepCaseResult()).second);
         if (probe.back().second.status == SweepCaseResult::Status::Ok) {
           ok = &probe.back().second;
           break;
@@ -125,20 +125,21 @@ int worker_count(const SweepOptions& options, int ranks, std::size_t cases) {
 // collecting thread runs the cases itself, inline, in take() (no hand-off, no wake-ups per case).
 class WorkerPool {
  public:
+  // `workspace`: the calling thread's, for the inline cases.
   WorkerPool(const Sweep& sweep, const SweepOptions& options, const SweepColumns& columns,
-             const std::vector<std::size_t>& pending, int jobs, bool run_inline)
-      : sweep_(sweep), options_(options), columns_(columns), pending_(pending), jobs_(run_inline ? 0 : jobs) {
-    if (jobs_ == 0) inline_documents_.emplace(sweep_);
+             const std::vector<std::size_t>& pending, int jobs, bool run_inline, SweepWorkspace& workspace)
+      : sweep_(sweep), options_(options), columns_(columns), pending_(pending), jobs_(run_inline ? 0 : jobs),
+        inline_workspace_(workspace) {
     for (int w = 0; w < jobs_; ++w)
       threads_.emplace_back([this] {
-        SweepCaseDocument documents(sweep_);  // this worker's, reused case after case
-        SweepCaseResult result;               // likewise
+        SweepWorkspace workspace(sweep_);  // this worker's, reused case after case
+        SweepCaseResult result;            // likewise
         for (;;) {
           if (abort_ || stop_requested(options_)) break;
           const std::size_t k = next_++;
           if (k >= pending_.size()) break;
           Batch one;
-          run_one(pending_[k], one, documents, result);
+          run_one(pending_[k], one, workspace, result);
           {
             std::lock_guard lock(mutex_);
             batch_.rows += one.rows;
@@ -171,7 +172,7 @@ class WorkerPool {
       Batch b;
       const auto t0 = std::chrono::steady_clock::now();
       while (next_ < pending_.size() && !stop_requested(options_) && std::chrono::steady_clock::now() - t0 < period)
-        run_one(pending_[next_++], b, *inline_documents_, inline_result_);
+        run_one(pending_[next_++], b, inline_workspace_, inline_result_);
       b.all_done = next_ >= pending_.size() || stop_requested(options_);
       return b;
     }
@@ -188,9 +189,9 @@ class WorkerPool {
   }
 
  private:
-  // `documents` and `r`: the calling thread's, reused case after case.
-  void run_one(std::size_t i, Batch& into, SweepCaseDocument& documents, SweepCaseResult& r) const {
-    run_sweep_case(sweep_, i, keep_dir(sweep_, options_, i), &documents, r);
+  // `workspace` and `r`: the calling thread's, reused case after case.
+  void run_one(std::size_t i, Batch& into, SweepWorkspace& workspace, SweepCaseResult& r) const {
+    run_sweep_case(sweep_, i, keep_dir(sweep_, options_, i), workspace, r);
     append_sweep_row(into.rows, sweep_, i, columns_, r);
     ++into.count;
     if (r.status != SweepCaseResult::Status::Ok) ++into.failed;
@@ -201,8 +202,8 @@ class WorkerPool {
   const SweepColumns& columns_;
   const std::vector<std::size_t>& pending_;
   int jobs_;  // worker threads; 0: the cases run inline in take()
-  std::optional<SweepCaseDocument> inline_documents_;  // the inline cases' document
-  SweepCaseResult inline_result_;                      // and their result, reused
+  SweepWorkspace& inline_workspace_;  // the inline cases' workspace (the caller's)
+  SweepCaseResult inline_result_;     // and their result, reused
   std::vector<std::thread> threads_;
   std::mutex mutex_;
   std::condition_variable cv_;
@@ -250,8 +251,10 @@ SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepCom
   const auto table = options.out_dir / "cases.csv";
 
   // Rank 0 settles the columns and the cases already done, and starts the table.
+  // The calling thread's case workspace: the probe's cases, then the inline cases, reuse it.
+  SweepWorkspace workspace(sweep);
   Plan plan;
-  if (root) plan = make_plan(sweep, options, table);
+  if (root) plan = make_plan(sweep, options, table, workspace);
   if (ranks > 1) {
     std::string text = root ? plan_to_json(plan).dump() : std::string();
     comm->broadcast(text);
@@ -267,7 +270,7 @@ SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepCom
   if (root) appender = std::make_unique<SweepTableAppender>(table);
 
   const int workers = worker_count(options, ranks, pending.size());
-  WorkerPool pool(sweep, options, plan.columns, pending, workers, workers == 1 && ranks == 1);
+  WorkerPool pool(sweep, options, plan.columns, pending, workers, workers == 1 && ranks == 1, workspace);
   const auto t_cases = std::chrono::steady_clock::now();
   int ranks_finished = 0;
   for (;;) {

@@ -1,18 +1,34 @@
 #include "core/meshing.hpp"
 
+#include <charconv>
+
 namespace beamfea {
 
-std::string internal_node_id(const std::string& member_id, int k) { return member_id + "#" + std::to_string(k); }
+namespace {
+// internal_node_id written over `out` (its storage reused).
+void assign_internal_node_id(std::string& out, const std::string& member_id, int k) {
+  char digits[16];
+  const auto end = std::to_chars(digits, digits + sizeof digits, k).ptr;
+  out.assign(member_id).append(1, '#').append(digits, end);
+}
+}  // namespace
+
+std::string internal_node_id(const std::string& member_id, int k) {
+  std::string id;
+  assign_internal_node_id(id, member_id, k);
+  return id;
+}
 
 std::string taken_internal_node_id(const Model& model, const Member& member) {
+  std::string id;
   for (int k = 1; k < member.divisions; ++k) {
-    std::string id = internal_node_id(member.id, k);
+    assign_internal_node_id(id, member.id, k);
     if (model.find_node(id) >= 0) return id;
   }
   return "";
 }
 
-int add_meshed_member(Model& model, Member mem) {
+int add_meshed_member(Model& model, Member mem, Model* spare) {
   const int mi = static_cast<int>(model.members.size());
   const Vec3 x1 = model.nodes[mem.nodes[0]].x, x2 = model.nodes[mem.nodes[1]].x;
   const int n = mem.divisions;
@@ -22,14 +38,15 @@ int add_meshed_member(Model& model, Member mem) {
   for (int k = 0; k < n; ++k) {
     int next = mem.nodes[1];
     if (k + 1 < n) {
-      Node node;
-      node.id = internal_node_id(mem.id, k + 1);
+      Node node = recycled(spare ? &spare->nodes : nullptr, model.nodes.size());
+      assign_internal_node_id(node.id, mem.id, k + 1);
       node.x = x1 + (x2 - x1) * (static_cast<double>(k + 1) / n);
       node.member = mi;
       next = model.add_node(std::move(node));
     }
-    Element e;
-    e.id = n == 1 ? mem.id : internal_node_id(mem.id, k + 1);
+    Element e = recycled(spare ? &spare->elements : nullptr, model.elements.size());
+    if (n == 1) e.id = mem.id;
+    else assign_internal_node_id(e.id, mem.id, k + 1);
     e.type = mem.type;
     e.nodes = {prev, next};
     e.material = mem.material;

@@ -19,7 +19,8 @@ std::string internal_node_id(const std::string& member_id, int k);
 std::string taken_internal_node_id(const Model& model, const Member& member);
 
 // Appends `member` (end nodes, type, properties and divisions set; `elements` empty), its
-// internal nodes and its elements to `model`; returns the member's index.
-int add_meshed_member(Model& model, Member member);
+// internal nodes and its elements to `model`; returns the member's index. `spare` (may be null):
+// a previous model whose nodes' and elements' storage the new ones take (core/model.hpp, recycled).
+int add_meshed_member(Model& model, Member member, Model* spare = nullptr);
 
 }  // namespace beamfea

@@ -54,10 +54,10 @@ int add_indexed(V& items, IdIndex& index, T item) {
   // An index out of step (items pushed directly) is rebuilt first, so that it stays usable.
   if (index.size() != items.size()) {
     index.clear();
-    for (std::size_t k = 0; k < items.size(); ++k) index.add(items[k].id, static_cast<int>(k));
+    for (std::size_t k = 0; k < items.size(); ++k) index.add(items, static_cast<int>(k));
   }
   items.push_back(std::move(item));
-  index.add(items.back().id, i);
+  index.add(items, i);
   return i;
 }
 
@@ -66,10 +66,14 @@ int add_indexed(V& items, IdIndex& index, T item) {
 int Model::add_node(Node n) { return add_indexed(nodes, node_index, std::move(n)); }
 int Model::add_member(Member m) { return add_indexed(members, member_index, std::move(m)); }
 int Model::add_joint(Joint j) { return add_indexed(joints, joint_index, std::move(j)); }
+int Model::add_material(Material m) { return add_indexed(materials, material_index, std::move(m)); }
+int Model::add_section(Section s) { return add_indexed(sections, section_index, std::move(s)); }
 
 int Model::find_node(const std::string& id) const { return node_index.find(nodes, id); }
 int Model::find_member(const std::string& id) const { return member_index.find(members, id); }
 int Model::find_joint(const std::string& id) const { return joint_index.find(joints, id); }
+int Model::find_material(const std::string& id) const { return material_index.find(materials, id); }
+int Model::find_section(const std::string& id) const { return section_index.find(sections, id); }
 // Few cases and combinations: a scan.
 template <class V>
 static int scan_for_id(const V& v, const std::string& id) {
@@ -124,6 +128,29 @@ void Model::set_default_loads(const LoadSet& s) {
   joint_loads = s.joint;
   member_loads = s.member;
   gravity = s.gravity;
+}
+
+void Model::clear() {
+  nodes.clear();
+  materials.clear();
+  sections.clear();
+  members.clear();
+  elements.clear();
+  joints.clear();
+  supports.clear();
+  prescribed.clear();
+  loads.clear();
+  joint_loads.clear();
+  masses.clear();
+  member_loads.clear();
+  gravity = Vec3::Zero();
+  load_cases.clear();
+  combinations.clear();
+  node_index.clear();
+  member_index.clear();
+  joint_index.clear();
+  material_index.clear();
+  section_index.clear();
 }
 
 std::string Model::describe(const DofRef& d) const {

@@ -7,9 +7,11 @@
 // A *member* is what the user wrote in "elements"; a beam member with "divisions": n is meshed
 // into n *elements* of equal length with n-1 internal nodes named "<member>#1" ... "<member>#(n-1)".
 #include <array>
+#include <algorithm>
+#include <functional>
 #include <optional>
 #include <string>
-#include <unordered_map>
+#include <string_view>
 #include <vector>
 
 #include "core/rotation.hpp"
@@ -147,30 +149,76 @@ struct JointLoad {
 };
 
 // Index from ids to positions in one of Model's vectors. Kept by Model::add_node / add_member /
-// add_joint; a lookup falls back to a linear scan when the vector was filled directly (tests build
-// models with push_back), so it is never wrong, only faster when kept. The first of two equal ids
-// wins, as a scan would find it.
+// add_joint / add_material / add_section; a lookup falls back to a linear scan when the vector was
+// filled directly (tests build models with push_back), so it is never wrong, only faster when kept.
+// The first of two equal ids wins, as a scan would find it.
+// An open-addressing hash table of positions (linear probing, at most half full): the ids stay in
+// the items, so recording one allocates nothing, and clear() keeps the table (a model read again
+// into the same Model, case after case of a sweep, reuses it).
 class IdIndex {
  public:
-  // Records `id` at position `i`; returns false (and keeps the first) when `id` is already there.
-  bool add(const std::string& id, int i) { return map_.emplace(id, i).second; }
+  // Records position `i` of `items` under items[i].id; returns false (and keeps the first) when
+  // that id is already there.
+  template <class V>
+  bool add(const V& items, int i) {
+    if (2 * (size_ + 1) > slots_.size()) grow(items);
+    for (std::size_t s = slot_of(items[i].id);; s = (s + 1) & (slots_.size() - 1)) {
+      if (slots_[s] < 0) {
+        slots_[s] = i;
+        ++size_;
+        return true;
+      }
+      if (items[slots_[s]].id == items[i].id) return false;
+    }
+  }
   // The position of `id` in `items`, or -1 (the index is used when in step with `items`).
   template <class V>
-  int find(const V& items, const std::string& id) const {
-    if (map_.size() == items.size()) {
-      auto it = map_.find(id);
-      return it == map_.end() ? -1 : it->second;
+  int find(const V& items, std::string_view id) const {
+    if (size_ == items.size()) {
+      if (size_ == 0) return -1;
+      for (std::size_t s = slot_of(id);; s = (s + 1) & (slots_.size() - 1)) {
+        if (slots_[s] < 0) return -1;
+        if (items[slots_[s]].id == id) return slots_[s];
+      }
     }
     for (std::size_t i = 0; i < items.size(); ++i)
       if (items[i].id == id) return static_cast<int>(i);
     return -1;
   }
-  void clear() { map_.clear(); }
-  void reserve(std::size_t n) { map_.reserve(n); }
-  std::size_t size() const { return map_.size(); }
+  // Empties the index; its table keeps its size.
+  void clear() {
+    std::fill(slots_.begin(), slots_.end(), -1);
+    size_ = 0;
+  }
+  // Room for n ids without growing (an empty index only: growing needs the items).
+  void reserve(std::size_t n) {
+    if (size_ == 0 && 2 * n > slots_.size()) slots_.assign(table_size(n), -1);
+  }
+  std::size_t size() const { return size_; }
 
  private:
-  std::unordered_map<std::string, int> map_;
+  static constexpr std::size_t kMinTable = 16;  // slots of a first table (a power of two)
+  // A power of two holding n ids at most half full.
+  static std::size_t table_size(std::size_t n) {
+    std::size_t t = kMinTable;
+    while (t < 2 * n) t *= 2;
+    return t;
+  }
+  std::size_t slot_of(std::string_view id) const { return std::hash<std::string_view>{}(id) & (slots_.size() - 1); }
+  template <class V>
+  void grow(const V& items) {
+    std::vector<int> old = std::move(slots_);
+    slots_.assign(std::max(kMinTable, 2 * old.size()), -1);
+    for (const int k : old) {
+      if (k < 0) continue;
+      std::size_t s = slot_of(items[k].id);
+      while (slots_[s] >= 0) s = (s + 1) & (slots_.size() - 1);
+      slots_[s] = k;
+    }
+  }
+
+  std::vector<int> slots_;  // -1: empty; else a position in the items
+  std::size_t size_ = 0;    // positions recorded
 };
 
 // A load between the end nodes of a beam member, following the member over its segments.
@@ -236,10 +284,14 @@ struct Model {
   int add_node(Node n);
   int add_member(Member m);
   int add_joint(Joint j);
+  int add_material(Material m);
+  int add_section(Section s);
 
   int find_node(const std::string& id) const;    // -1 if absent
   int find_member(const std::string& id) const;  // -1 if absent
   int find_joint(const std::string& id) const;   // -1 if absent
+  int find_material(const std::string& id) const;  // -1 if absent
+  int find_section(const std::string& id) const;   // -1 if absent
   int find_load_case(const std::string& id) const;    // -1 if absent
   int find_combination(const std::string& id) const;  // -1 if absent
   // The default load case (top-level loads and gravity).
@@ -255,10 +307,43 @@ struct Model {
   // rotations and translations commensurable in rank decisions.
   double length_scale() const;
 
-  // Id indexes of nodes, members and joints (see IdIndex).
+  // Empties the model (as a default Model), keeping the storage of its vectors and id indexes
+  // (a model read again into the same Model: io/model_reader.hpp's ModelBuffer). A vector added
+  // to Model is cleared here too.
+  void clear();
+
+  // Id indexes of nodes, members, joints, materials and sections (see IdIndex).
   IdIndex node_index;
   IdIndex member_index;
   IdIndex joint_index;
+  IdIndex material_index;
+  IdIndex section_index;
 };
+
+// Building a model again out of an old one's storage (io/model_reader.hpp's ModelBuffer: a sweep
+// worker reads a model per case): recycled(spare, i) is a default item (every field as a fresh one)
+// that holds the storage of (*spare)[i]'s strings and vectors, emptied, when there is such an item,
+// so that a model of the same shape is built without allocating. `spare` may be null (a fresh
+// model). A string or vector field added to an item may join its adopt_storage; one left out is
+// only allocated afresh, never stale.
+inline void adopt_storage(Node& to, Node& from) { to.id.swap(from.id), to.id.clear(); }
+inline void adopt_storage(Material& to, Material& from) { to.id.swap(from.id), to.id.clear(); }
+inline void adopt_storage(Section& to, Section& from) { to.id.swap(from.id), to.id.clear(); }
+inline void adopt_storage(Element& to, Element& from) { to.id.swap(from.id), to.id.clear(); }
+inline void adopt_storage(Member& to, Member& from) {
+  to.id.swap(from.id), to.id.clear();
+  to.elements.swap(from.elements), to.elements.clear();
+}
+inline void adopt_storage(Joint& to, Joint& from) {
+  to.id.swap(from.id), to.id.clear();
+  to.axes.swap(from.axes), to.axes.clear();
+  to.stiffness.swap(from.stiffness), to.stiffness.clear();
+}
+template <class T>
+T recycled(std::vector<T>* spare, std::size_t i) {
+  T t;
+  if (spare && i < spare->size()) adopt_storage(t, (*spare)[i]);
+  return t;
+}
 
 }  // namespace beamfea

@@ -46,6 +46,10 @@ struct AnalysisContext {
   MessageSink progress;             // may be empty
   MessageSink warning;              // may be empty
   RunCache* cache = nullptr;       // may be null: nothing shared
+  // May be null: this analysis's result in the previous run of a reused RunReport (run_document's
+  // overload that writes into one), whose storage the analysis may take for its result (moved
+  // out, written over with ObjectFiller) or leave.
+  ojson* previous_result = nullptr;
 };
 
 // How an analysis ended. results.json keeps its own "status" strings (a contract); this is the
@@ -133,6 +137,33 @@ void append_new_key(ojson& object, const std::string& key, ojson value);
 // ordered_json's (const key, value) pairs are copied, not moved, when its vector grows (a deep
 // copy of every subtree already in the object).
 ojson object_with_capacity(std::size_t n);
+
+// Writes a JSON object key by key over what it held before (a results object reused run after
+// run, RunReport): where the object held the key being written at that position, the value there
+// is handed back to be overwritten (with the set_* helpers below, strings and arrays keep their
+// storage); otherwise the keys from that position on are dropped and the key is appended.
+// finish() drops the keys not written. The values written are those of a fresh object, in the
+// same order: only where storage comes from differs.
+class ObjectFiller {
+ public:
+  // `object` becomes an object (with room for `keys` keys) if it is not one.
+  ObjectFiller(ojson& object, std::size_t keys);
+  // The value at `key`: the old one (to overwrite), or a new null one. Valid until the next slot().
+  ojson& slot(std::string_view key);
+  void finish();
+
+ private:
+  ojson::object_t::Container& items_;
+  std::size_t next_ = 0;  // keys written so far
+};
+// Values written over `v` (its storage reused when it already holds that shape), the same as
+// assigning the fresh value: a string; numbers (an array); a 6x6 matrix (an array of 6 rows);
+// vectors (an array of arrays); strings (an array).
+void set_string(ojson& v, std::string_view s);
+void set_numbers(ojson& v, const double* p, std::size_t n);
+void set_matrix(ojson& v, const Mat6& m);
+void set_vectors(ojson& v, const std::vector<Vec6>& vectors);
+void set_strings(ojson& v, const std::vector<std::string>& strings);
 
 // Registered analyses (io/analysis_*.cpp).
 AnalysisType linear_static_analysis();

@@ -200,32 +200,32 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
   const bool loaded = ctx.spec.contains("load_case");
   CondensedStiffness k = loaded ? loaded_node_stiffness(model_for_load_case(model, ctx.spec), node)
                                 : linear_node_stiffness(model, node);
-  // Room for every key (and run_document's wall_time_s): an ordered_json object that grows deep
-  // copies what it already holds.
-  out.result = object_with_capacity(kStiffnessResultKeys);
-  out.result["type"] = "stiffness";
-  out.result["node"] = model.nodes[node].id;
-  if (loaded) out.result["load_case"] = json_in::id(ctx.spec["load_case"], "", "load_case");
-  out.result["status"] = k.ok ? "ok" : "mechanism";
-  out.result["message"] = k.message;
+  // Written over the previous run's result when there is one (its storage reused: a sweep case
+  // allocates nothing for it), with room for every key (and run_document's wall_time_s): an
+  // ordered_json object that grows deep copies what it already holds.
+  if (ctx.previous_result) out.result = std::move(*ctx.previous_result);
+  ObjectFiller r(out.result, kStiffnessResultKeys);
+  set_string(r.slot("type"), "stiffness");
+  set_string(r.slot("node"), model.nodes[node].id);
+  if (loaded) set_string(r.slot("load_case"), json_in::id(ctx.spec["load_case"], "", "load_case"));
+  set_string(r.slot("status"), k.ok ? "ok" : "mechanism");
+  set_string(r.slot("message"), k.message);
   out.message = std::move(k.message);
   if (!k.ok) {
     out.termination = AnalysisTermination::Mechanism;
-    out.result["mechanism"] = mechanism_json(model, k.modes);
+    r.slot("mechanism") = mechanism_json(model, k.modes);
+    r.finish();
     return out;
   }
-  out.result["matrix"] = to_json(k.K);
-  out.result["rank"] = k.rank;
-  ojson ns = ojson::array();
-  for (const auto& v : k.null_space) ns.push_back(to_json(v));
-  out.result["null_space"] = std::move(ns);  // moved: a copy would deep-copy its arrays
-  out.result["compliance"] = to_json(k.compliance);
-  ojson rd = ojson::array();
-  for (const auto& v : k.rigid_directions) rd.push_back(to_json(v));
-  out.result["rigid_directions"] = std::move(rd);
-  out.result["statically_indeterminate"] = k.statically_indeterminate;
-  out.result["length_scale"] = model.length_scale();
-  out.result["scaled_eigenvalues"] = to_json(k.eigenvalues);
+  set_matrix(r.slot("matrix"), k.K);
+  r.slot("rank") = k.rank;
+  set_vectors(r.slot("null_space"), k.null_space);
+  set_matrix(r.slot("compliance"), k.compliance);
+  set_vectors(r.slot("rigid_directions"), k.rigid_directions);
+  set_strings(r.slot("statically_indeterminate"), k.statically_indeterminate);
+  r.slot("length_scale") = model.length_scale();
+  set_numbers(r.slot("scaled_eigenvalues"), k.eigenvalues.data(), static_cast<std::size_t>(k.eigenvalues.size()));
+  r.finish();
   return out;
 }
 

@@ -1,5 +1,4 @@
 #include <cmath>
-#include <map>
 
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
@@ -43,15 +42,20 @@ void check_analyses(const Model& model, const nlohmann::json& document) {
   if (it == document.end()) throw InputError("/analyses", "no analyses: nothing to run (add \"analyses\": [{\"id\": ..., \"type\": ...}])");
   json_in::array(*it, "/analyses", "analyses");
   if (it->empty()) throw InputError("/analyses", "no analyses: nothing to run");
-  std::map<std::string, std::size_t> ids;
+  // Two analyses or more: their ids and files must differ (owners[i] is analysis i). One cannot
+  // clash with itself (and a single analysis, a sweep case's usual document, allocates nothing
+  // here). Both checks compare pairs, as check_file_clashes does.
+  const bool several = it->size() > 1;
   std::vector<AnalysisFileOwner> owners;
+  if (several) owners.reserve(it->size());
   for (std::size_t i = 0; i < it->size(); ++i) {
     const json_in::Pointer p = json_in::child("/analyses", i);
     const auto& a = json_in::object((*it)[i], p, "analysis");
     const std::string id = analysis_id(json_in::require(a, p, "id", "analysis"), json_in::child(p, "id"));
-    if (auto [first, fresh] = ids.emplace(id, i); !fresh)
-      throw InputError(json_in::child(p, "id"), "duplicate analysis id '" + id + "' (first at " +
-                                                    json_in::child("/analyses", first->second).str() + ")");
+    for (std::size_t first = 0; first < owners.size(); ++first)
+      if (owners[first].id == id)
+        throw InputError(json_in::child(p, "id"), "duplicate analysis id '" + id + "' (first at " +
+                                                      json_in::child("/analyses", first).str() + ")");
     const std::string type = json_in::string(json_in::require(a, p, "type", "analysis '" + id + "'"),
                                              json_in::child(p, "type"), "analysis '" + id + "'");
     const AnalysisType* t = find_analysis_type(type);
@@ -62,9 +66,9 @@ void check_analyses(const Model& model, const nlohmann::json& document) {
     }
     check_load_case(model, a, p);
     t->check(model, a, p);
-    owners.push_back({id, p, t});
+    if (several) owners.push_back({id, p, t});
   }
-  check_file_clashes(owners);
+  if (several) check_file_clashes(owners);
 }
 
 void check_nonlinear_model(const Model& model, const json_in::Pointer& p) {
@@ -121,6 +125,59 @@ ojson object_with_capacity(std::size_t n) {
   ojson o = ojson::object();
   static_cast<ojson::object_t::Container&>(o.get_ref<ojson::object_t&>()).reserve(n);
   return o;
+}
+
+ObjectFiller::ObjectFiller(ojson& object, std::size_t keys)
+    : items_((object.is_object() ? object : (object = ojson::object())).get_ref<ojson::object_t&>()) {
+  items_.reserve(keys);
+}
+
+ojson& ObjectFiller::slot(std::string_view key) {
+  if (next_ < items_.size() && items_[next_].first == key) return items_[next_++].second;
+  finish();  // a different shape from here on
+  items_.emplace_back(std::string(key), ojson());
+  return items_[next_++].second;
+}
+
+void ObjectFiller::finish() {
+  // pop_back: ordered_json's (const key, value) pairs cannot be move-assigned, as erase would.
+  while (items_.size() > next_) items_.pop_back();
+}
+
+void set_string(ojson& v, std::string_view s) {
+  if (v.is_string()) v.get_ref<std::string&>().assign(s);
+  else v = std::string(s);
+}
+
+void set_numbers(ojson& v, const double* p, std::size_t n) {
+  if (!v.is_array()) v = ojson::array();
+  auto& a = v.get_ref<ojson::array_t&>();
+  a.resize(n);
+  for (std::size_t i = 0; i < n; ++i) a[i] = p[i];
+}
+
+void set_matrix(ojson& v, const Mat6& m) {
+  if (!v.is_array()) v = ojson::array();
+  auto& rows = v.get_ref<ojson::array_t&>();
+  rows.resize(6);
+  for (int i = 0; i < 6; ++i) {
+    const Vec6 row = m.row(i).transpose();
+    set_numbers(rows[i], row.data(), 6);
+  }
+}
+
+void set_vectors(ojson& v, const std::vector<Vec6>& vectors) {
+  if (!v.is_array()) v = ojson::array();
+  auto& a = v.get_ref<ojson::array_t&>();
+  a.resize(vectors.size());
+  for (std::size_t i = 0; i < vectors.size(); ++i) set_numbers(a[i], vectors[i].data(), 6);
+}
+
+void set_strings(ojson& v, const std::vector<std::string>& strings) {
+  if (!v.is_array()) v = ojson::array();
+  auto& a = v.get_ref<ojson::array_t&>();
+  a.resize(strings.size());
+  for (std::size_t i = 0; i < strings.size(); ++i) set_string(a[i], strings[i]);
 }
 
 namespace {

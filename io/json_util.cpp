@@ -1,6 +1,7 @@
 #include "io/json_util.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -138,14 +139,24 @@ std::string string(const json& v, const Pointer& pointer, const What& what) {
 }
 
 std::string id(const json& v, const Pointer& pointer, const What& what) {
+  std::string s;
+  id_into(s, v, pointer, what);
+  return s;
+}
+
+void id_into(std::string& out, const json& v, const Pointer& pointer, const What& what) {
   if (v.is_string()) {
-    auto s = v.get<std::string>();
+    const auto& s = v.get_ref<const std::string&>();
     if (s.empty()) throw InputError(pointer, msg(what, ": id must not be empty"));
-    return s;
+    out.assign(s);
+    return;
   }
-  if (v.is_number_unsigned()) return std::to_string(v.get<std::uint64_t>());
-  if (v.is_number_integer()) return std::to_string(v.get<long long>());
-  throw InputError(pointer, msg(what, ": an id must be a string or an integer"));
+  char digits[24];
+  std::to_chars_result r;
+  if (v.is_number_unsigned()) r = std::to_chars(digits, digits + sizeof digits, v.get<std::uint64_t>());
+  else if (v.is_number_integer()) r = std::to_chars(digits, digits + sizeof digits, v.get<long long>());
+  else throw InputError(pointer, msg(what, ": an id must be a string or an integer"));
+  out.assign(digits, r.ptr);
 }
 
 Vec3 vec3(const json& v, const Pointer& pointer, const What& what) {

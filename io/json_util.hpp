@@ -63,6 +63,15 @@ bool boolean(const json& v, const Pointer& pointer, const What& what);
 std::string string(const json& v, const Pointer& pointer, const What& what);
 // An id: a string or an integer, returned as a string.
 std::string id(const json& v, const Pointer& pointer, const What& what);
+// The same, written over `out` (its storage reused).
+void id_into(std::string& out, const json& v, const Pointer& pointer, const What& what);
+// The value of `key` in object `obj`, or null when absent (or `obj` is not an object): one search
+// where contains() then operator[] would make two.
+inline const json* field(const json& obj, std::string_view key) {
+  if (!obj.is_object()) return nullptr;
+  const auto it = obj.find(key);
+  return it == obj.end() ? nullptr : &*it;
+}
 Vec3 vec3(const json& v, const Pointer& pointer, const What& what);
 std::vector<double> numbers(const json& v, const Pointer& pointer, const What& what);
 const json& array(const json& v, const Pointer& pointer, const What& what);

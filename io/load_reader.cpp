@@ -97,19 +97,22 @@ PointMass read_mass(const Model& m, const json& o, const json_in::Pointer& p) {
 
 }  // namespace
 
-LoadSet read_load_list(const Model& m, const json& list, const json_in::Pointer& base) {
-  LoadSet s;
+namespace {
+// read_load_list, appending to the three vectors (the model's own, for its default case: their
+// storage is reused when a model is read again into the same Model).
+void append_load_list(const Model& m, const json& list, const json_in::Pointer& base, std::vector<NodalLoad>& nodal,
+                      std::vector<JointLoad>& joint, std::vector<MemberLoad>& member) {
   array(list, base, "loads");
   for (std::size_t i = 0; i < list.size(); ++i) {
     const json_in::Pointer p = child(base, i);
     const auto& o = object(list[i], p, "load");
-    if (o.contains("element")) {
-      s.member.push_back(read_member_load(m, o, p));
+    if (field(o, "element")) {
+      member.push_back(read_member_load(m, o, p));
       continue;
     }
-    if (o.contains("joint")) {
+    if (const json* joint_value = field(o, "joint")) {
       JointLoad l;
-      l.joint = joint_ref(m, o["joint"], child(p, "joint"));
+      l.joint = joint_ref(m, *joint_value, child(p, "joint"));
       const std::string what = "load on joint '" + m.joints[l.joint].id + "'";
       l.coordinate = o.contains("coordinate") ? integer(o["coordinate"], child(p, "coordinate"), what) : 0;
       if (l.coordinate < 0 || l.coordinate >= m.joints[l.joint].coordinates())
@@ -117,17 +120,23 @@ LoadSet read_load_list(const Model& m, const json& list, const json_in::Pointer&
                                                      std::to_string(m.joints[l.joint].coordinates()) + " coordinate(s)");
       l.value = number(require(o, p, "value", what), child(p, "value"), "load value");
       expect_keys(o, p, {"joint", "coordinate", "value"});
-      s.joint.push_back(l);
+      joint.push_back(l);
       continue;
     }
     NodalLoad l;
     l.node = node_ref(m, require(o, p, "node", "load"), child(p, "node"));
-    const std::string what = "load at node '" + m.nodes[l.node].id + "'";
-    if (o.contains("force")) l.force = vec3(o["force"], child(p, "force"), What(what, " force"));
-    if (o.contains("moment")) l.moment = vec3(o["moment"], child(p, "moment"), What(what, " moment"));
+    const std::string& node = m.nodes[l.node].id;  // "load at node '<id>' force" only in a message
+    if (const json* force = field(o, "force")) l.force = vec3(*force, child(p, "force"), What("load at node '", node, "' force"));
+    if (const json* moment = field(o, "moment")) l.moment = vec3(*moment, child(p, "moment"), What("load at node '", node, "' moment"));
     expect_keys(o, p, {"node", "force", "moment"});
-    s.nodal.push_back(l);
+    nodal.push_back(l);
   }
+}
+}  // namespace
+
+LoadSet read_load_list(const Model& m, const json& list, const json_in::Pointer& base) {
+  LoadSet s;
+  append_load_list(m, list, base, s.nodal, s.joint, s.member);
   return s;
 }
 
@@ -152,13 +161,16 @@ void for_each_identified(const json& doc, const char* key, const std::string& wh
 }  // namespace
 
 void read_loads_and_cases(const json& doc, Model& m) {
-  LoadSet def;
-  if (doc.contains("loads")) def = read_load_list(m, doc["loads"], "/loads");
-  if (doc.contains("gravity")) def.gravity = read_gravity(doc["gravity"], "/gravity");
-  m.set_default_loads(def);
+  // The default load case, straight into the model.
+  m.loads.clear();
+  m.joint_loads.clear();
+  m.member_loads.clear();
+  if (const json* loads = field(doc, "loads")) append_load_list(m, *loads, "/loads", m.loads, m.joint_loads, m.member_loads);
+  m.gravity = Vec3::Zero();
+  if (const json* gravity = field(doc, "gravity")) m.gravity = read_gravity(*gravity, "/gravity");
 
-  if (doc.contains("masses")) {
-    const auto& arr = array(doc["masses"], "/masses", "masses");
+  if (const json* masses = field(doc, "masses")) {
+    const auto& arr = array(*masses, "/masses", "masses");
     for (std::size_t i = 0; i < arr.size(); ++i) {
       const json_in::Pointer p = child("/masses", i);
       m.masses.push_back(read_mass(m, object(arr[i], p, "mass"), p));
@@ -191,8 +203,9 @@ void read_loads_and_cases(const json& doc, Model& m) {
 }
 
 double read_density(const json& o, const json_in::Pointer& p, const std::string& what) {
-  if (!o.contains("density")) return 0.0;
-  const double rho = number(o["density"], child(p, "density"), What(what, " density"));
+  const json* density = field(o, "density");
+  if (!density) return 0.0;
+  const double rho = number(*density, child(p, "density"), What(what, " density"));
   if (!(rho >= 0.0)) throw InputError(child(p, "density"), what + ": density must not be negative");
   return rho;
 }

@@ -95,15 +95,11 @@ void check_unique(int first, const std::string& kind, const Pointer& base, const
                      "duplicate " + kind + " id '" + id + "' (first at " + child(base, static_cast<std::size_t>(first)).str() + ")");
 }
 
-int index_of(const std::unordered_map<std::string, int>& index, const std::string& id) {
-  auto it = index.find(id);
-  return it == index.end() ? -1 : it->second;
-}
-
 DofRef read_dof_target(const Model& m, const json& e, const json_in::Pointer& p, const std::string& what) {
-  if (e.contains("joint")) {
-    const int j = joint_ref(m, e["joint"], child(p, "joint"));
-    int c = e.contains("coordinate") ? integer(e["coordinate"], child(p, "coordinate"), what) : 0;
+  if (const json* joint = field(e, "joint")) {
+    const int j = joint_ref(m, *joint, child(p, "joint"));
+    const json* coordinate = field(e, "coordinate");
+    const int c = coordinate ? integer(*coordinate, child(p, "coordinate"), what) : 0;
     if (c < 0 || c >= m.joints[j].coordinates())
       throw InputError(child(p, "coordinate"), what + ": joint '" + m.joints[j].id + "' has " +
                                                    std::to_string(m.joints[j].coordinates()) + " coordinate(s)");
@@ -120,14 +116,16 @@ DofRef read_dof_target(const Model& m, const json& e, const json_in::Pointer& p,
 
 }  // namespace reader
 
-Model read_model(const json& doc) {
+namespace {
+
+// read_model into an empty `m`, its items taking the storage of `spare`'s (may be null).
+void read_model_into(const json& doc, Model& m, Model* spare) {
   if (!doc.is_object()) throw InputError("", "the model must be a JSON object");
   // Top-level keys of a model file (docs/input-format.md). Add a new collection here.
   expect_keys(doc, "", {"nodes", "materials", "sections", "elements", "joints", "supports", "loads", "prescribed",
                         "analyses", "units", "title", "name", "description", "gravity", "masses", "load_cases",
                         "combinations"});
-  Model m;
-  reader::ReadState s{doc, m, {}, {}, 1.0};
+  reader::ReadState s{doc, m, spare, 1.0};
   reader::read_nodes(s);
   s.length_scale = m.length_scale();  // meshing adds nodes on members only: the box stays the same
   reader::read_materials(s);
@@ -137,7 +135,21 @@ Model read_model(const json& doc) {
   reader::read_supports(s);
   reader::read_loads(s);
   reader::read_prescribed(s);
+}
+
+}  // namespace
+
+Model read_model(const json& doc) {
+  Model m;
+  read_model_into(doc, m, nullptr);
   return m;
+}
+
+const Model& ModelBuffer::read(const json& doc) {
+  std::swap(model_, spare_);  // the last read becomes the spare
+  model_.clear();             // the one before: emptied, its vectors' storage kept
+  read_model_into(doc, model_, &spare_);
+  return model_;
 }
 
 }  // namespace beamfea

@@ -18,6 +18,22 @@ nlohmann::json read_json_file(const std::string& path);
 // Builds the model from a parsed document (the "analyses" entry is not read here).
 Model read_model(const nlohmann::json& doc);
 
+// Reads documents into one model again and again (a sweep worker's, case after case): each read
+// builds its items out of the storage of the read before (vectors, ids, joint axes, id indexes:
+// core/model.hpp, recycled), so that reading a model of the same shape allocates nothing. The
+// model is read_model's, bit for bit.
+class ModelBuffer {
+ public:
+  // As read_model(doc); valid until the next read. After an InputError the buffer holds a partly
+  // read model: read again before using it.
+  const Model& read(const nlohmann::json& doc);
+  const Model& model() const { return model_; }
+
+ private:
+  Model model_;  // the last read
+  Model spare_;  // the read before: lends its items' storage to the next read
+};
+
 // The node index for a node id given as a JSON value at `pointer`; throws InputError if unknown.
 int node_ref(const Model& m, const nlohmann::json& v, const json_in::Pointer& pointer);
 int joint_ref(const Model& m, const nlohmann::json& v, const json_in::Pointer& pointer);

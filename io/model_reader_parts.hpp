@@ -7,10 +7,9 @@
 //   io/read_boundary.cpp    supports, loads (io/load_reader.cpp: nodal, joint and member loads,
 //                           gravity, masses, load cases, combinations), prescribed values
 // Internal to io/: not installed as an API.
-#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <unordered_map>
+#include <vector>
 
 #include "core/model.hpp"
 #include "io/json_pointer.hpp"
@@ -23,9 +22,14 @@ using json = nlohmann::json;
 struct ReadState {
   const json& doc;
   Model& model;
-  std::unordered_map<std::string, int> materials;  // id -> index
-  std::unordered_map<std::string, int> sections;   // id -> index
-  double length_scale = 1.0;                       // of the user's nodes, computed once
+  Model* spare = nullptr;     // a previous model whose storage the items read take (may be null:
+                              // core/model.hpp, recycled)
+  double length_scale = 1.0;  // of the user's nodes, computed once
+  // A default item for position i of the model's collection, with the spare's storage.
+  template <class T>
+  T item(std::vector<T> Model::*collection, std::size_t i) const {
+    return recycled(spare ? &(spare->*collection) : nullptr, i);
+  }
 };
 
 // A beam theory by name ("euler_bernoulli", "timoshenko"); InputError at `pointer` otherwise.
@@ -37,8 +41,6 @@ const json& collection(const json& doc, const char* key, bool required);
 // Item `i` of the collection at `base` has id `id`, already held by item `first` (-1: by none, the
 // id index of the model or of the reader answers): a repeated id is an InputError naming both places.
 void check_unique(int first, const std::string& kind, const json_in::Pointer& base, const std::string& id, std::size_t i);
-// The position of `id` in a reader's id index, or -1.
-int index_of(const std::unordered_map<std::string, int>& index, const std::string& id);
 
 // A node DOF {"node", "dof"} or a joint coordinate {"joint", "coordinate"} named in object `e`.
 DofRef read_dof_target(const Model& m, const json& e, const json_in::Pointer& p, const std::string& what);

@@ -20,9 +20,9 @@ void read_supports(ReadState& s) {
     expect_keys(o, p, {"node", "fix"});
     Support sup;
     sup.node = node_ref(m, require(o, p, "node", "support"), child(p, "node"));
-    const std::string what = "support at node '" + m.nodes[sup.node].id + "'";
+    const What what("support at node '", m.nodes[sup.node].id, "'");  // a string only in a message
     const auto& fix = require(o, p, "fix", what);
-    if (fix.is_string() && fix.get<std::string>() == "all") {
+    if (fix.is_string() && fix.get_ref<const std::string&>() == "all") {
       sup.fixed.fill(true);
     } else {
       array(fix, child(p, "fix"), what);
@@ -30,7 +30,7 @@ void read_supports(ReadState& s) {
         const std::string name = string(fix[k], child(child(p, "fix"), k), what);
         const int d = dof_index(name);
         if (d < 0)
-          throw InputError(child(child(p, "fix"), k), what + ": unknown DOF '" + name + "' (expected ux uy uz rx ry rz)");
+          throw InputError(child(child(p, "fix"), k), what.str() + ": unknown DOF '" + name + "' (expected ux uy uz rx ry rz)");
         sup.fixed[d] = true;
       }
     }

@@ -36,33 +36,35 @@ void read_axes(Joint& j, const json& o, const json_in::Pointer& p, const std::st
   // Axes: one per rotation coordinate; a virtual spring gives its frame (x, y, z), used for its
   // three translations and its three rotations alike.
   const int naxes = j.type == JointType::VirtualSpring ? 3 : nc;
-  std::vector<Vec3> axes_in;
-  if (o.contains("axes")) {
-    const auto& axes = array(o["axes"], child(p, "axes"), What(what, " axes"));
+  // Read into j.axes (a recycled joint's storage reused).
+  j.axes.clear();
+  j.axes.reserve(j.type == JointType::VirtualSpring ? 2 * naxes : naxes);
+  if (const json* axes_value = field(o, "axes")) {
+    const auto& axes = array(*axes_value, child(p, "axes"), What(what, " axes"));
     if (static_cast<int>(axes.size()) != naxes)
       throw InputError(child(p, "axes"), what + ": a " + type + " joint needs " + std::to_string(naxes) + " axes");
     for (std::size_t k = 0; k < axes.size(); ++k) {
       Vec3 a = vec3(axes[k], child(child(p, "axes"), k), What(what, " axis"));
       if (a.norm() == 0.0) throw InputError(child(child(p, "axes"), k), what + ": axis is zero");
-      axes_in.push_back(a.normalized());
+      j.axes.push_back(a.normalized());
     }
   } else if (j.type == JointType::Spherical || j.type == JointType::VirtualSpring) {
-    axes_in = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+    j.axes.insert(j.axes.end(), {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()});
   } else {
     throw InputError(child(p, "axes"), what + ": missing field 'axes'");
   }
+  const auto& axes_in = j.axes;
   for (int a = 0; a < naxes; ++a)
     for (int b = a + 1; b < naxes; ++b)
       if (axes_in[a].cross(axes_in[b]).norm() < kParallelAxes)
         throw InputError(child(p, "axes"), what + ": axes " + std::to_string(a) + " and " + std::to_string(b) + " are parallel");
-  j.axes = axes_in;
   if (j.type == JointType::VirtualSpring) {
     for (int a = 0; a < 3; ++a)
       for (int b = a + 1; b < 3; ++b)
         if (std::abs(axes_in[a].dot(axes_in[b])) > kOrthogonalAxes)
           throw InputError(child(p, "axes"), what + ": the axes of a virtual spring must be orthogonal");
     j.translations = 3;
-    j.axes.insert(j.axes.end(), axes_in.begin(), axes_in.end());
+    for (int a = 0; a < 3; ++a) j.axes.push_back(j.axes[a]);  // room reserved above: no reallocation
   }
 }
 
@@ -87,12 +89,14 @@ void read_stiffness(Joint& j, const json& st, const json_in::Pointer& sp, const 
     j.stiffness_matrix = K;
     for (int c = 0; c < nc; ++c) j.stiffness[c] = K(c, c);
   } else {
-    auto k = numbers(st, sp, What(what, " stiffness"));
-    if (static_cast<int>(k.size()) != nc)
+    // numbers(), without its vector: every value checked, then the count, then the signs.
+    if (!st.is_array()) throw InputError(sp, What(what, " stiffness").str() + ": expected an array of numbers");
+    for (std::size_t c = 0; c < st.size(); ++c) number(st[c], child(sp, c), What(what, " stiffness"));
+    if (static_cast<int>(st.size()) != nc)
       throw InputError(sp, what + ": expected " + std::to_string(nc) + " stiffness value(s)");
     for (int c = 0; c < nc; ++c)
-      if (k[c] < 0.0) throw InputError(child(sp, c), what + ": stiffness must not be negative");
-    j.stiffness = k;
+      if (st[c].get<double>() < 0.0) throw InputError(child(sp, c), what + ": stiffness must not be negative");
+    for (int c = 0; c < nc; ++c) j.stiffness[c] = st[c].get<double>();
   }
 }
 
@@ -102,20 +106,20 @@ void read_stiffness_from_beam(Joint& j, const ReadState& s, const json& o, const
   const Model& m = s.model;
   if (j.type != JointType::VirtualSpring)
     throw InputError(child(p, "stiffness_from_beam"), what + ": stiffness_from_beam needs a virtual_spring joint");
-  if (o.contains("stiffness"))
+  if (field(o, "stiffness"))
     throw InputError(child(p, "stiffness_from_beam"), what + ": give \"stiffness\" or \"stiffness_from_beam\", not both");
   const json_in::Pointer bp = child(p, "stiffness_from_beam");
   const auto& b = object(o["stiffness_from_beam"], bp, What(what, " stiffness_from_beam"));
   expect_keys(b, bp, {"material", "section", "length", "theory"});
   const std::string mid = json_in::id(require(b, bp, "material", what), child(bp, "material"), What(what, " material"));
   const std::string sid = json_in::id(require(b, bp, "section", what), child(bp, "section"), What(what, " section"));
-  const auto mi = s.materials.find(mid);
-  const auto si = s.sections.find(sid);
-  if (mi == s.materials.end()) throw InputError(child(bp, "material"), what + ": unknown material '" + mid + "'");
-  if (si == s.sections.end()) throw InputError(child(bp, "section"), what + ": unknown section '" + sid + "'");
+  const int mi = m.find_material(mid);
+  const int si = m.find_section(sid);
+  if (mi < 0) throw InputError(child(bp, "material"), what + ": unknown material '" + mid + "'");
+  if (si < 0) throw InputError(child(bp, "section"), what + ": unknown section '" + sid + "'");
   const double L = positive(require(b, bp, "length", what), child(bp, "length"), What(what, " length"));
-  const auto& mat = m.materials[mi->second];
-  const auto& sec = m.sections[si->second];
+  const auto& mat = m.materials[mi];
+  const auto& sec = m.sections[si];
   BeamSection bs{mat.E, mat.G, sec.A, sec.Iy, sec.Iz, sec.J};
   if (b.contains("theory")) {
     // A shear-deformable link: the Timoshenko cantilever's tip stiffness (its compliance adds
@@ -143,8 +147,8 @@ void read_joints(ReadState& s) {
     const json_in::Pointer p = child("/joints", i);
     const auto& o = object(arr[i], p, "joint");
     expect_keys(o, p, {"id", "type", "nodes", "axes", "stiffness", "stiffness_from_beam"});
-    Joint j;
-    j.id = json_in::id(require(o, p, "id", "joint"), child(p, "id"), "joint");
+    Joint j = s.item(&Model::joints, i);
+    id_into(j.id, require(o, p, "id", "joint"), child(p, "id"), "joint");
     check_unique(m.find_joint(j.id), "joint", "/joints", j.id, i);  // joint i is at position i
     const std::string what = "joint '" + j.id + "'";
     const std::string type = string(require(o, p, "type", what), child(p, "type"), what);
@@ -158,8 +162,8 @@ void read_joints(ReadState& s) {
                                               m.nodes[j.nodes[1]].id + "' do not coincide");
     read_axes(j, o, p, what, type);
     j.stiffness.assign(joint_coordinate_count(j.type), 0.0);
-    if (o.contains("stiffness")) read_stiffness(j, o["stiffness"], child(p, "stiffness"), what);
-    if (o.contains("stiffness_from_beam")) read_stiffness_from_beam(j, s, o, p, what);
+    if (const json* stiffness = field(o, "stiffness")) read_stiffness(j, *stiffness, child(p, "stiffness"), what);
+    if (field(o, "stiffness_from_beam")) read_stiffness_from_beam(j, s, o, p, what);
     m.add_joint(std::move(j));
   }
 }

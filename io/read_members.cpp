@@ -38,8 +38,8 @@ void read_members(ReadState& s) {
     const json_in::Pointer p = child("/elements", i);
     const auto& o = object(arr[i], p, "element");
     expect_keys(o, p, {"id", "type", "nodes", "material", "section", "orientation", "divisions", "theory"});
-    Member mem;
-    mem.id = json_in::id(require(o, p, "id", "element"), child(p, "id"), "element");
+    Member mem = s.item(&Model::members, i);
+    id_into(mem.id, require(o, p, "id", "element"), child(p, "id"), "element");
     check_unique(m.find_member(mem.id), "element", "/elements", mem.id, i);  // member i is element i
     const std::string what = "element '" + mem.id + "'";
     const std::string type = string(require(o, p, "type", what), child(p, "type"), what);
@@ -56,25 +56,25 @@ void read_members(ReadState& s) {
                                               m.nodes[mem.nodes[1]].id + "' coincide)");
     if (mem.type == MemberType::Beam) {
       const std::string mid = json_in::id(require(o, p, "material", what), child(p, "material"), What(what, " material"));
-      mem.material = index_of(s.materials, mid);
+      mem.material = m.find_material(mid);
       if (mem.material < 0) throw InputError(child(p, "material"), what + ": unknown material '" + mid + "'");
       const std::string sid = json_in::id(require(o, p, "section", what), child(p, "section"), What(what, " section"));
-      mem.section = index_of(s.sections, sid);
+      mem.section = m.find_section(sid);
       if (mem.section < 0) throw InputError(child(p, "section"), what + ": unknown section '" + sid + "'");
       const Vec3 ex = (x2 - x1) / L;
-      if (o.contains("orientation")) {
-        mem.orientation = vec3(o["orientation"], child(p, "orientation"), What(what, " orientation"));
+      if (const json* orientation = field(o, "orientation")) {
+        mem.orientation = vec3(*orientation, child(p, "orientation"), What(what, " orientation"));
         if (mem.orientation.norm() == 0.0 || mem.orientation.normalized().cross(ex).norm() < kParallelOrientation)
           throw InputError(child(p, "orientation"), what + ": orientation is zero or parallel to the member");
       } else {
         // Default: global Z in the local x-z plane; for a vertical member, global X.
         mem.orientation = std::abs(ex.z()) > 1.0 - kParallelOrientation ? Vec3(1, 0, 0) : Vec3(0, 0, 1);
       }
-      if (o.contains("divisions"))
-        mem.divisions = integer_in(o["divisions"], child(p, "divisions"), What(what, " divisions"), 1, kMaxDivisions);
-      if (o.contains("theory")) {
+      if (const json* divisions = field(o, "divisions"))
+        mem.divisions = integer_in(*divisions, child(p, "divisions"), What(what, " divisions"), 1, kMaxDivisions);
+      if (const json* theory = field(o, "theory")) {
         const json_in::Pointer tp = child(p, "theory");
-        mem.theory = beam_theory(string(o["theory"], tp, What(what, " theory")), tp, what);
+        mem.theory = beam_theory(string(*theory, tp, What(what, " theory")), tp, what);
         const Section& sec = m.sections[mem.section];
         if (mem.theory == BeamTheory::Timoshenko && !(sec.ky > 0.0 && sec.kz > 0.0))
           throw InputError(tp, what + ": a Timoshenko beam needs the shear factors of section '" + sec.id +
@@ -88,7 +88,7 @@ void read_members(ReadState& s) {
     }
     if (const std::string taken = taken_internal_node_id(m, mem); !taken.empty())
       throw InputError(child(p, "id"), what + ": internal node id '" + taken + "' is taken");
-    add_meshed_member(m, std::move(mem));
+    add_meshed_member(m, std::move(mem), s.spare);
   }
 }
 

@@ -18,8 +18,8 @@ void read_nodes(ReadState& s) {
     const json_in::Pointer p = child("/nodes", i);
     const auto& n = object(arr[i], p, "node");
     expect_keys(n, p, {"id", "xyz"});
-    Node node;
-    node.id = json_in::id(require(n, p, "id", "node"), child(p, "id"), "node");
+    Node node = s.item(&Model::nodes, i);
+    id_into(node.id, require(n, p, "id", "node"), child(p, "id"), "node");
     // The user's nodes come first: node i is at position i of the model's nodes.
     check_unique(m.find_node(node.id), "node", "/nodes", node.id, i);
     node.x = vec3(require(n, p, "xyz", What("node '", node.id, "'")), child(p, "xyz"), What("node '", node.id, "' xyz"));
@@ -34,34 +34,33 @@ void read_materials(ReadState& s) {
     const json_in::Pointer p = child("/materials", i);
     const auto& o = object(arr[i], p, "material");
     expect_keys(o, p, {"id", "E", "G", "nu", "density"});
-    Material mat;
-    mat.id = json_in::id(require(o, p, "id", "material"), child(p, "id"), "material");
-    check_unique(index_of(s.materials, mat.id), "material", "/materials", mat.id, i);
+    Material mat = s.item(&Model::materials, i);
+    id_into(mat.id, require(o, p, "id", "material"), child(p, "id"), "material");
+    check_unique(m.find_material(mat.id), "material", "/materials", mat.id, i);
     const std::string what = "material '" + mat.id + "'";
     mat.E = positive(require(o, p, "E", what), child(p, "E"), What(what, " E"));
-    if (o.contains("G")) {
-      mat.G = positive(o["G"], child(p, "G"), What(what, " G"));
-    } else if (o.contains("nu")) {
-      const double nu = number(o["nu"], child(p, "nu"), What(what, " nu"));
+    if (const json* G = field(o, "G")) {
+      mat.G = positive(*G, child(p, "G"), What(what, " G"));
+    } else if (const json* nu_value = field(o, "nu")) {
+      const double nu = number(*nu_value, child(p, "nu"), What(what, " nu"));
       if (!(nu > -1.0 && nu < 0.5)) throw InputError(child(p, "nu"), what + ": nu must lie in (-1, 0.5)");
       mat.G = mat.E / (2.0 * (1.0 + nu));
     } else {
       throw InputError(child(p, "G"), what + ": missing field 'G' (or 'nu')");
     }
     mat.density = read_density(o, p, what);
-    s.materials.emplace(mat.id, static_cast<int>(m.materials.size()));
-    m.materials.push_back(mat);
+    m.add_material(std::move(mat));
   }
 }
 
 namespace {
 
-Section read_section(const json& o, const json_in::Pointer& p, const std::string& id) {
-  Section sec;
-  sec.id = id;
-  const std::string what = "section '" + id + "'";
-  if (o.contains("shape")) {
-    const std::string shape = string(o["shape"], child(p, "shape"), what);
+// Reads the section's properties into `sec` (its id already set).
+void read_section(const json& o, const json_in::Pointer& p, Section& sec) {
+  const std::string what = "section '" + sec.id + "'";
+  const json* shape_value = field(o, "shape");
+  if (shape_value) {
+    const std::string shape = string(*shape_value, child(p, "shape"), what);
     SectionProperties sp;
     if (shape == "rectangle") {
       const double b = positive(require(o, p, "b", what), child(p, "b"), What(what, " b"));
@@ -69,7 +68,7 @@ Section read_section(const json& o, const json_in::Pointer& p, const std::string
       sp = rectangle_section(b, h);
     } else if (shape == "circle") {
       double r;
-      if (o.contains("d")) r = 0.5 * positive(o["d"], child(p, "d"), What(what, " d"));
+      if (const json* d = field(o, "d")) r = 0.5 * positive(*d, child(p, "d"), What(what, " d"));
       else r = positive(require(o, p, "r", what), child(p, "r"), What(what, " r"));
       sp = circle_section(r);
     } else if (shape == "tube") {
@@ -89,18 +88,17 @@ Section read_section(const json& o, const json_in::Pointer& p, const std::string
   }
   // Explicit properties override the shape's.
   auto prop = [&](const char* key, double& out, bool required) {
-    if (o.contains(key)) out = positive(o[key], child(p, key), What(what, " ", key));
-    else if (required && !o.contains("shape"))
+    if (const json* v = field(o, key)) out = positive(*v, child(p, key), What(what, " ", key));
+    else if (required && !shape_value)
       throw InputError(child(p, key), what + ": missing field '" + std::string(key) + "'");
   };
   prop("A", sec.A, true);
   prop("Iy", sec.Iy, true);
   prop("Iz", sec.Iz, true);
   prop("J", sec.J, true);
-  if (o.contains("k")) sec.ky = sec.kz = positive(o["k"], child(p, "k"), What(what, " k"));
+  if (const json* k = field(o, "k")) sec.ky = sec.kz = positive(*k, child(p, "k"), What(what, " k"));
   prop("ky", sec.ky, false);
   prop("kz", sec.kz, false);
-  return sec;
 }
 
 }  // namespace
@@ -112,10 +110,11 @@ void read_sections(ReadState& s) {
     const json_in::Pointer p = child("/sections", i);
     const auto& o = object(arr[i], p, "section");
     expect_keys(o, p, {"id", "shape", "b", "h", "d", "r", "t", "A", "Iy", "Iz", "J", "k", "ky", "kz"});
-    const std::string id = json_in::id(require(o, p, "id", "section"), child(p, "id"), "section");
-    check_unique(index_of(s.sections, id), "section", "/sections", id, i);
-    s.sections.emplace(id, static_cast<int>(m.sections.size()));
-    m.sections.push_back(read_section(o, p, id));
+    Section sec = s.item(&Model::sections, i);
+    id_into(sec.id, require(o, p, "id", "section"), child(p, "id"), "section");
+    check_unique(m.find_section(sec.id), "section", "/sections", sec.id, i);
+    read_section(o, p, sec);
+    m.add_section(std::move(sec));
   }
 }
 

@@ -22,6 +22,13 @@ Model load_and_check(const nlohmann::json& document) {
   return m;
 }
 
+const Model& load_and_check(const nlohmann::json& document, ModelBuffer& buffer) {
+  const Model& m = buffer.read(document);
+  check_model(m, document);
+  check_analyses(m, document);
+  return m;
+}
+
 namespace {
 
 // Runs one analysis; a ModelError or solver error raised while running (after validation) is
@@ -55,16 +62,24 @@ AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx) {
 
 RunReport run_document(const Model& model, const nlohmann::json& document, const RunOptions& options) {
   RunReport report;
-  // Objects with room for their keys: an ordered_json object that grows deep copies what it holds
+  run_document(model, document, options, report);
+  return report;
+}
+
+void run_document(const Model& model, const nlohmann::json& document, const RunOptions& options, RunReport& report) {
+  report.failed = false;
+  report.outcomes.clear();
+  // Written over the report's last results (ObjectFiller: a reused report's storage is reused),
+  // objects with room for their keys: an ordered_json object that grows deep copies what it holds
   // (for a small model building the results costs as much as the analysis).
-  report.results = object_with_capacity(4);
-  report.results["beamfea"] = kVersion;
-  ojson counts = object_with_capacity(4);
-  append_new_key(counts, "nodes", model.nodes.size());
-  append_new_key(counts, "elements", model.elements.size());
-  append_new_key(counts, "members", model.members.size());
-  append_new_key(counts, "joints", model.joints.size());
-  report.results["model"] = std::move(counts);
+  ObjectFiller results(report.results, 4);
+  set_string(results.slot("beamfea"), kVersion);
+  ObjectFiller counts(results.slot("model"), 4);
+  counts.slot("nodes") = model.nodes.size();
+  counts.slot("elements") = model.elements.size();
+  counts.slot("members") = model.members.size();
+  counts.slot("joints") = model.joints.size();
+  counts.finish();
   const auto& specs = document.at("analyses");
   report.outcomes.reserve(specs.size());
   for (std::size_t k = 0; k < options.only.size(); ++k) {
@@ -75,16 +90,17 @@ RunReport run_document(const Model& model, const nlohmann::json& document, const
   }
   std::optional<StagingDir> staging;
   if (!options.out_dir.empty()) staging.emplace(options.out_dir);
-  ojson analyses = object_with_capacity(specs.size());
+  ObjectFiller analyses(results.slot("analyses"), specs.size());
   RunCache cache;
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const auto& spec = specs[i];
     const std::string id = json_in::id(spec.at("id"), "", "analysis");
     if (!options.only.empty() && std::find(options.only.begin(), options.only.end(), id) == options.only.end())
       continue;
-    const AnalysisType* type = find_analysis_type(spec.at("type").get<std::string>());
+    const AnalysisType* type = find_analysis_type(spec.at("type").get_ref<const std::string&>());
+    ojson& result = analyses.slot(id);  // the last run's result of this id, or null
     AnalysisContext ctx{model,   document, spec, json_in::child("/analyses", i), id, staging ? staging->path() : std::filesystem::path(),
-                        options.write_vtk, {}, options.warning, &cache};
+                        options.write_vtk, {}, options.warning, &cache, &result};
     if (options.progress) ctx.progress = [&](const std::string& s) { options.progress("[" + id + "] " + s); };
     const auto t0 = std::chrono::steady_clock::now();
     AnalysisOutcome o = run_one(*type, ctx);
@@ -92,17 +108,17 @@ RunReport run_document(const Model& model, const nlohmann::json& document, const
     o.result["wall_time_s"] = dt;
     if (options.progress) options.progress("[" + id + "] " + o.brief_report() + " (" + std::to_string(dt) + " s)");
     report.failed = report.failed || o.failed();
-    analyses[id] = std::move(o.result);
+    result = std::move(o.result);
     o.result = ojson();
     report.outcomes.emplace_back(id, std::move(o));
   }
-  report.results["analyses"] = std::move(analyses);
-  if (cache.linear) report.results["factorizations"] = cache.linear->factorizations();
+  analyses.finish();
+  if (cache.linear) results.slot("factorizations") = cache.linear->factorizations();
+  results.finish();
   if (staging) {
     write_results_json_file(report.results, staging->path() / "results.json");
     staging->commit("results.json");
   }
-  return report;
 }
 
 }  // namespace beamfea

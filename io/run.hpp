@@ -9,6 +9,7 @@
 
 #include "core/model.hpp"
 #include "io/analysis.hpp"
+#include "io/model_reader.hpp"
 
 namespace beamfea {
 
@@ -29,8 +30,16 @@ struct RunReport {
 // Parses and validates a document into a model: the one validation that `check` and `run`
 // share (the model, its contradictions, every analysis's needs). Throws InputError / ModelError.
 Model load_and_check(const nlohmann::json& document);
+// The same, read into `buffer` (reusing its storage, io/model_reader.hpp); the model is valid
+// until the buffer's next read.
+const Model& load_and_check(const nlohmann::json& document, ModelBuffer& buffer);
 
 // Runs the analyses of an already-validated document.
 RunReport run_document(const Model& model, const nlohmann::json& document, const RunOptions& options);
+// The same, written over `report` (a caller running document after document, a sweep worker):
+// its results object keeps its storage where the new results have the shape of the last ones
+// (ObjectFiller), so that a small model's run allocates little or nothing for its results. The
+// report afterwards is the one the other overload returns, value for value.
+void run_document(const Model& model, const nlohmann::json& document, const RunOptions& options, RunReport& report);
 
 }  // namespace beamfea

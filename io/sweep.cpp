@@ -1,6 +1,10 @@
 #include "io/sweep.hpp"
 
+#include <fmt/format.h>
+
 #include <chrono>
+#include <iterator>
+#include <optional>
 #include <string>
 
 #include "core/errors.hpp"
@@ -16,28 +20,27 @@ namespace {
 
 // An output value flattened into (column name, cell) pairs: name[i][j] for arrays, name.key for
 // objects, written over out[n], out[n + 1], ... (their strings' capacity reused; `n` counts them).
-// `name` is the caller's buffer: suffixes are appended and taken off again (no string per level).
-void flatten(const ojson& v, std::string& name, std::vector<std::pair<std::string, std::string>>& out,
+// `name` is the caller's buffer (on its stack up to fmt's inline size): suffixes are appended and
+// taken off again (no string per level).
+void flatten(const ojson& v, fmt::memory_buffer& name, std::vector<std::pair<std::string, std::string>>& out,
              std::size_t& n) {
   const std::size_t length = name.size();
   if (v.is_array()) {
     for (std::size_t i = 0; i < v.size(); ++i) {
-      name += '[';
-      name += std::to_string(i);
-      name += ']';
+      fmt::format_to(std::back_inserter(name), "[{}]", i);
       flatten(v[i], name, out, n);
       name.resize(length);
     }
   } else if (v.is_object()) {
     for (const auto& [k, x] : v.items()) {
-      name += '.';
-      name += k;
+      name.push_back('.');
+      name.append(k.data(), k.data() + k.size());
       flatten(x, name, out, n);
       name.resize(length);
     }
   } else {
     if (n == out.size()) out.emplace_back();
-    out[n].first.assign(name);
+    out[n].first.assign(name.data(), name.size());
     csv_cell_into(out[n].second, v);
     ++n;
   }
@@ -124,15 +127,12 @@ const json& SweepCaseDocument::apply(std::size_t index) {
   return doc_;
 }
 
-SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir,
-                               SweepCaseDocument* documents) {
-  SweepCaseResult r;
-  run_sweep_case(sweep, index, keep_dir, documents, r);
-  return r;
-}
+namespace {
 
-void run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir,
-                    SweepCaseDocument* documents, SweepCaseResult& r) {
+// A case; `documents`, `models` and `reports` (each may be null: fresh ones) are the calling
+// worker's, reused case after case.
+void run_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir,
+              SweepCaseDocument* documents, ModelBuffer* models, RunReport* reports, SweepCaseResult& r) {
   const auto t0 = std::chrono::steady_clock::now();
   r.status = SweepCaseResult::Status::Ok;
   r.message.clear();
@@ -146,17 +146,22 @@ void run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem
   try {
     json copy;
     const json& doc = documents ? documents->apply(index) : (copy = sweep.document(index));
-    const Model model = load_and_check(doc);
+    std::optional<Model> fresh_model;
+    const Model& model = models ? load_and_check(doc, *models) : fresh_model.emplace(load_and_check(doc));
     RunOptions opt;
     opt.out_dir = keep_dir;
     opt.write_vtk = !keep_dir.empty();
     opt.only = sweep.analyses;
-    const RunReport report = run_document(model, doc, opt);
+    RunReport fresh_report;
+    RunReport& report = reports ? *reports : fresh_report;
+    run_document(model, doc, opt, report);
     std::string missing;
     for (; done < sweep.outputs.size(); ++done) {
       auto& out = r.outputs[done];
       if (const ojson* v = find_path(report.results, sweep.outputs[done])) {
-        std::string name = sweep.outputs[done].name;
+        const std::string& prefix = sweep.outputs[done].name;
+        fmt::memory_buffer name;
+        name.append(prefix.data(), prefix.data() + prefix.size());
         std::size_t n = 0;
         flatten(*v, name, out, n);
         out.resize(n);
@@ -185,6 +190,25 @@ void run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem
     fail(SweepCaseResult::Status::AnalysisFailed, e.what());
   }
   r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir,
+                               SweepCaseDocument* documents) {
+  SweepCaseResult r;
+  run_sweep_case(sweep, index, keep_dir, documents, r);
+  return r;
+}
+
+void run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir,
+                    SweepCaseDocument* documents, SweepCaseResult& into) {
+  run_case(sweep, index, keep_dir, documents, nullptr, nullptr, into);
+}
+
+void run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir,
+                    SweepWorkspace& workspace, SweepCaseResult& into) {
+  run_case(sweep, index, keep_dir, &workspace.document, &workspace.model, &workspace.report, into);
 }
 
 }  // namespace beamfea

@@ -27,6 +27,8 @@
 #include <vector>
 
 #include "io/analysis.hpp"
+#include "io/model_reader.hpp"
+#include "io/run.hpp"
 
 namespace beamfea {
 
@@ -134,5 +136,18 @@ SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std:
 // their strings' capacity). Every field of `into` is the case's own afterwards.
 void run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir,
                     SweepCaseDocument* documents, SweepCaseResult& into);
+
+// What a worker keeps from case to case: the case's document, the model read into a ModelBuffer
+// and the results written over the last case's (run_document into a RunReport), so that a case
+// of a small model allocates next to nothing (docs/performance.md).
+struct SweepWorkspace {
+  explicit SweepWorkspace(const Sweep& sweep) : document(sweep) {}
+  SweepCaseDocument document;
+  ModelBuffer model;
+  RunReport report;
+};
+// The same, with the worker's workspace: the result is the other overloads', value for value.
+void run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir,
+                    SweepWorkspace& workspace, SweepCaseResult& into);
 
 }  // namespace beamfea

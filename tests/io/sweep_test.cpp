@@ -295,4 +295,60 @@ TEST(SweepCase, AReusedResultHoldsOnlyItsOwnCase) {
   EXPECT_EQ(seen_bad, 2u);
 }
 
+TEST(SweepCase, AReusedWorkspaceGivesEachCaseTheFreshResult) {
+  // A worker's workspace (its document, its model buffer and its results, SweepWorkspace) case
+  // after case against fresh ones: the same status, message and cells (compared as text: the
+  // cells print each double exactly) for a model that grows (a patch adds a node, a member of
+  // three divisions and a joint) and shrinks back, a mechanism, bad input in between, and a
+  // case whose stiffness node changes.
+  json model = cantilever();
+  model["supports"][0]["fix"] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+  const json grow = {json{{"op", "add"}, {"path", "/nodes/-"}, {"value", {{"id", "C"}, {"xyz", {2, 1.5, 0}}}}},
+                     json{{"op", "add"}, {"path", "/nodes/-"}, {"value", {{"id", "D"}, {"xyz", {2, 1.5, 0}}}}},
+                     json{{"op", "add"},
+                          {"path", "/elements/-"},
+                          {"value", {{"id", "a much longer member id"}, {"type", "beam"}, {"nodes", {"B", "C"}},
+                                     {"material", "steel"}, {"section", "s"}, {"divisions", 3}}}},
+                     json{{"op", "add"},
+                          {"path", "/joints"},
+                          {"value", {{{"id", "hinge"}, {"type", "revolute"}, {"nodes", {"C", "D"}}, {"axes", {{0, 0, 1}}},
+                                      {"stiffness", {1e5}}}}}},
+                     json{{"op", "replace"}, {"path", "/analyses/1/node"}, {"value", "D"}}};
+  const json list = {
+      {"model", model},
+      {"cases", {json{{"id", "ok"}, {"set", {{"/loads/0/force/1", -5.0}}}},
+                 json{{"id", "grown"}, {"patch", grow}},
+                 json{{"id", "mechanism"}, {"set", {{"/supports/0/fix/3", "ux"}}}},  // rx free
+                 json{{"id", "bad"}, {"set", {{"/supports/0/fix/3", "qx"}}}},        // no such DOF
+                 json{{"id", "longer"}, {"set", {{"/nodes/1/xyz/0", 3.0}}}}}},
+      {"outputs", {"analyses.K.matrix", "analyses.K.rank", "analyses.lin.nodes.B.displacement"}}};
+  const Sweep s = beamfea::read_sweep(list, fs::temp_directory_path());
+  beamfea::SweepWorkspace workspace(s);
+  SweepCaseResult reused;
+  std::size_t seen_ok = 0, seen_failed = 0, seen_bad = 0;
+  for (const std::size_t i : {0, 1, 2, 3, 4, 1, 0, 3, 1, 1, 2, 4, 0}) {
+    beamfea::run_sweep_case(s, i, {}, workspace, reused);
+    const SweepCaseResult fresh = beamfea::run_sweep_case(s, i);
+    EXPECT_EQ(reused.status, fresh.status) << "case " << i;
+    EXPECT_EQ(reused.message, fresh.message) << "case " << i;
+    EXPECT_EQ(reused.outputs, fresh.outputs) << "case " << i;
+    switch (fresh.status) {
+      case SweepCaseResult::Status::Ok: ++seen_ok; break;
+      case SweepCaseResult::Status::AnalysisFailed: ++seen_failed; break;
+      case SweepCaseResult::Status::BadInput: ++seen_bad; break;
+    }
+  }
+  EXPECT_EQ(seen_ok, 9u);
+  EXPECT_EQ(seen_failed, 2u);
+  EXPECT_EQ(seen_bad, 2u);
+  // The grown model's stiffness at D differs from the cantilever's at B (the case really changed
+  // the model), and is of full rank.
+  beamfea::run_sweep_case(s, 1, {}, workspace, reused);
+  const SweepCaseResult plain = beamfea::run_sweep_case(s, 0);
+  ASSERT_EQ(reused.status, SweepCaseResult::Status::Ok) << reused.message;
+  EXPECT_NE(reused.outputs[0], plain.outputs[0]);
+  ASSERT_EQ(reused.outputs[1].size(), 1u);
+  EXPECT_EQ(reused.outputs[1][0].second, "6");
+}
+
 }  // namespace sweep_test
