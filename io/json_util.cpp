@@ -65,10 +65,18 @@ std::string nearest_key(std::string_view key, std::initializer_list<std::string_
 
 void expect_keys(const json& obj, const Pointer& pointer, std::initializer_list<std::string_view> known) {
   if (!obj.is_object()) return;
+  // Lengths and first characters are compared before the bytes: every key of every object of a
+  // model passes here, and most known keys differ from it in one of those (a small model's read
+  // spent 5 % of its time in these comparisons).
+  auto is_known = [&](std::string_view k) {
+    for (std::string_view n : known)
+      if (n.size() == k.size() && (k.empty() || n[0] == k[0]) && n == k) return true;
+    return false;
+  };
   for (const auto& [k, v] : obj.items()) {
     if (!k.empty() && k[0] == '_') continue;
     if (k == "comment") continue;
-    if (std::find(known.begin(), known.end(), std::string_view(k)) != known.end()) continue;
+    if (is_known(k)) continue;
     std::string message = "unknown key '" + k + "'";
     const std::string near = nearest_key(k, known);
     if (!near.empty()) message += " (did you mean '" + near + "'?)";

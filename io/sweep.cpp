@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <chrono>
-#include <iterator>
 #include <optional>
 #include <string>
 
@@ -27,7 +27,11 @@ void flatten(const ojson& v, fmt::memory_buffer& name, std::vector<std::pair<std
   const std::size_t length = name.size();
   if (v.is_array()) {
     for (std::size_t i = 0; i < v.size(); ++i) {
-      fmt::format_to(std::back_inserter(name), "[{}]", i);
+      char index[24];
+      index[0] = '[';
+      char* end = std::to_chars(index + 1, index + sizeof index - 1, i).ptr;
+      *end++ = ']';
+      name.append(index, end);
       flatten(v[i], name, out, n);
       name.resize(length);
     }
