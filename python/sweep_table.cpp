@@ -25,7 +25,8 @@ std::vector<SweepCaseResult> run_cases(const Sweep& sweep, int jobs) {
   jobs = static_cast<int>(std::max<std::size_t>(1, std::min<std::size_t>(jobs, n)));
   std::atomic<std::size_t> next{0};
   auto work = [&] {
-    for (std::size_t i = next++; i < n; i = next++) results[i] = run_sweep_case(sweep, i);
+    SweepWorkspace workspace(sweep);  // this thread's document, model and results, case after case
+    for (std::size_t i = next++; i < n; i = next++) run_sweep_case(sweep, i, {}, workspace, results[i]);
   };
   std::vector<std::thread> workers;
   for (int w = 1; w < jobs; ++w) workers.emplace_back(work);
