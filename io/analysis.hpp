@@ -158,12 +158,14 @@ class ObjectFiller {
 };
 // Values written over `v` (its storage reused when it already holds that shape), the same as
 // assigning the fresh value: a string; numbers (an array); a 6x6 matrix (an array of 6 rows);
-// vectors (an array of arrays); strings (an array).
+// vectors (an array of arrays); strings (an array); an array of n values to fill.
 void set_string(ojson& v, std::string_view s);
 void set_numbers(ojson& v, const double* p, std::size_t n);
 void set_matrix(ojson& v, const Mat6& m);
 void set_vectors(ojson& v, const std::vector<Vec6>& vectors);
 void set_strings(ojson& v, const std::vector<std::string>& strings);
+// `v` as an array of n values (those it held kept, to be written over), returned.
+ojson::array_t& set_array(ojson& v, std::size_t n);
 
 // Registered analyses (io/analysis_*.cpp).
 AnalysisType linear_static_analysis();

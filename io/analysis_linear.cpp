@@ -41,21 +41,19 @@ ojson mechanism_json(const Model& model, const std::vector<ZeroEnergyMode>& mode
   return out;
 }
 
-// [first six, last six] of a 12-vector: a pair of 6-vectors (end 1, end 2).
-ojson ends_json(const Vec12& v) {
-  ojson a = ojson::array();
-  auto& items = a.get_ref<ojson::array_t&>();
-  items.reserve(2);
-  items.push_back(to_json(Vec6(v.head<6>())));
-  items.push_back(to_json(Vec6(v.tail<6>())));
-  return a;
+// [first six, last six] of a 12-vector: a pair of 6-vectors (end 1, end 2), written over `v`.
+void set_ends(ojson& v, const Vec12& x) {
+  auto& ends = set_array(v, 2);
+  set_numbers(ends[0], x.data(), 6);
+  set_numbers(ends[1], x.data() + 6, 6);
 }
 
-// Member-level output: a member meshed into several elements reports the forces at its own
-// ends (first element's end 1, last element's end 2), and the section forces at stations along it.
-ojson element_json(const Model& model, const LinearStaticResult& r, int interior_stations) {
+// Member-level output, written over `v`: a member meshed into several elements reports the forces
+// at its own ends (first element's end 1, last element's end 2), and the section forces at
+// stations along it.
+void set_elements(ojson& v, const Model& model, const LinearStaticResult& r, int interior_stations) {
   const std::vector<Vec12>& end_forces = r.end_forces;
-  ojson out = object_with_capacity(model.members.size());
+  ObjectFiller out(v, model.members.size());
   for (std::size_t mi = 0; mi < model.members.size(); ++mi) {
     const auto& mem = model.members[mi];
     const Vec12& first = end_forces[mem.elements.front()];
@@ -63,37 +61,32 @@ ojson element_json(const Model& model, const LinearStaticResult& r, int interior
     Vec12 ends;
     ends << first.head<6>(), last.tail<6>();
     const Vec12 s = section_forces(ends);
-    ojson o = object_with_capacity(4);
-    append_new_key(o, "end_forces", ends_json(ends));
-    append_new_key(o, "section_forces", ends_json(s));
+    ObjectFiller o(out.slot(mem.id), 4);
+    set_ends(o.slot("end_forces"), ends);
+    set_ends(o.slot("section_forces"), s);
     if (mem.type == MemberType::Beam) {
       const auto stations = member_stations(model, static_cast<int>(mi), end_forces, r.element_loads, interior_stations);
-      ojson st = ojson::array();
-      auto& items = st.get_ref<ojson::array_t&>();
-      items.reserve(stations.size());
-      for (const auto& x : stations) {
-        ojson station = object_with_capacity(2);
-        append_new_key(station, "x", x.x);
-        append_new_key(station, "forces", to_json(x.forces));
-        items.push_back(std::move(station));
+      auto& items = set_array(o.slot("stations"), stations.size());
+      for (std::size_t k = 0; k < stations.size(); ++k) {
+        ObjectFiller station(items[k], 2);
+        station.slot("x") = stations[k].x;
+        set_numbers(station.slot("forces"), stations[k].forces.data(), 6);
+        station.finish();
       }
-      append_new_key(o, "stations", std::move(st));
     }
     if (mem.elements.size() > 1) {
-      ojson segs = ojson::array();
-      auto& items = segs.get_ref<ojson::array_t&>();
-      items.reserve(mem.elements.size());
-      for (int e : mem.elements) {
-        ojson seg = object_with_capacity(2);
-        append_new_key(seg, "id", model.elements[e].id);
-        append_new_key(seg, "end_forces", ends_json(end_forces[e]));
-        items.push_back(std::move(seg));
+      auto& items = set_array(o.slot("segments"), mem.elements.size());
+      for (std::size_t k = 0; k < mem.elements.size(); ++k) {
+        const int e = mem.elements[k];
+        ObjectFiller seg(items[k], 2);
+        set_string(seg.slot("id"), model.elements[e].id);
+        set_ends(seg.slot("end_forces"), end_forces[e]);
+        seg.finish();
       }
-      append_new_key(o, "segments", std::move(segs));
     }
-    append_new_key(out, mem.id, std::move(o));
+    o.finish();
   }
-  return out;
+  out.finish();
 }
 
 // Interior stations per member (the spec's "stations"), default 10.
@@ -115,7 +108,6 @@ constexpr std::size_t kLinearStaticResultKeys = 13;
 AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   const Model& model = ctx.model;
   AnalysisOutcome out;
-  out.result = object_with_capacity(kLinearStaticResultKeys);
   // One factorisation for every linear case of the run.
   std::shared_ptr<const LinearSystem> system;
   if (ctx.cache && ctx.cache->linear) system = ctx.cache->linear;
@@ -124,42 +116,52 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
     if (ctx.cache) ctx.cache->linear = system;
   }
   std::string case_id;
-  if (ctx.spec.contains("load_case")) case_id = json_in::id(ctx.spec["load_case"], "", "load_case");
+  if (const nlohmann::json* load_case = json_in::field(ctx.spec, "load_case")) case_id = json_in::id(*load_case, "", "load_case");
   const LinearStaticResult r = system->solve(case_id.empty() ? model.default_loads() : model.loads_of(case_id));
-  const int stations = ctx.spec.contains("stations") ? ctx.spec["stations"].get<int>() : kDefaultStations;
-  out.result["type"] = "linear_static";
-  if (!case_id.empty()) out.result["load_case"] = case_id;
-  out.result["status"] = r.status == SolveStatus::Converged ? "ok" : to_string(r.status);
-  out.result["message"] = r.message;
-  out.result["free_dofs"] = r.free_dofs;
-  out.result["factorizations"] = system->factorizations();
+  const nlohmann::json* stations_value = json_in::field(ctx.spec, "stations");
+  const int stations = stations_value ? stations_value->get<int>() : kDefaultStations;
+  // Written over the previous run's result when there is one (a sweep worker's: the nodes' and
+  // elements' objects and arrays keep their storage when the model keeps its shape).
+  if (ctx.previous_result) out.result = std::move(*ctx.previous_result);
+  ObjectFiller res(out.result, kLinearStaticResultKeys);
+  set_string(res.slot("type"), "linear_static");
+  if (!case_id.empty()) set_string(res.slot("load_case"), case_id);
+  set_string(res.slot("status"), r.status == SolveStatus::Converged ? "ok" : to_string(r.status));
+  set_string(res.slot("message"), r.message);
+  res.slot("free_dofs") = r.free_dofs;
+  res.slot("factorizations") = system->factorizations();
   out.message = r.message;
   if (r.status != SolveStatus::Converged) {
     out.termination = r.status == SolveStatus::Mechanism ? AnalysisTermination::Mechanism : AnalysisTermination::Failed;
-    out.result["mechanism"] = mechanism_json(model, r.modes);
+    res.slot("mechanism") = mechanism_json(model, r.modes);
+    res.finish();
     return out;
   }
-  ojson nodes = object_with_capacity(model.nodes.size());
-  for (std::size_t n = 0; n < model.nodes.size(); ++n) {
-    ojson o = object_with_capacity(2);
-    append_new_key(o, "displacement", to_json(Vec6(r.u.segment<6>(6 * n))));
-    if (r.supported[n]) append_new_key(o, "reaction", to_json(r.reactions[n]));
-    append_new_key(nodes, model.nodes[n].id, std::move(o));
+  {
+    ObjectFiller nodes(res.slot("nodes"), model.nodes.size());
+    for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+      ObjectFiller o(nodes.slot(model.nodes[n].id), 2);
+      set_numbers(o.slot("displacement"), r.u.data() + 6 * n, 6);
+      if (r.supported[n]) set_numbers(o.slot("reaction"), r.reactions[n].data(), 6);
+      o.finish();
+    }
+    nodes.finish();
   }
-  out.result["nodes"] = std::move(nodes);
-  out.result["elements"] = element_json(model, r, stations);
-  ojson joints = object_with_capacity(model.joints.size());
-  int offset = 6 * static_cast<int>(model.nodes.size());
-  for (std::size_t j = 0; j < model.joints.size(); ++j) {
-    const int nc = model.joints[j].coordinates();
-    ojson o = object_with_capacity(2);
-    append_new_key(o, "coordinates", to_json(Eigen::VectorXd(r.u.segment(offset, nc))));
-    append_new_key(o, "reaction", to_json(r.joint_forces[j]));
-    append_new_key(joints, model.joints[j].id, std::move(o));
-    offset += nc;
+  set_elements(res.slot("elements"), model, r, stations);
+  {
+    ObjectFiller joints(res.slot("joints"), model.joints.size());
+    std::size_t offset = 6 * model.nodes.size();
+    for (std::size_t j = 0; j < model.joints.size(); ++j) {
+      const auto nc = static_cast<std::size_t>(model.joints[j].coordinates());
+      ObjectFiller o(joints.slot(model.joints[j].id), 2);
+      set_numbers(o.slot("coordinates"), r.u.data() + offset, nc);
+      set_numbers(o.slot("reaction"), r.joint_forces[j].data(), 6);
+      o.finish();
+      offset += nc;
+    }
+    joints.finish();
   }
-  out.result["joints"] = std::move(joints);
-  out.result["statically_indeterminate"] = r.statically_indeterminate;
+  set_strings(res.slot("statically_indeterminate"), r.statically_indeterminate);
   if (!ctx.out_dir.empty() && ctx.write_vtk) {
     VtkFrame f;
     for (std::size_t n = 0; n < model.nodes.size(); ++n) {
@@ -175,8 +177,9 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
     };
     const std::string file = ctx.id + ".vtu";
     write_vtu((ctx.out_dir / file).string(), model, f);
-    out.result["vtk"] = file;
+    set_string(res.slot("vtk"), file);
   }
+  res.finish();
   return out;
 }
 

@@ -149,17 +149,20 @@ void set_string(ojson& v, std::string_view s) {
   else v = std::string(s);
 }
 
-void set_numbers(ojson& v, const double* p, std::size_t n) {
+ojson::array_t& set_array(ojson& v, std::size_t n) {
   if (!v.is_array()) v = ojson::array();
   auto& a = v.get_ref<ojson::array_t&>();
   a.resize(n);
+  return a;
+}
+
+void set_numbers(ojson& v, const double* p, std::size_t n) {
+  auto& a = set_array(v, n);
   for (std::size_t i = 0; i < n; ++i) a[i] = p[i];
 }
 
 void set_matrix(ojson& v, const Mat6& m) {
-  if (!v.is_array()) v = ojson::array();
-  auto& rows = v.get_ref<ojson::array_t&>();
-  rows.resize(6);
+  auto& rows = set_array(v, 6);
   for (int i = 0; i < 6; ++i) {
     const Vec6 row = m.row(i).transpose();
     set_numbers(rows[i], row.data(), 6);
@@ -167,16 +170,12 @@ void set_matrix(ojson& v, const Mat6& m) {
 }
 
 void set_vectors(ojson& v, const std::vector<Vec6>& vectors) {
-  if (!v.is_array()) v = ojson::array();
-  auto& a = v.get_ref<ojson::array_t&>();
-  a.resize(vectors.size());
+  auto& a = set_array(v, vectors.size());
   for (std::size_t i = 0; i < vectors.size(); ++i) set_numbers(a[i], vectors[i].data(), 6);
 }
 
 void set_strings(ojson& v, const std::vector<std::string>& strings) {
-  if (!v.is_array()) v = ojson::array();
-  auto& a = v.get_ref<ojson::array_t&>();
-  a.resize(strings.size());
+  auto& a = set_array(v, strings.size());
   for (std::size_t i = 0; i < strings.size(); ++i) set_string(a[i], strings[i]);
 }
 
