@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/openmp.hpp"
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
 #include "io/sweep_table.hpp"
@@ -132,6 +133,7 @@ class WorkerPool {
         inline_workspace_(workspace) {
     for (int w = 0; w < jobs_; ++w)
       threads_.emplace_back([this] {
+        app::apply_library_openmp_to_this_thread();  // the program's choice, per thread (app/openmp.hpp)
         SweepWorkspace workspace(sweep_);  // this worker's, reused case after case
         SweepCaseResult result;            // likewise
         for (;;) {

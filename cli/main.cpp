@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "app/openblas.hpp"
+#include "app/openmp.hpp"
 #include "cli/sweep_command.hpp"
 #include "core/errors.hpp"
 #include "core/version.hpp"
@@ -48,9 +49,13 @@ std::string describe(const beamfea::app::BlasCores& blas) {
 int main(int argc, char** argv) {
   // Before anything calls the BLAS (app/openblas.hpp).
   const auto blas = beamfea::app::choose_openblas_core();
+  // Before a library opens a parallel region (app/openmp.hpp).
+  const bool openmp_serial = beamfea::app::serialize_library_openmp();
   CLI::App app{"beamfea: matrix structural analysis of 3-D frames of Euler-Bernoulli beams"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("beamfea ") + beamfea::kVersion + "\nBLAS: " + describe(blas));
+  app.set_version_flag("--version", std::string("beamfea ") + beamfea::kVersion + "\nBLAS: " + describe(blas) +
+                                          "\nOpenMP: " + (openmp_serial ? "the libraries' parallel regions on one thread"
+                                                                         : "as the environment says"));
 
   std::string model_path, out_dir = "out";
   bool no_vtk = false, quiet = false;
