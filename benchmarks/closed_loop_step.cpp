@@ -108,7 +108,7 @@ Run run(const Model& m, int steps, int reps) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  fmt::print(stderr, "BLAS: {}\n", beamfea::bench::choose_blas_kernels());  // as `beamfea` runs
+  fmt::print(stderr, "BLAS: {}\n", beamfea::bench::choose_libraries_as_the_program());  // as `beamfea` runs
   std::vector<int> sizes{10, 20, 40, 80};
   int steps = 5, reps = 3;
   double load = 1.0;

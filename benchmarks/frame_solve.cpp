@@ -569,7 +569,7 @@ std::vector<long> parse_sizes(const std::string& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  g_kernels = beamfea::bench::choose_blas_kernels();  // as `beamfea` runs
+  g_kernels = beamfea::bench::choose_libraries_as_the_program();  // as `beamfea` runs
   Options o;
   long single = 0;
   for (int i = 1; i < argc; ++i) {

@@ -104,7 +104,7 @@ std::string load_average() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  fmt::print(stderr, "BLAS: {}\n", beamfea::bench::choose_blas_kernels());  // as `beamfea` runs
+  fmt::print(stderr, "BLAS: {}\n", beamfea::bench::choose_libraries_as_the_program());  // as `beamfea` runs
   int cube = 10;
   std::vector<int> counts{1, 4, 16};
   for (int i = 1; i + 1 < argc; i += 2) {

@@ -61,7 +61,7 @@ constexpr double kSteelDensity = 7850.0;
 }  // namespace
 
 int main(int argc, char** argv) {
-  fmt::print(stderr, "BLAS: {}\n", beamfea::bench::choose_blas_kernels());  // as `beamfea` runs
+  fmt::print(stderr, "BLAS: {}\n", beamfea::bench::choose_libraries_as_the_program());  // as `beamfea` runs
   std::vector<long> sizes{10000, 30000};
   int modes = 10;
   for (int i = 1; i < argc; ++i) {

@@ -206,7 +206,7 @@ void classic(const char* name, const Model& m, const char* track, double P, int 
 
 int main(int argc, char** argv) {
   // As the program does (cli/main.cpp): its BLAS kernels and the solvers' BLAS-thread hook.
-  fmt::print(stderr, "BLAS: {}\n", bench::choose_blas_kernels());
+  fmt::print(stderr, "BLAS: {}\n", bench::choose_libraries_as_the_program());
   app::install_openblas_threads_hook();
   for (int i = 1; i < argc; ++i)
     if (!std::strcmp(argv[i], "--classic")) {

@@ -41,7 +41,7 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  fmt::print(stderr, "BLAS: {}\n", beamfea::bench::choose_blas_kernels());  // as `beamfea` runs
+  fmt::print(stderr, "BLAS: {}\n", beamfea::bench::choose_libraries_as_the_program());  // as `beamfea` runs
   using namespace beamfea;
   if (argc < 2) {
     fmt::print(stderr, "usage: {} model.json [reps]\n", argv[0]);
