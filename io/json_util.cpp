@@ -73,7 +73,8 @@ void expect_keys(const json& obj, const Pointer& pointer, std::initializer_list<
       if (n.size() == k.size() && (k.empty() || n[0] == k[0]) && n == k) return true;
     return false;
   };
-  for (const auto& [k, v] : obj.items()) {
+  // The object's map itself: items() makes a proxy (with a string for array indices) per key.
+  for (const auto& [k, v] : obj.get_ref<const json::object_t&>()) {
     if (!k.empty() && k[0] == '_') continue;
     if (k == "comment") continue;
     if (is_known(k)) continue;
