@@ -15,17 +15,23 @@
 
 namespace beamfea {
 
-Model load_and_check(const nlohmann::json& document) {
-  Model m = read_model(document);
+namespace {
+// What `check` and `run` validate after reading: the model's contradictions, every analysis's needs.
+void check_document(const Model& m, const nlohmann::json& document) {
   check_model(m, document);
   check_analyses(m, document);
+}
+}  // namespace
+
+Model load_and_check(const nlohmann::json& document) {
+  Model m = read_model(document);
+  check_document(m, document);
   return m;
 }
 
 const Model& load_and_check(const nlohmann::json& document, ModelBuffer& buffer) {
   const Model& m = buffer.read(document);
-  check_model(m, document);
-  check_analyses(m, document);
+  check_document(m, document);
   return m;
 }
 
