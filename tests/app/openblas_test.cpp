@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "solvers/sparse_factor.hpp"
+#include "support/matrices.hpp"
 
 namespace openblas_test {
 
@@ -56,24 +57,8 @@ TEST(OpenBlasCore, ChosenKernelsFactoriseCorrectly) {
 
   // A 3-D grid Laplacian plus the identity, 12^3 = 1728 unknowns: above the dense threshold, with
   // supernodes large enough for BLAS-3 calls. Its exact solution is chosen, the load computed.
-  const int m = 12, n = m * m * m;
-  std::vector<Eigen::Triplet<double>> t;
-  auto id = [m](int i, int j, int k) { return (k * m + j) * m + i; };
-  for (int k = 0; k < m; ++k)
-    for (int j = 0; j < m; ++j)
-      for (int i = 0; i < m; ++i) {
-        const int r = id(i, j, k);
-        t.emplace_back(r, r, 7.0);
-        const int nb[3][3] = {{i + 1, j, k}, {i, j + 1, k}, {i, j, k + 1}};
-        for (const auto& q : nb)
-          if (q[0] < m && q[1] < m && q[2] < m) {
-            const int c = id(q[0], q[1], q[2]);
-            t.emplace_back(r, c, -1.0);
-            t.emplace_back(c, r, -1.0);
-          }
-      }
-  beamfea::SparseMatrix K(n, n);
-  K.setFromTriplets(t.begin(), t.end());
+  const beamfea::SparseMatrix K = beamfea::test::grid_laplacian(12);
+  const int n = static_cast<int>(K.rows());
   Eigen::VectorXd x(n);
   for (int i = 0; i < n; ++i) x[i] = std::sin(0.37 * i) + 0.1 * (i % 5);
   const Eigen::VectorXd f = K * x;

@@ -8,9 +8,9 @@
 
 #include <filesystem>
 #include <thread>
-#include <vector>
 
 #include "solvers/sparse_factor.hpp"
+#include "support/matrices.hpp"
 #include "support/models.hpp"
 
 namespace openmp_test {
@@ -24,28 +24,6 @@ int thread_count() {
   int n = 0;
   for ([[maybe_unused]] const auto& t : std::filesystem::directory_iterator("/proc/self/task")) ++n;
   return n;
-}
-
-// A 3-D grid Laplacian plus the identity on m^3 unknowns (eigenvalues in [1, 13]).
-beamfea::SparseMatrix grid_laplacian(int m) {
-  const int n = m * m * m;
-  std::vector<Eigen::Triplet<double>> t;
-  auto id = [m](int i, int j, int k) { return (k * m + j) * m + i; };
-  for (int k = 0; k < m; ++k)
-    for (int j = 0; j < m; ++j)
-      for (int i = 0; i < m; ++i) {
-        const int r = id(i, j, k);
-        t.emplace_back(r, r, 7.0);
-        const int nb[3][3] = {{i + 1, j, k}, {i, j + 1, k}, {i, j, k + 1}};
-        for (const auto& q : nb)
-          if (q[0] < m && q[1] < m && q[2] < m) {
-            t.emplace_back(r, id(q[0], q[1], q[2]), -1.0);
-            t.emplace_back(id(q[0], q[1], q[2]), r, -1.0);
-          }
-      }
-  beamfea::SparseMatrix K(n, n);
-  K.setFromTriplets(t.begin(), t.end());
-  return K;
 }
 
 }  // namespace
@@ -75,7 +53,7 @@ TEST(LibraryOpenMp, CholmodStartsNoThreadAfterTheSetting) {
   ASSERT_NE(get_levels, nullptr);
   EXPECT_EQ(get_levels(), 0);
 
-  const beamfea::SparseMatrix K = grid_laplacian(22);
+  const beamfea::SparseMatrix K = beamfea::test::grid_laplacian(22);
   Eigen::VectorXd x(K.rows());
   for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = std::cos(0.41 * static_cast<double>(i)) + 0.2 * (i % 3);
   const Eigen::VectorXd f = K * x;
