@@ -61,11 +61,29 @@ json load_length_grid(int n1, int n2) {
           {"outputs", {"analyses.lin.nodes.B.displacement[1]", "analyses.K.matrix[1]"}}};
 }
 
-// A sweep still running when it is killed or interrupted 800 ms after it starts: 60,000 cases (a
-// case of this model takes tens of microseconds since the sweep's workers reuse their model and
-// results; 20,000 ended first).
+// A sweep still running when it is killed or interrupted: 60,000 cases (a case of this model takes
+// tens of microseconds since the sweep's workers reuse their model and results: 1.4-1.9 s in all on
+// the project's machine, where 20,000 ended before a fixed 800 ms wait did).
 constexpr int kLongLoads = 200, kLongLengths = 300;
 constexpr std::size_t kLongCases = static_cast<std::size_t>(kLongLoads) * kLongLengths;
+
+// Waits until the table at `path` has at least `lines` lines (the header, the probe's row, then
+// the workers' batches, appended every 50 ms), at most `timeout`: the sweep is then under way,
+// whatever the machine's speed. False on timeout.
+bool wait_for_lines(const fs::path& path, std::size_t lines, std::chrono::seconds timeout) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < end) {
+    std::ifstream in(path);
+    std::size_t n = 0;
+    for (std::string line; std::getline(in, line);) ++n;
+    if (n >= lines) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+// The header, the probe's row and at least one worker's batch.
+constexpr std::size_t kUnderWay = 3;
+constexpr auto kStartTimeout = std::chrono::seconds(60);
 
 // Rows in case order, each case once, every line complete.
 void expect_sorted_valid(const Csv& t, bool well_formed) {
@@ -111,7 +129,7 @@ TEST(SweepCommand, KilledSweepLeavesAValidTableAndResumeCompletesIt) {
   const auto out = dir / "out";
   const pid_t pid = spawn({"sweep", file.string(), "--out", out.string(), "--jobs", "2"}, dir / "err.txt");
   ASSERT_GT(pid, 0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  EXPECT_TRUE(wait_for_lines(out / "cases.csv", kUnderWay, kStartTimeout));
   kill(pid, SIGKILL);
   bool signalled = false;
   wait_exit(pid, &signalled);
@@ -141,7 +159,7 @@ TEST(SweepCommand, InterruptStopsCleanlyWithASortedTableOfTheFinishedCases) {
   const auto out = dir / "out";
   const pid_t pid = spawn({"sweep", file.string(), "--out", out.string(), "--jobs", "2"}, dir / "err.txt");
   ASSERT_GT(pid, 0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  EXPECT_TRUE(wait_for_lines(out / "cases.csv", kUnderWay, kStartTimeout));
   kill(pid, SIGINT);
   EXPECT_EQ(wait_exit(pid), 130) << read(dir / "err.txt");
   bool well_formed = false;
