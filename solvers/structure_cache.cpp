@@ -59,13 +59,20 @@ bool LinearStructureCache::matches(const Key& key, const Model& model) {
          same(key.prescribed, model.prescribed);
 }
 
-LinearStructureCache::Key LinearStructureCache::key_of(const Model& model) {
-  Key key{model.nodes, model.elements, model.materials, model.sections, model.joints, model.supports, model.prescribed};
+void LinearStructureCache::assign_key(Key& key, const Model& model) {
+  // Copy-assigned: the vectors and the ids keep the storage of the last key (a sweep whose
+  // geometry changes every case copies its key every case).
+  key.nodes = model.nodes;
+  key.elements = model.elements;
+  key.materials = model.materials;
+  key.sections = model.sections;
+  key.joints = model.joints;
+  key.supports = model.supports;
+  key.prescribed = model.prescribed;
   for (auto& j : key.joints) {  // not part of the key: no need to hold them
     j.stiffness.clear();
     j.stiffness_matrix.resize(0, 0);
   }
-  return key;
 }
 
 const LinearStructureCache::Parts& LinearStructureCache::get(const Model& model) {
@@ -75,10 +82,16 @@ const LinearStructureCache::Parts& LinearStructureCache::get(const Model& model)
     parts_->structure.rebind(model);
     return *parts_;
   }
-  key_.reset();
-  parts_.reset();  // a throwing constructor leaves nothing behind
+  // A throwing constructor leaves no pair behind (and a key without a pair matches nothing); the
+  // key's storage is kept for the next one.
+  parts_.reset();
   parts_.emplace(Parts{DofMap(model), LinearStructure(model)});
-  if (keeps(model)) key_ = key_of(model);
+  if (keeps(model)) {
+    if (!key_) key_.emplace();
+    assign_key(*key_, model);
+  } else {
+    key_.reset();
+  }
   return *parts_;
 }
 

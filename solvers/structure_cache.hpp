@@ -55,7 +55,7 @@ class LinearStructureCache {
     std::vector<Prescribed> prescribed;
   };
   static bool matches(const Key& key, const Model& model);
-  static Key key_of(const Model& model);
+  static void assign_key(Key& key, const Model& model);
 
   std::optional<Key> key_;
   std::optional<Parts> parts_;
