@@ -50,7 +50,10 @@ std::vector<std::size_t> there_and_back(std::size_t n) {
   return order;
 }
 
-bool same_bits(const double* a, const double* b, std::size_t n) { return std::memcmp(a, b, n * sizeof(double)) == 0; }
+// memcmp's pointers must not be null even for n = 0 (an empty vector's data() may be).
+bool same_bits(const double* a, const double* b, std::size_t n) {
+  return n == 0 || std::memcmp(a, b, n * sizeof(double)) == 0;
+}
 bool same_bits(const Vec3& a, const Vec3& b) { return same_bits(a.data(), b.data(), 3); }
 bool same_bits(const Mat3& a, const Mat3& b) { return same_bits(a.data(), b.data(), 9); }
 bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
