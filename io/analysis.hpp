@@ -50,6 +50,9 @@ struct AnalysisContext {
   // overload that writes into one), whose storage the analysis may take for its result (moved
   // out, written over with ObjectFiller) or leave.
   ojson* previous_result = nullptr;
+  // May be null: the message of the outcome at this position in that previous run, whose storage
+  // the analysis may take for its own message (swapped out) or leave.
+  std::string* previous_message = nullptr;
 };
 
 // How an analysis ended. results.json keeps its own "status" strings (a contract); this is the

@@ -201,8 +201,15 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
   AnalysisOutcome out;
   // With a load case, the loaded-mode stiffness about its preload (K + K_g).
   const bool loaded = ctx.spec.contains("load_case");
-  CondensedStiffness k = loaded ? loaded_node_stiffness(model_for_load_case(model, ctx.spec), node)
-                                : linear_node_stiffness(model, node);
+  CondensedStiffness k;
+  if (loaded) {
+    k = loaded_node_stiffness(model_for_load_case(model, ctx.spec), node);
+  } else {
+    // The message formatted into the previous run's message storage, when there is one (a sweep
+    // case then allocates nothing for it).
+    if (ctx.previous_message) k.message.swap(*ctx.previous_message);
+    linear_node_stiffness(model, node, k);
+  }
   // Written over the previous run's result when there is one (its storage reused: a sweep case
   // allocates nothing for it), with room for every key (and run_document's wall_time_s): an
   // ordered_json object that grows deep copies what it already holds.

@@ -74,7 +74,14 @@ RunReport run_document(const Model& model, const nlohmann::json& document, const
 
 void run_document(const Model& model, const nlohmann::json& document, const RunOptions& options, RunReport& report) {
   report.failed = false;
-  report.outcomes.clear();
+  // The outcomes are written over the last run's, in order (their strings keep their storage);
+  // those beyond this run's count are dropped at the end.
+  std::size_t outcomes = 0;
+  struct DropStale {  // also when bad input found late ends the run: only this run's outcomes stay
+    RunReport& report;
+    const std::size_t& count;
+    ~DropStale() { report.outcomes.resize(count); }
+  } drop_stale{report, outcomes};
   // Written over the report's last results (ObjectFiller: a reused report's storage is reused),
   // objects with room for their keys: an ordered_json object that grows deep copies what it holds
   // (for a small model building the results costs as much as the analysis).
@@ -105,8 +112,9 @@ void run_document(const Model& model, const nlohmann::json& document, const RunO
       continue;
     const AnalysisType* type = find_analysis_type(spec.at("type").get_ref<const std::string&>());
     ojson& result = analyses.slot(id);  // the last run's result of this id, or null
+    std::string* previous_message = outcomes < report.outcomes.size() ? &report.outcomes[outcomes].second.message : nullptr;
     AnalysisContext ctx{model,   document, spec, json_in::child("/analyses", i), id, staging ? staging->path() : std::filesystem::path(),
-                        options.write_vtk, {}, options.warning, &cache, &result};
+                        options.write_vtk, {}, options.warning, &cache, &result, previous_message};
     if (options.progress) ctx.progress = [&](const std::string& s) { options.progress("[" + id + "] " + s); };
     const auto t0 = std::chrono::steady_clock::now();
     AnalysisOutcome o = run_one(*type, ctx);
@@ -116,7 +124,13 @@ void run_document(const Model& model, const nlohmann::json& document, const RunO
     report.failed = report.failed || o.failed();
     result = std::move(o.result);
     o.result = ojson();
-    report.outcomes.emplace_back(id, std::move(o));
+    if (outcomes < report.outcomes.size()) {
+      report.outcomes[outcomes].first.assign(id);
+      report.outcomes[outcomes].second = std::move(o);
+    } else {
+      report.outcomes.emplace_back(id, std::move(o));
+    }
+    ++outcomes;
   }
   analyses.finish();
   if (cache.linear) results.slot("factorizations") = cache.linear->factorizations();

@@ -5,6 +5,7 @@
 #include <Eigen/UmfPackSupport>
 #include <fmt/format.h>
 
+#include <iterator>
 #include <optional>
 #include <type_traits>
 
@@ -167,6 +168,7 @@ struct NodeCondensationScratch {
   Eigen::VectorXd col_scale;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd;
   DenseCondensationWorkspace dense;
+  std::vector<Vec6> free_dirs;
 };
 // The thread's set for n free DOFs up to kDenseMaxDofs, else `local`.
 NodeCondensationScratch& scratch_for(Eigen::Index n, NodeCondensationScratch& local) {
@@ -175,14 +177,30 @@ NodeCondensationScratch& scratch_for(Eigen::Index n, NodeCondensationScratch& lo
 }
 
 template <class Matrix>
-CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
-                                      double L, const CondensedStiffnessOptions& options, NodeCondensationScratch& w);
+void node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale, double L,
+                        const CondensedStiffnessOptions& options, NodeCondensationScratch& w, CondensedStiffness& out);
 
 template <class Matrix>
 CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
                                       double L, const CondensedStiffnessOptions& options) {
   NodeCondensationScratch local;
-  return node_compliance_of(K, Tn, col_scale, L, options, scratch_for(Tn.cols(), local));
+  CondensedStiffness out;
+  node_compliance_of(K, Tn, col_scale, L, options, scratch_for(Tn.cols(), local), out);
+  return out;
+}
+
+// `out` as a default CondensedStiffness, its vectors and strings keeping their storage.
+void reset(CondensedStiffness& out) {
+  out.ok = false;
+  out.message.clear();
+  out.K.setZero();
+  out.compliance.setZero();
+  out.rank = 0;
+  out.null_space.clear();
+  out.rigid_directions.clear();
+  out.eigenvalues.setZero();
+  out.modes.clear();
+  out.statically_indeterminate.clear();
 }
 
 }  // namespace
@@ -199,10 +217,10 @@ CondensedStiffness node_compliance(const Eigen::MatrixXd& K, const Eigen::Matrix
 namespace {
 
 template <class Matrix>
-CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
-                                      double L, const CondensedStiffnessOptions& options, NodeCondensationScratch& w) {
+void node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale, double L,
+                        const CondensedStiffnessOptions& options, NodeCondensationScratch& w, CondensedStiffness& out) {
   options.validate();
-  CondensedStiffness out;
+  reset(out);
   Vec6 S;
   S << 1, 1, 1, L, L, L;
   // Directions the node can move: the range of the scaled rows (a zero column pads an empty Tn).
@@ -223,7 +241,7 @@ CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn
     analyse_rank(out.K, L, options.rank_tolerance, out);
     out.null_space.clear();
     out.ok = true;
-    return out;
+    return;
   }
   // At most six rows: fixed-capacity matrices (no heap, products by coefficients rather than GEMM).
   using Rows6 = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
@@ -233,7 +251,7 @@ CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn
   A.resize(r, Tn.cols());
   A.noalias() = (Ur.transpose() * S.asDiagonal()).lazyProduct(Tn);
   Eigen::MatrixXd& Kz = w.Kz;
-  if (!condense_rows(K, A, Kz, w.dense)) return out;
+  if (!condense_rows(K, A, Kz, w.dense)) return;
   // Free directions of the node: the null space of K_z.
   const Small Kzs = Kz;
   Eigen::SelfAdjointEigenSolver<Small> es(Kzs);
@@ -264,16 +282,17 @@ CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn
     out.K = ec.eigenvectors() * ci.asDiagonal() * ec.eigenvectors().transpose();
   }
   out.K = 0.5 * (out.K + out.K.transpose()).eval();
-  const std::vector<Vec6> free_dirs = out.null_space;
+  // analyse_rank replaces the null space: the free directions found above are put back (swapped
+  // through the scratch, so that neither list allocates once it has its size).
+  w.free_dirs.swap(out.null_space);
   analyse_rank(out.K, L, options.rank_tolerance, out);  // rank and scaled eigenvalues of the matrix
-  out.null_space = free_dirs;
+  out.null_space.swap(w.free_dirs);
   out.ok = true;
-  return out;
 }
 
 template <class Matrix>
-CondensedStiffness condense_to_node_of(const Model& model, const DofMap& map, const Matrix& K, int node,
-                                       const CondensedStiffnessOptions& options) {
+void condense_to_node_of(const Model& model, const DofMap& map, const Matrix& K, int node,
+                         const CondensedStiffnessOptions& options, CondensedStiffness& out) {
   options.validate();
   const int n = map.free_size();
   NodeCondensationScratch local;
@@ -290,15 +309,24 @@ CondensedStiffness condense_to_node_of(const Model& model, const DofMap& map, co
     const bool rotation = d.owner == DofRef::Owner::Node ? d.comp >= 3 : !model.joints[d.index].is_translation(d.comp);
     col_scale[j] = rotation ? 1.0 / L : 1.0;
   }
-  CondensedStiffness out = node_compliance_of(K, Tn, col_scale, L, options, w);
+  node_compliance_of(K, Tn, col_scale, L, options, w, out);
   if (!out.ok) {
     if constexpr (std::is_same_v<Matrix, SparseMatrix>) out.modes = zero_energy_modes(model, map, K, 12);
     else out.modes = zero_energy_modes(model, map, SparseMatrix(K.sparseView()), 12);
     out.message = "holding node '" + model.nodes[node].id + "' still leaves a mechanism; " + describe_mechanism(out.modes);
-    return out;
+    return;
   }
-  out.message = fmt::format("stiffness of node '{}': rank {}, {} rigid directions, {} free directions", model.nodes[node].id,
-                            out.rank, out.rigid_directions.size(), out.null_space.size());
+  // Formatted into the message's own storage (empty here: node_compliance_of cleared it), which a
+  // caller writing case after case over one CondensedStiffness keeps.
+  fmt::format_to(std::back_inserter(out.message), "stiffness of node '{}': rank {}, {} rigid directions, {} free directions",
+                 model.nodes[node].id, out.rank, out.rigid_directions.size(), out.null_space.size());
+}
+
+template <class Matrix>
+CondensedStiffness condense_to_node_of(const Model& model, const DofMap& map, const Matrix& K, int node,
+                                       const CondensedStiffnessOptions& options) {
+  CondensedStiffness out;
+  condense_to_node_of(model, map, K, node, options, out);
   return out;
 }
 
@@ -314,6 +342,12 @@ CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const
 }
 
 CondensedStiffness linear_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options) {
+  CondensedStiffness out;
+  linear_node_stiffness(model, node, out, options);
+  return out;
+}
+
+void linear_node_stiffness(const Model& model, int node, CondensedStiffness& out, const CondensedStiffnessOptions& options) {
   // Small models: the thread's map and element matrices when the model's content that they read is
   // that of the last call (a sweep over joint springs), solvers/structure_cache.hpp.
   std::optional<LinearStructureCache::Parts> own;
@@ -326,9 +360,8 @@ CondensedStiffness linear_node_stiffness(const Model& model, int node, const Con
     assembler.begin();
     structure.assemble(map, assembler);
     assembler.end();
-    CondensedStiffness out = condense_to_node(model, map, assembler.K_ff(), node, options);
+    condense_to_node_of(model, map, assembler.K_ff(), node, options, out);
     out.statically_indeterminate = map.redundant_constraints();
-    return out;
   };
   // Small models: assembled into a dense matrix and condensed by the dense Schur complement. The
   // thread keeps the assembler (its n x n array, at most kDenseMaxDofs square, and its scratch), so
@@ -336,9 +369,11 @@ CondensedStiffness linear_node_stiffness(const Model& model, int node, const Con
   if (map.free_size() <= kDenseMaxDofs) {
     thread_local DenseAssembler dense(map);
     dense.reset(map);
-    return condensed(dense);
+    condensed(dense);
+    return;
   }
-  return condensed(SystemAssembler(map));
+  SystemAssembler sparse(map);
+  condensed(sparse);
 }
 
 CondensedStiffness loaded_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options) {

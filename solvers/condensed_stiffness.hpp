@@ -80,6 +80,11 @@ void analyse_rank(const Mat6& K, double L, double tolerance, CondensedStiffness&
 
 // Linear (unloaded) condensed stiffness of a node of the model.
 CondensedStiffness linear_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options = {});
+// The same, written over `out`: afterwards equal, field for field, to what the overload above
+// returns, but its message and lists keep their storage, so that a caller condensing case after
+// case into one CondensedStiffness (a sweep worker) allocates nothing for them.
+void linear_node_stiffness(const Model& model, int node, CondensedStiffness& out,
+                           const CondensedStiffnessOptions& options = {});
 
 // Loaded-mode stiffness of a node (Klimchik, Pashkevich & Chablat's "loaded mode"): condensation
 // of K + K_g, K_g the geometric stiffness (solvers/buckling.hpp) of the linear solution of the

@@ -1,0 +1,156 @@
+// Allocations of a sweep case once a worker's workspace is warm (issue 15, item 3: "no per-case
+// allocations in sweeps"). This executable replaces the global operator new with one that counts
+// its calls, so it is a folder (test executable) of its own: no other test runs under the counter.
+//
+// A case goes through what `beamfea sweep --jobs 1` does for it inline: run_sweep_case with the
+// worker's SweepWorkspace and SweepCaseResult, then its CSV row appended to the batch. After one
+// pass over the cases (the workspace takes its sizes), a second pass over the same cases must call
+// operator new not once: the three-link chain's stiffness sweep (joint springs change) and the
+// portal frame's load sweep of examples/04 (the lateral load changes, the structure does not).
+// The results of the warm pass are also checked against fresh runs of the same cases, bit for bit.
+// Eigen's and CHOLMOD's arrays are malloc'ed, not new'ed: those are not counted here (heaptrack
+// counts them: docs/performance.md).
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "io/sweep.hpp"
+#include "io/sweep_table.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+// GCC 12 flags free() of memory from a replaced operator new as mismatched; here both are ours.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void* operator new(std::size_t n) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void* operator new(std::size_t n, std::align_val_t a) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  const std::size_t al = static_cast<std::size_t>(a);
+  if (void* p = std::aligned_alloc(al, (n + al - 1) / al * al)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
+
+namespace sweep_allocations_test {
+
+using json = nlohmann::json;
+using beamfea::Sweep;
+using beamfea::SweepCaseResult;
+
+// The three-link chain of benchmarks/bench_models.hpp (10 nodes, 63 raw DOFs): links of 0.3 m,
+// each meshed into 2 elements, revolute joints about z with actuator springs, the ground clamped;
+// the stiffness of the tip T. The grid sets the three springs.
+json chain_sweep() {
+  json m = {{"materials", {json{{"id", "al"}, {"E", 70e9}, {"nu", 0.33}}}},
+            {"sections", {json{{"id", "link"}, {"shape", "rectangle"}, {"b", 0.02}, {"h", 0.04}}}},
+            {"nodes", {json{{"id", "G"}, {"xyz", {0, 0, 0}}}}},
+            {"elements", json::array()},
+            {"joints", json::array()}};
+  std::string prev = "G";
+  for (int l = 1; l <= 3; ++l) {
+    const double x0 = 0.3 * (l - 1), x1 = 0.3 * l;
+    const std::string k = std::to_string(l);  // (GCC 12 warns falsely on "L" + to_string(l): -Wrestrict)
+    const std::string s = std::string("L").append(k).append("s");
+    const std::string e = l == 3 ? std::string("T") : std::string("L").append(k).append("e");
+    m["nodes"].push_back({{"id", s}, {"xyz", {x0, 0, 0}}});
+    m["nodes"].push_back({{"id", e}, {"xyz", {x1, 0, 0}}});
+    m["joints"].push_back({{"id", std::string("q").append(k)}, {"type", "revolute"}, {"nodes", {prev, s}},
+                           {"axes", {{0, 0, 1}}}, {"stiffness", {2000.0}}});
+    m["elements"].push_back({{"id", std::string("link").append(k)}, {"type", "beam"}, {"nodes", {s, e}},
+                             {"material", "al"}, {"section", "link"}, {"divisions", 2}});
+    prev = e;
+  }
+  m["supports"] = {json{{"node", "G"}, {"fix", "all"}}};
+  m["analyses"] = {json{{"id", "K"}, {"type", "stiffness"}, {"node", "T"}}};
+  const json k = {500.0, 800.0, 1100.0};
+  return {{"model", m},
+          {"grid",
+           {json{{"pointer", "/joints/0/stiffness/0"}, {"values", k}}, json{{"pointer", "/joints/1/stiffness/0"}, {"values", k}},
+            json{{"pointer", "/joints/2/stiffness/0"}, {"values", k}}}},
+          {"outputs", {json{{"name", "K"}, {"path", "analyses.K.matrix"}}, json{{"name", "C"}, {"path", "analyses.K.compliance"}}}}};
+}
+
+// examples/04's portal frame (linear_static, 10 nodes) with the lateral load H as the only axis.
+json load_sweep() {
+  json values = json::array();
+  for (int i = 0; i <= 10; ++i) values.push_back(5000.0 * i);
+  return {{"base", "model.json"},
+          {"grid", {json{{"name", "H"}, {"pointer", "/loads/0/force/0"}, {"values", values}}}},
+          {"outputs",
+           {json{{"name", "sway"}, {"path", "analyses.lin.nodes.D.displacement[0]"}},
+            json{{"name", "base_A"}, {"path", "analyses.lin.nodes.A.reaction"}},
+            json{{"name", "ends"}, {"path", "analyses.lin.elements"}}}}};
+}
+
+struct Passes {
+  long warm_pass_allocations = 0;
+  std::vector<std::string> warm_rows;   // each case's row of the warm pass
+  std::vector<std::string> fresh_rows;  // the same case run on fresh storage
+};
+
+// A CSV row without its last cell (wall_time_s).
+std::string without_wall_time(const std::string& row) { return row.substr(0, row.rfind(',')); }
+
+// Two passes over the cases on one workspace (as the inline `--jobs 1` loop), the second counted.
+Passes run_twice(const Sweep& sweep) {
+  Passes p;
+  const SweepCaseResult first = beamfea::run_sweep_case(sweep, 0);  // the probe: the table's columns
+  const beamfea::SweepColumns columns = beamfea::sweep_columns(sweep, &first);
+  beamfea::SweepWorkspace workspace(sweep);
+  SweepCaseResult result;
+  std::string rows;
+  rows.reserve(1 << 20);
+  for (std::size_t i = 0; i < sweep.size(); ++i) {
+    beamfea::run_sweep_case(sweep, i, {}, workspace, result);
+    beamfea::append_sweep_row(rows, sweep, i, columns, result);
+  }
+  std::vector<std::size_t> ends(sweep.size());
+  rows.clear();
+  const long before = g_allocations.load();
+  for (std::size_t i = 0; i < sweep.size(); ++i) {
+    beamfea::run_sweep_case(sweep, i, {}, workspace, result);
+    beamfea::append_sweep_row(rows, sweep, i, columns, result);
+    ends[i] = rows.size();
+  }
+  p.warm_pass_allocations = g_allocations.load() - before;
+  for (std::size_t i = 0, start = 0; i < sweep.size(); start = ends[i++]) {
+    p.warm_rows.push_back(without_wall_time(rows.substr(start, ends[i] - start)));
+    const SweepCaseResult fresh = beamfea::run_sweep_case(sweep, i);
+    EXPECT_EQ(fresh.status, SweepCaseResult::Status::Ok) << "case " << i << ": " << fresh.message;
+    p.fresh_rows.push_back(without_wall_time(beamfea::sweep_row(sweep, i, columns, fresh)));
+  }
+  return p;
+}
+
+TEST(SweepAllocations, AChainStiffnessCaseAllocatesNothingOnceTheWorkspaceIsWarm) {
+  const Sweep sweep = beamfea::read_sweep(chain_sweep(), BEAMFEA_SOURCE_DIR);
+  ASSERT_EQ(sweep.size(), 27u);
+  const Passes p = run_twice(sweep);
+  EXPECT_EQ(p.warm_pass_allocations, 0) << "operator new calls over 27 warm cases";
+  EXPECT_EQ(p.warm_rows, p.fresh_rows);  // CSV rows: every number written in full (17 digits)
+}
+
+TEST(SweepAllocations, ALoadSweepCaseAllocatesNothingOnceTheWorkspaceIsWarm) {
+  const Sweep sweep = beamfea::read_sweep(load_sweep(), BEAMFEA_SOURCE_DIR "/examples/04_load_sweep");
+  ASSERT_EQ(sweep.size(), 11u);
+  const Passes p = run_twice(sweep);
+  EXPECT_EQ(p.warm_pass_allocations, 0) << "operator new calls over 11 warm cases";
+  EXPECT_EQ(p.warm_rows, p.fresh_rows);
+}
+
+}  // namespace sweep_allocations_test
