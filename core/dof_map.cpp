@@ -371,6 +371,12 @@ std::string DofMap::check_consistency(const Eigen::VectorXd& u_prescribed) const
 
 DofMap::ConstraintForces DofMap::constraint_forces(const Eigen::VectorXd& r_raw) const {
   ConstraintForces out;
+  std::vector<Vec6> node_forces;
+  constraint_forces(r_raw, out, node_forces);
+  return out;
+}
+
+void DofMap::constraint_forces(const Eigen::VectorXd& r_raw, ConstraintForces& out, std::vector<Vec6>& acc) const {
   const Eigen::VectorXd r_ind = Tind_.transpose() * r_raw;
   const int m = static_cast<int>(extra_.size());
 
@@ -406,7 +412,7 @@ DofMap::ConstraintForces DofMap::constraint_forces(const Eigen::VectorXd& r_raw)
   Eigen::VectorXd r = r_raw;
   for (int c = 0; c < m; ++c)
     for (const auto& t : extra_[c].raw) r[t.ind] -= lambda[c] * t.coef;
-  std::vector<Vec6> acc(n_nodes_);
+  acc.resize(n_nodes_);
   for (int n = 0; n < n_nodes_; ++n) acc[n] = r.segment<6>(6 * n);
   out.joint.assign(model_->joints.size(), Vec6::Zero());
   for (auto it = tree_order_.rbegin(); it != tree_order_.rend(); ++it) {
@@ -421,7 +427,6 @@ DofMap::ConstraintForces DofMap::constraint_forces(const Eigen::VectorXd& r_raw)
     if (extra_[c].joint >= 0) out.joint[extra_[c].joint][extra_[c].joint_row] = lambda[c];
     if (extra_[c].loop >= 0) out.loop[extra_[c].loop][extra_[c].joint_row] = lambda[c];
   }
-  return out;
 }
 
 }  // namespace beamfea

@@ -111,6 +111,9 @@ class DofMap {
                                            // minimum-norm split where rows are redundant
   };
   ConstraintForces constraint_forces(const Eigen::VectorXd& r_raw) const;
+  // The same written over `out` (its vectors keep their storage); `node_forces` is scratch (per
+  // node, the residual accumulated from the leaves), kept by a caller that solves case after case.
+  void constraint_forces(const Eigen::VectorXd& r_raw, ConstraintForces& out, std::vector<Vec6>& node_forces) const;
 
   // The constraint rows found redundant (over-constrained loops, supports on one rigid body): their
   // reactions are statically indeterminate; e.g. "joint 'jC' uz", "node 'D' dof rx". Linear analyses

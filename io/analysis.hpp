@@ -14,6 +14,9 @@
 
 #include "core/model.hpp"
 #include "io/json_pointer.hpp"
+#include "solvers/linear_static.hpp"
+#include "solvers/member_loading.hpp"
+#include "solvers/structure_cache.hpp"
 
 namespace beamfea {
 
@@ -26,12 +29,23 @@ inline constexpr int kMaxModes = 1000;
 // program prints them on stderr; a library caller may collect or drop them). Empty: dropped.
 using MessageSink = std::function<void(const std::string&)>;
 
-class LinearSystem;
+// What a RunReport reused run after run (a sweep worker's, io/run.hpp) keeps for its analyses: a
+// small model's linear system while its structure stays the same (a load sweep factorises once:
+// solvers/structure_cache.hpp), and the storage of the last linear solution and of its stations.
+struct RunWorkspace {
+  LinearSystemCache systems;
+  LoadSet loads;
+  LinearStaticResult linear;
+  LinearSolveScratch linear_scratch;
+  std::vector<Station> stations;
+  std::vector<double> station_positions;
+};
 
 // Shared by the analyses of one run: the model's linear system, factorised once for all the load
 // cases of its linear analyses (made by the first analysis that needs it).
 struct RunCache {
   std::shared_ptr<const LinearSystem> linear;
+  RunWorkspace* workspace = nullptr;  // may be null: nothing kept from the last run
 };
 
 struct AnalysisContext {

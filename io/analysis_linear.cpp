@@ -51,7 +51,9 @@ void set_ends(ojson& v, const Vec12& x) {
 // Member-level output, written over `v`: a member meshed into several elements reports the forces
 // at its own ends (first element's end 1, last element's end 2), and the section forces at
 // stations along it.
-void set_elements(ojson& v, const Model& model, const LinearStaticResult& r, int interior_stations) {
+// `stations`, `positions`: storage for member_stations, kept by the caller.
+void set_elements(ojson& v, const Model& model, const LinearStaticResult& r, int interior_stations,
+                  std::vector<Station>& stations, std::vector<double>& positions) {
   const std::vector<Vec12>& end_forces = r.end_forces;
   ObjectFiller out(v, model.members.size());
   for (std::size_t mi = 0; mi < model.members.size(); ++mi) {
@@ -65,7 +67,7 @@ void set_elements(ojson& v, const Model& model, const LinearStaticResult& r, int
     set_ends(o.slot("end_forces"), ends);
     set_ends(o.slot("section_forces"), s);
     if (mem.type == MemberType::Beam) {
-      const auto stations = member_stations(model, static_cast<int>(mi), end_forces, r.element_loads, interior_stations);
+      member_stations(model, static_cast<int>(mi), end_forces, r.element_loads, interior_stations, stations, positions);
       auto& items = set_array(o.slot("stations"), stations.size());
       for (std::size_t k = 0; k < stations.size(); ++k) {
         ObjectFiller station(items[k], 2);
@@ -89,6 +91,14 @@ void set_elements(ojson& v, const Model& model, const LinearStaticResult& r, int
   out.finish();
 }
 
+// Model::default_loads written over `loads` (its vectors keep their storage).
+void default_loads_into(const Model& model, LoadSet& loads) {
+  loads.nodal = model.loads;
+  loads.joint = model.joint_loads;
+  loads.member = model.member_loads;
+  loads.gravity = model.gravity;
+}
+
 // Interior stations per member (the spec's "stations"), default 10.
 constexpr int kDefaultStations = 10;
 constexpr int kMaxStations = 10000;
@@ -109,15 +119,32 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   const Model& model = ctx.model;
   AnalysisOutcome out;
   // One factorisation for every linear case of the run.
+  // With a workspace kept from the last run (a sweep worker's), the system of the last run when the
+  // model's structure is the same (solvers/structure_cache.hpp), and the solution written over the
+  // last one.
+  RunWorkspace* kept = ctx.cache ? ctx.cache->workspace : nullptr;
   std::shared_ptr<const LinearSystem> system;
   if (ctx.cache && ctx.cache->linear) system = ctx.cache->linear;
   if (!system) {
-    system = std::make_shared<const LinearSystem>(model);
+    system = kept ? kept->systems.get(model) : std::make_shared<const LinearSystem>(model);
     if (ctx.cache) ctx.cache->linear = system;
   }
   std::string case_id;
   if (const nlohmann::json* load_case = json_in::field(ctx.spec, "load_case")) case_id = json_in::id(*load_case, "", "load_case");
-  const LinearStaticResult r = system->solve(case_id.empty() ? model.default_loads() : model.loads_of(case_id));
+  LinearStaticResult fresh;
+  std::vector<Station> fresh_stations;
+  std::vector<double> fresh_positions;
+  if (kept) {
+    if (case_id.empty()) {
+      default_loads_into(model, kept->loads);
+      system->solve(kept->loads, kept->linear, kept->linear_scratch);
+    } else {
+      system->solve(model.loads_of(case_id), kept->linear, kept->linear_scratch);
+    }
+  } else {
+    fresh = system->solve(case_id.empty() ? model.default_loads() : model.loads_of(case_id));
+  }
+  const LinearStaticResult& r = kept ? kept->linear : fresh;
   const nlohmann::json* stations_value = json_in::field(ctx.spec, "stations");
   const int stations = stations_value ? stations_value->get<int>() : kDefaultStations;
   // Written over the previous run's result when there is one (a sweep worker's: the nodes' and
@@ -130,7 +157,9 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   set_string(res.slot("message"), r.message);
   res.slot("free_dofs") = r.free_dofs;
   res.slot("factorizations") = system->factorizations();
-  out.message = r.message;
+  // Copied into the previous run's message storage when there is one (no allocation in a sweep).
+  if (ctx.previous_message) out.message.swap(*ctx.previous_message);
+  out.message.assign(r.message);
   if (r.status != SolveStatus::Converged) {
     out.termination = r.status == SolveStatus::Mechanism ? AnalysisTermination::Mechanism : AnalysisTermination::Failed;
     res.slot("mechanism") = mechanism_json(model, r.modes);
@@ -147,7 +176,8 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
     }
     nodes.finish();
   }
-  set_elements(res.slot("elements"), model, r, stations);
+  set_elements(res.slot("elements"), model, r, stations, kept ? kept->stations : fresh_stations,
+               kept ? kept->station_positions : fresh_positions);
   {
     ObjectFiller joints(res.slot("joints"), model.joints.size());
     std::size_t offset = 6 * model.nodes.size();

@@ -119,13 +119,14 @@ DofRef read_dof_target(const Model& m, const json& e, const json_in::Pointer& p,
 namespace {
 
 // read_model into an empty `m`, its items taking the storage of `spare`'s (may be null).
-void read_model_into(const json& doc, Model& m, Model* spare) {
+// `what`: storage for the items' names in messages (reader::ReadState::what).
+void read_model_into(const json& doc, Model& m, Model* spare, std::string& what) {
   if (!doc.is_object()) throw InputError("", "the model must be a JSON object");
   // Top-level keys of a model file (docs/input-format.md). Add a new collection here.
   expect_keys(doc, "", {"nodes", "materials", "sections", "elements", "joints", "supports", "loads", "prescribed",
                         "analyses", "units", "title", "name", "description", "gravity", "masses", "load_cases",
                         "combinations"});
-  reader::ReadState s{doc, m, spare, 1.0};
+  reader::ReadState s{doc, m, spare, 1.0, what};
   reader::read_nodes(s);
   s.length_scale = m.length_scale();  // meshing adds nodes on members only: the box stays the same
   reader::read_materials(s);
@@ -141,14 +142,15 @@ void read_model_into(const json& doc, Model& m, Model* spare) {
 
 Model read_model(const json& doc) {
   Model m;
-  read_model_into(doc, m, nullptr);
+  std::string what;
+  read_model_into(doc, m, nullptr, what);
   return m;
 }
 
 const Model& ModelBuffer::read(const json& doc) {
   std::swap(model_, spare_);  // the last read becomes the spare
   model_.clear();             // the one before: emptied, its vectors' storage kept
-  read_model_into(doc, model_, &spare_);
+  read_model_into(doc, model_, &spare_, what_);
   return model_;
 }
 

@@ -32,6 +32,7 @@ class ModelBuffer {
  private:
   Model model_;  // the last read
   Model spare_;  // the read before: lends its items' storage to the next read
+  std::string what_;  // the reader's names of items in messages (kept: reader::ReadState::what)
 };
 
 // The node index for a node id given as a JSON value at `pointer`; throws InputError if unknown.

@@ -25,6 +25,9 @@ struct ReadState {
   Model* spare = nullptr;     // a previous model whose storage the items read take (may be null:
                               // core/model.hpp, recycled)
   double length_scale = 1.0;  // of the user's nodes, computed once
+  // The item being read, as messages name it ("material 'steel'"): one string written over item
+  // after item (a ModelBuffer's, kept from read to read: no allocation per item or per read).
+  std::string& what;
   // A default item for position i of the model's collection, with the spare's storage.
   template <class T>
   T item(std::vector<T> Model::*collection, std::size_t i) const {

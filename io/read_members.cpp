@@ -41,7 +41,7 @@ void read_members(ReadState& s) {
     Member mem = s.item(&Model::members, i);
     id_into(mem.id, require(o, p, "id", "element"), child(p, "id"), "element");
     check_unique(m.find_member(mem.id), "element", "/elements", mem.id, i);  // member i is element i
-    const std::string what = "element '" + mem.id + "'";
+    const std::string& what = s.what.assign("element '").append(mem.id).append("'");
     const std::string type = string(require(o, p, "type", what), child(p, "type"), what);
     if (type == "beam") mem.type = MemberType::Beam;
     else if (type == "rigid") mem.type = MemberType::Rigid;

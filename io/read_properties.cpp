@@ -37,7 +37,7 @@ void read_materials(ReadState& s) {
     Material mat = s.item(&Model::materials, i);
     id_into(mat.id, require(o, p, "id", "material"), child(p, "id"), "material");
     check_unique(m.find_material(mat.id), "material", "/materials", mat.id, i);
-    const std::string what = "material '" + mat.id + "'";
+    const std::string& what = s.what.assign("material '").append(mat.id).append("'");
     mat.E = positive(require(o, p, "E", what), child(p, "E"), What(what, " E"));
     if (const json* G = field(o, "G")) {
       mat.G = positive(*G, child(p, "G"), What(what, " G"));
@@ -55,9 +55,8 @@ void read_materials(ReadState& s) {
 
 namespace {
 
-// Reads the section's properties into `sec` (its id already set).
-void read_section(const json& o, const json_in::Pointer& p, Section& sec) {
-  const std::string what = "section '" + sec.id + "'";
+// Reads the section's properties into `sec` (its id already set); `what` holds its name in messages.
+void read_section(const json& o, const json_in::Pointer& p, Section& sec, const std::string& what) {
   const json* shape_value = field(o, "shape");
   if (shape_value) {
     const std::string shape = string(*shape_value, child(p, "shape"), what);
@@ -113,7 +112,7 @@ void read_sections(ReadState& s) {
     Section sec = s.item(&Model::sections, i);
     id_into(sec.id, require(o, p, "id", "section"), child(p, "id"), "section");
     check_unique(m.find_section(sec.id), "section", "/sections", sec.id, i);
-    read_section(o, p, sec);
+    read_section(o, p, sec, s.what.assign("section '").append(sec.id).append("'"));
     m.add_section(std::move(sec));
   }
 }

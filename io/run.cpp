@@ -64,15 +64,27 @@ AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx) {
   return o;
 }
 
+// Both overloads: `workspace` null for a fresh run (nothing kept afterwards).
+void run_into(const Model& model, const nlohmann::json& document, const RunOptions& options, RunReport& report,
+              RunWorkspace* workspace);
+
 }  // namespace
 
 RunReport run_document(const Model& model, const nlohmann::json& document, const RunOptions& options) {
   RunReport report;
-  run_document(model, document, options, report);
+  run_into(model, document, options, report, nullptr);
   return report;
 }
 
 void run_document(const Model& model, const nlohmann::json& document, const RunOptions& options, RunReport& report) {
+  if (!report.workspace) report.workspace = std::make_unique<RunWorkspace>();
+  run_into(model, document, options, report, report.workspace.get());
+}
+
+namespace {
+
+void run_into(const Model& model, const nlohmann::json& document, const RunOptions& options, RunReport& report,
+              RunWorkspace* workspace) {
   report.failed = false;
   // The outcomes are written over the last run's, in order (their strings keep their storage);
   // those beyond this run's count are dropped at the end.
@@ -105,6 +117,7 @@ void run_document(const Model& model, const nlohmann::json& document, const RunO
   if (!options.out_dir.empty()) staging.emplace(options.out_dir);
   ObjectFiller analyses(results.slot("analyses"), specs.size());
   RunCache cache;
+  cache.workspace = workspace;
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const auto& spec = specs[i];
     const std::string id = json_in::id(spec.at("id"), "", "analysis");
@@ -140,5 +153,7 @@ void run_document(const Model& model, const nlohmann::json& document, const RunO
     staging->commit("results.json");
   }
 }
+
+}  // namespace
 
 }  // namespace beamfea

@@ -4,6 +4,7 @@
 // bad input (InputError, exit 2) leaves DIR as it was; an analysis that fails (exit 1) still
 // gives results.json and the files of the others.
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -25,6 +26,9 @@ struct RunReport {
   ojson results;        // the whole results.json
   bool failed = false;  // some analysis failed (exit code 1)
   std::vector<std::pair<std::string, AnalysisOutcome>> outcomes;  // per analysis run, in order (result moved to `results`)
+  // Kept from run to run by run_document's overload that writes over a report (null until then):
+  // what the analyses reuse (io/analysis.hpp). Not part of the results.
+  std::unique_ptr<RunWorkspace> workspace;
 };
 
 // Parses and validates a document into a model: the one validation that `check` and `run`
@@ -39,7 +43,9 @@ RunReport run_document(const Model& model, const nlohmann::json& document, const
 // The same, written over `report` (a caller running document after document, a sweep worker):
 // its results object keeps its storage where the new results have the shape of the last ones
 // (ObjectFiller), so that a small model's run allocates little or nothing for its results. The
-// report afterwards is the one the other overload returns, value for value.
+// report afterwards is the one the other overload returns, value for value. The report also keeps
+// what the analyses may reuse in the next run (RunReport::workspace: a small model's factorised
+// linear system while only its loads change), results bit for bit those of a fresh run.
 void run_document(const Model& model, const nlohmann::json& document, const RunOptions& options, RunReport& report);
 
 }  // namespace beamfea

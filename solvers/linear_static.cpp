@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <iterator>
+
 #include "core/assembly.hpp"
 #include "core/errors.hpp"
 #include "solvers/member_loading.hpp"
@@ -75,21 +77,38 @@ LinearSystem::LinearSystem(const Model& model, const LinearStaticOptions& option
   factorizations_ = 1;
 }
 
+void LinearSystem::rebind(const Model& model) {
+  model_ = &model;
+  impl_->map.rebind(model);
+  impl_->structure.rebind(model);
+}
+
 LinearStaticResult LinearSystem::solve(const LoadSet& loads) const {
+  LinearStaticResult res;
+  LinearSolveScratch scratch;
+  solve(loads, res, scratch);
+  return res;
+}
+
+void LinearSystem::solve(const LoadSet& loads, LinearStaticResult& res, LinearSolveScratch& scratch) const {
   const Impl& s = *impl_;
-  if (s.failure.status != SolveStatus::Converged) return s.failure;
+  if (s.failure.status != SolveStatus::Converged) {
+    res = s.failure;
+    return;
+  }
   const Model& model = *model_;
   ++solves_;
-  LinearStaticResult res;
   res.free_dofs = s.map.free_size();
-  const Eigen::VectorXd f_raw = external_force(model, s.map, loads);
+  element_loads(model, loads, res.element_loads);
+  const Eigen::VectorXd f_raw = external_force(model, s.map, loads, res.element_loads);
   Eigen::VectorXd f = s.map.reduce(f_raw);
   if (s.map.prescribed_size() > 0) f -= s.assembler.K_fp() * s.up;
   const Eigen::VectorXd uf = s.factor.solve(f);
   res.u = s.map.expand(uf, s.up);
 
   const Eigen::VectorXd r = s.structure.internal_force(s.map, res.u) - f_raw;
-  const auto cf = s.map.constraint_forces(r);
+  s.map.constraint_forces(r, scratch.constraint_forces, scratch.node_forces);
+  const DofMap::ConstraintForces& cf = scratch.constraint_forces;
   res.reactions.assign(model.nodes.size(), Vec6::Zero());
   res.supported.assign(model.nodes.size(), 0);
   for (int p = 0; p < s.map.prescribed_size(); ++p) {
@@ -99,7 +118,6 @@ LinearStaticResult LinearSystem::solve(const LoadSet& loads) const {
     res.supported[d.index] = 1;
   }
   res.joint_forces = cf.joint;
-  res.element_loads = element_loads(model, loads);
   res.statically_indeterminate = s.map.redundant_constraints();
   res.end_forces.resize(model.elements.size());
   for (std::size_t e = 0; e < model.elements.size(); ++e) {
@@ -107,10 +125,11 @@ LinearStaticResult LinearSystem::solve(const LoadSet& loads) const {
     if (const auto& beam = s.structure.beam(static_cast<int>(e)); beam && !res.element_loads[e].empty())
       res.end_forces[e] += fixed_end_forces(beam->length(), res.element_loads[e]);
   }
+  res.modes.clear();
   res.status = SolveStatus::Converged;
-  res.message = fmt::format("linear static: {} free DOFs, max |u| = {:.6g}", s.map.free_size(),
-                            res.u.size() ? res.u.cwiseAbs().maxCoeff() : 0.0);
-  return res;
+  res.message.clear();
+  fmt::format_to(std::back_inserter(res.message), "linear static: {} free DOFs, max |u| = {:.6g}", s.map.free_size(),
+                 res.u.size() ? res.u.cwiseAbs().maxCoeff() : 0.0);
 }
 
 LinearStaticResult solve_linear_static(const Model& model, const LinearStaticOptions& options) {

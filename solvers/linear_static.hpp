@@ -43,6 +43,13 @@ struct LinearStaticResult {
   std::vector<std::string> statically_indeterminate;
 };
 
+// The arrays of a solution besides its result, kept by a caller that solves case after case (a
+// sweep worker), with the result it writes over (LinearSystem::solve's second overload).
+struct LinearSolveScratch {
+  DofMap::ConstraintForces constraint_forces;
+  std::vector<Vec6> node_forces;
+};
+
 // The linear system of a model, assembled and factorised once; every load case solves against the
 // same factorisation (`factorizations()` counts them: 1, or 0 when the stiffness is singular).
 class LinearSystem {
@@ -54,9 +61,18 @@ class LinearSystem {
 
   // The solution for one load case (end forces include the member loads' fixed-end forces).
   LinearStaticResult solve(const LoadSet& loads) const;
+  // The same written over `into`: afterwards equal, field for field, to what the overload above
+  // returns, but its vectors and message keep their storage (with `scratch`'s), so that a sweep's
+  // case allocates no std containers once they have their sizes. Eigen's vectors are new.
+  void solve(const LoadSet& loads, LinearStaticResult& into, LinearSolveScratch& scratch) const;
   int factorizations() const { return factorizations_; }
   const Model& model() const { return *model_; }
   int solves() const { return solves_; }
+  // Points the system at `model`, which must equal the model it was built from in everything the
+  // constructor reads, joint springs included (solvers/structure_cache.hpp's LinearSystemCache
+  // checks that before it reuses a system for a sweep's next case): solves then read the loads,
+  // masses and ids of `model`.
+  void rebind(const Model& model);
 
  private:
   struct Impl;

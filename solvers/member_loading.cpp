@@ -65,7 +65,17 @@ void split_member_load(const Model& m, const MemberLoad& l, D&& dist, P&& point)
 }  // namespace
 
 std::vector<ElementLoads> element_loads(const Model& m, const LoadSet& loads) {
-  std::vector<ElementLoads> out(m.elements.size());
+  std::vector<ElementLoads> out;
+  element_loads(m, loads, out);
+  return out;
+}
+
+void element_loads(const Model& m, const LoadSet& loads, std::vector<ElementLoads>& out) {
+  out.resize(m.elements.size());
+  for (auto& e : out) {
+    e.distributed.clear();
+    e.points.clear();
+  }
   for (const auto& l : loads.member) {
     split_member_load(
         m, l,
@@ -86,17 +96,19 @@ std::vector<ElementLoads> element_loads(const Model& m, const LoadSet& loads) {
       out[e].distributed.push_back({0.0, (xb - xa).norm(), R * q, R * q});
     }
   }
-  return out;
 }
 
 Eigen::VectorXd external_force(const Model& m, const DofMap& map, const LoadSet& loads) {
+  return external_force(m, map, loads, element_loads(m, loads));
+}
+
+Eigen::VectorXd external_force(const Model& m, const DofMap& map, const LoadSet& loads, const std::vector<ElementLoads>& el) {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(map.raw_size());
   for (const auto& l : loads.nodal) {
     f.segment<3>(map.raw_node(l.node, 0)) += l.force;
     f.segment<3>(map.raw_node(l.node, 3)) += l.moment;
   }
   for (const auto& l : loads.joint) f[map.raw_joint(l.joint, l.coordinate)] += l.value;
-  const auto el = element_loads(m, loads);
   for (std::size_t e = 0; e < m.elements.size(); ++e) {
     if (el[e].empty()) continue;
     const auto& E = m.elements[e];
@@ -138,14 +150,23 @@ std::vector<std::vector<DeadLoadTerm>> element_dead_loads(const Model& m, const 
 
 std::vector<Station> member_stations(const Model& m, int member, const std::vector<Vec12>& end_forces,
                                      const std::vector<ElementLoads>& loads, int interior) {
-  const Member& mem = m.members[member];
   std::vector<Station> out;
-  if (mem.type != MemberType::Beam) return out;
+  std::vector<double> xs;
+  member_stations(m, member, end_forces, loads, interior, out, xs);
+  return out;
+}
+
+void member_stations(const Model& m, int member, const std::vector<Vec12>& end_forces,
+                     const std::vector<ElementLoads>& loads, int interior, std::vector<Station>& out,
+                     std::vector<double>& xs) {
+  const Member& mem = m.members[member];
+  out.clear();
+  if (mem.type != MemberType::Beam) return;
   const double L = member_length(m, mem);
   const double tol = kSamePosition * L;
   for_segments(m, mem, [&](int e, double s0, double Le, const Mat3&) {
     const ElementLoads& el = loads[e];
-    std::vector<double> xs{0.0, Le};
+    xs.assign({0.0, Le});
     for (double x : load_discontinuities(Le, el)) xs.push_back(x);
     for (int k = 1; k <= interior; ++k) {
       const double x = L * k / (interior + 1.0) - s0;
@@ -167,7 +188,6 @@ std::vector<Station> member_stations(const Model& m, int member, const std::vect
       out.push_back(st);
     }
   });
-  return out;
 }
 
 }  // namespace beamfea

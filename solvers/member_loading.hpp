@@ -19,10 +19,15 @@ namespace beamfea {
 
 // Loads between the nodes of every element (local components; empty for rigid links).
 std::vector<ElementLoads> element_loads(const Model& model, const LoadSet& loads);
+// The same written over `out` (each element's lists keep their storage).
+void element_loads(const Model& model, const LoadSet& loads, std::vector<ElementLoads>& out);
 
 // External forces over raw DOFs: nodal and joint loads, the equivalent nodal loads of the member
 // loads and self-weight (global axes), and the weight of the point masses.
 Eigen::VectorXd external_force(const Model& model, const DofMap& map, const LoadSet& loads);
+// The same with the loads' element_loads(model, loads) already at hand.
+Eigen::VectorXd external_force(const Model& model, const DofMap& map, const LoadSet& loads,
+                               const std::vector<ElementLoads>& element_loads);
 
 // Dead-load terms of every element (global directions, fixed at the reference configuration),
 // for the co-rotational analyses (elements/member_loads.hpp, DeadLoadTerm).
@@ -39,5 +44,11 @@ struct Station {
 // end_forces: per element, k u + fixed-end forces (local); loads: element_loads(...).
 std::vector<Station> member_stations(const Model& model, int member, const std::vector<Vec12>& end_forces,
                                      const std::vector<ElementLoads>& loads, int interior = 10);
+// The same written over `out`, with `positions` as scratch: both keep their storage, so that a
+// caller writing member after member, case after case, allocates nothing once they have their sizes
+// (members without loads between their nodes).
+void member_stations(const Model& model, int member, const std::vector<Vec12>& end_forces,
+                     const std::vector<ElementLoads>& loads, int interior, std::vector<Station>& out,
+                     std::vector<double>& positions);
 
 }  // namespace beamfea

@@ -1,30 +1,38 @@
 #pragma once
-// A cache of a small model's DofMap (reference configuration) and LinearStructure, for the
-// stiffness analysis of a sweep: a sweep over actuator stiffnesses, loads or anything else the
-// numbering, the constraint rows and the beams' matrices do not depend on rebuilds the same map
-// and the same element matrices case after case (about a sixth of a three-link chain's case).
+// Caches of a small model's structure, for sweeps: a sweep over actuator stiffnesses, loads or
+// anything else that the numbering, the constraint rows and the beams' matrices do not depend on
+// rebuilds the same map and the same element matrices case after case (about a sixth of a
+// three-link chain's stiffness case), and a load sweep the same assembled and factorised system.
 //
-// Never stale by construction: the cache keeps a copy of every model field that the DofMap and
-// LinearStructure constructors read (nodes, elements, materials, sections, joints but their
-// springs, supports, prescribed values), and reuses its pair only when the asked model equals
-// that copy field by field, doubles compared by their bits (so -0.0 and 0.0 differ, as they may
-// in what is computed from them). A hit rebinds the pair to the asked model, so its later reads
-// (the joint springs in `assemble`, ids in messages) come from that model. A field added to
-// those structs that either constructor reads must be added to the key (structure_cache.cpp).
+// Never stale by construction: each cache keeps a copy of every model field that its constructors
+// read (solvers/structure_key.hpp) and reuses what it built only when the asked model equals that
+// copy field by field, doubles compared by their bits. A hit rebinds what it reuses to the asked
+// model, so that its later reads (the joint springs in `assemble`, loads, ids in messages) come from
+// that model.
+#include <memory>
 #include <optional>
-#include <vector>
 
 #include "core/dof_map.hpp"
 #include "core/model.hpp"
+#include "solvers/linear_static.hpp"
 #include "solvers/structure.hpp"
+#include "solvers/structure_key.hpp"
 
 namespace beamfea {
 
+// Models up to this many raw DOFs are kept (a cache's memory stays small: at most the map, element
+// matrices and factor of a 160-node frame).
+inline constexpr int kMaxCachedRawDofs = 960;
+
+// Whether the caches keep this model's structure (at most kMaxCachedRawDofs raw DOFs). A caller
+// with a larger model builds its own, so that a thread does not hold a large model's map after it.
+bool structure_cache_keeps(const Model& model);
+
+// The DofMap (reference configuration) and LinearStructure of the stiffness analysis; the key
+// leaves out the joint springs, which `LinearStructure::assemble` reads from the bound model.
 class LinearStructureCache {
  public:
-  // Models up to this many raw DOFs are kept (the cache's memory stays small: at most the map
-  // and element matrices of a 160-node frame).
-  static constexpr int kMaxRawDofs = 960;
+  static constexpr int kMaxRawDofs = kMaxCachedRawDofs;
 
   struct Parts {
     DofMap map;
@@ -36,33 +44,39 @@ class LinearStructureCache {
   // constructors throw (nothing is kept then).
   const Parts& get(const Model& model);
 
-  // Whether `get` keeps this model's pair (at most kMaxRawDofs raw DOFs). A caller with a larger
-  // model builds its own pair, so that a thread does not hold a large model's map after the call.
-  static bool keeps(const Model& model);
+  static bool keeps(const Model& model) { return structure_cache_keeps(model); }
 
   // Whether the last `get` reused the kept pair (tests).
   bool last_was_hit() const { return last_hit_; }
 
  private:
-  // The fields the constructors read (joints without their springs).
-  struct Key {
-    std::vector<Node> nodes;
-    std::vector<Element> elements;
-    std::vector<Material> materials;
-    std::vector<Section> sections;
-    std::vector<Joint> joints;
-    std::vector<Support> supports;
-    std::vector<Prescribed> prescribed;
-  };
-  static bool matches(const Key& key, const Model& model);
-  static void assign_key(Key& key, const Model& model);
-
-  std::optional<Key> key_;
+  StructureKey key_{StructureKey::Springs::Excluded};
   std::optional<Parts> parts_;
   bool last_hit_ = false;
 };
 
 // The calling thread's cache (linear_node_stiffness uses it: a sweep worker is one thread).
 LinearStructureCache& thread_structure_cache();
+
+// The LinearSystem (map, assembled stiffness, factorisation) of linear_static, for a worker that
+// solves case after case (io's RunReport keeps one): the key includes the joint springs, and the
+// loads are not in it (a load sweep reuses the factorisation). A system whose stiffness could not
+// be factorised is not kept.
+class LinearSystemCache {
+ public:
+  // `model`'s system bound to `model`: the kept one when `model` and `options` equal the key's,
+  // else a new one (kept when `structure_cache_keeps(model)` and it factorised). Throws what the
+  // constructor throws (nothing is kept then).
+  std::shared_ptr<const LinearSystem> get(const Model& model, const LinearStaticOptions& options = {});
+
+  // Whether the last `get` reused the kept system (tests).
+  bool last_was_hit() const { return last_hit_; }
+
+ private:
+  StructureKey key_{StructureKey::Springs::Included};
+  LinearStaticOptions options_;
+  std::shared_ptr<LinearSystem> system_;
+  bool last_hit_ = false;
+};
 
 }  // namespace beamfea

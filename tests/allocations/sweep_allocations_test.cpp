@@ -5,7 +5,8 @@
 // A case goes through what `beamfea sweep --jobs 1` does for it inline: run_sweep_case with the
 // worker's SweepWorkspace and SweepCaseResult, then its CSV row appended to the batch. After one
 // pass over the cases (the workspace takes its sizes), a second pass over the same cases must call
-// operator new not once: the three-link chain's stiffness sweep (joint springs change).
+// operator new not once: the three-link chain's stiffness sweep (joint springs change) and the
+// portal frame's load sweep of examples/04 (the lateral load changes, the structure does not).
 // The results of the warm pass are also checked against fresh runs of the same cases, bit for bit.
 // Eigen's and CHOLMOD's arrays are malloc'ed, not new'ed: those are not counted here (heaptrack
 // counts them: docs/performance.md).
@@ -84,6 +85,18 @@ json chain_sweep() {
           {"outputs", {json{{"name", "K"}, {"path", "analyses.K.matrix"}}, json{{"name", "C"}, {"path", "analyses.K.compliance"}}}}};
 }
 
+// examples/04's portal frame (linear_static, 10 nodes) with the lateral load H as the only axis.
+json load_sweep() {
+  json values = json::array();
+  for (int i = 0; i <= 10; ++i) values.push_back(5000.0 * i);
+  return {{"base", "model.json"},
+          {"grid", {json{{"name", "H"}, {"pointer", "/loads/0/force/0"}, {"values", values}}}},
+          {"outputs",
+           {json{{"name", "sway"}, {"path", "analyses.lin.nodes.D.displacement[0]"}},
+            json{{"name", "base_A"}, {"path", "analyses.lin.nodes.A.reaction"}},
+            json{{"name", "ends"}, {"path", "analyses.lin.elements"}}}}};
+}
+
 struct Passes {
   long warm_pass_allocations = 0;
   std::vector<std::string> warm_rows;   // each case's row of the warm pass
@@ -130,6 +143,14 @@ TEST(SweepAllocations, AChainStiffnessCaseAllocatesNothingOnceTheWorkspaceIsWarm
   const Passes p = run_twice(sweep);
   EXPECT_EQ(p.warm_pass_allocations, 0) << "operator new calls over 27 warm cases";
   EXPECT_EQ(p.warm_rows, p.fresh_rows);  // CSV rows: every number written in full (17 digits)
+}
+
+TEST(SweepAllocations, ALoadSweepCaseAllocatesNothingOnceTheWorkspaceIsWarm) {
+  const Sweep sweep = beamfea::read_sweep(load_sweep(), BEAMFEA_SOURCE_DIR "/examples/04_load_sweep");
+  ASSERT_EQ(sweep.size(), 11u);
+  const Passes p = run_twice(sweep);
+  EXPECT_EQ(p.warm_pass_allocations, 0) << "operator new calls over 11 warm cases";
+  EXPECT_EQ(p.warm_rows, p.fresh_rows);
 }
 
 }  // namespace sweep_allocations_test
