@@ -353,7 +353,7 @@ void linear_node_stiffness(const Model& model, int node, CondensedStiffness& out
   std::optional<LinearStructureCache::Parts> own;
   const LinearStructureCache::Parts& parts = LinearStructureCache::keeps(model)
                                                  ? thread_structure_cache().get(model)
-                                                 : own.emplace(LinearStructureCache::Parts{DofMap(model), LinearStructure(model)});
+                                                 : own.emplace(model);
   const DofMap& map = parts.map;
   const LinearStructure& structure = parts.structure;
   auto condensed = [&](auto&& assembler) {

@@ -35,6 +35,9 @@ class LinearStructureCache {
   static constexpr int kMaxRawDofs = kMaxCachedRawDofs;
 
   struct Parts {
+    // Built in place: moving a DofMap copies its sparse matrices (Eigen's SparseMatrix has no move
+    // constructor), three allocations each.
+    explicit Parts(const Model& model) : map(model), structure(model) {}
     DofMap map;
     LinearStructure structure;
   };
