@@ -346,9 +346,15 @@ std::string DofMap::describe_extra(const Model& m, const ExtraRow& x) const {
 }
 
 Eigen::VectorXd DofMap::expand(const Eigen::VectorXd& u_free, const Eigen::VectorXd& u_prescribed) const {
-  Eigen::VectorXd u = Tf_ * u_free;
-  if (prescribed_size() > 0) u += Tp_ * u_prescribed;
+  Eigen::VectorXd u;
+  expand(u_free, u_prescribed, u);
   return u;
+}
+
+void DofMap::expand(const Eigen::VectorXd& u_free, const Eigen::VectorXd& u_prescribed, Eigen::VectorXd& u) const {
+  // Row-major rows: each entry is its row's sum added once, with or without a temporary.
+  u.noalias() = Tf_ * u_free;
+  if (prescribed_size() > 0) u.noalias() += Tp_ * u_prescribed;
 }
 
 std::string DofMap::check_consistency(const Eigen::VectorXd& u_prescribed) const {
@@ -371,13 +377,15 @@ std::string DofMap::check_consistency(const Eigen::VectorXd& u_prescribed) const
 
 DofMap::ConstraintForces DofMap::constraint_forces(const Eigen::VectorXd& r_raw) const {
   ConstraintForces out;
-  std::vector<Vec6> node_forces;
-  constraint_forces(r_raw, out, node_forces);
+  ConstraintForceScratch scratch;
+  constraint_forces(r_raw, out, scratch);
   return out;
 }
 
-void DofMap::constraint_forces(const Eigen::VectorXd& r_raw, ConstraintForces& out, std::vector<Vec6>& acc) const {
-  const Eigen::VectorXd r_ind = Tind_.transpose() * r_raw;
+void DofMap::constraint_forces(const Eigen::VectorXd& r_raw, ConstraintForces& out, ConstraintForceScratch& scratch) const {
+  std::vector<Vec6>& acc = scratch.node;
+  Eigen::VectorXd& r_ind = scratch.r_ind;
+  r_ind.noalias() = Tind_.transpose() * r_raw;
   const int m = static_cast<int>(extra_.size());
 
   // Multipliers of the extra constraints: sum_k lambda_k C_k = r_ind on the unprescribed DOFs.
@@ -409,7 +417,8 @@ void DofMap::constraint_forces(const Eigen::VectorXd& r_raw, ConstraintForces& o
     if (extra_[c].prescribed >= 0) out.prescribed[extra_[c].prescribed] = lambda[c];
 
   // Forces carried by the tree edges: accumulate the residual from the leaves to the roots.
-  Eigen::VectorXd r = r_raw;
+  Eigen::VectorXd& r = scratch.r;
+  r = r_raw;
   for (int c = 0; c < m; ++c)
     for (const auto& t : extra_[c].raw) r[t.ind] -= lambda[c] * t.coef;
   acc.resize(n_nodes_);

@@ -99,6 +99,8 @@ class DofMap {
   const std::vector<ConstraintEdge>& loop_edges() const { return loop_edges_; }
 
   Eigen::VectorXd expand(const Eigen::VectorXd& u_free, const Eigen::VectorXd& u_prescribed) const;
+  // The same written over `u` (its storage kept when it has the size).
+  void expand(const Eigen::VectorXd& u_free, const Eigen::VectorXd& u_prescribed, Eigen::VectorXd& u) const;
   Eigen::VectorXd reduce(const Eigen::VectorXd& f_raw) const { return Tf_.transpose() * f_raw; }
 
   // Constraint forces from the raw residual r = f_int - f_ext at an equilibrium.
@@ -111,9 +113,15 @@ class DofMap {
                                            // minimum-norm split where rows are redundant
   };
   ConstraintForces constraint_forces(const Eigen::VectorXd& r_raw) const;
-  // The same written over `out` (its vectors keep their storage); `node_forces` is scratch (per
-  // node, the residual accumulated from the leaves), kept by a caller that solves case after case.
-  void constraint_forces(const Eigen::VectorXd& r_raw, ConstraintForces& out, std::vector<Vec6>& node_forces) const;
+  // The arrays of the computation (per node, the residual accumulated from the leaves; the residual
+  // over independent DOFs and the one the multipliers leave), kept by a caller that solves case
+  // after case.
+  struct ConstraintForceScratch {
+    std::vector<Vec6> node;
+    Eigen::VectorXd r_ind, r;
+  };
+  // The same written over `out` (its vectors keep their storage, and `scratch`'s).
+  void constraint_forces(const Eigen::VectorXd& r_raw, ConstraintForces& out, ConstraintForceScratch& scratch) const;
 
   // The constraint rows found redundant (over-constrained loops, supports on one rigid body): their
   // reactions are statically indeterminate; e.g. "joint 'jC' uz", "node 'D' dof rx". Linear analyses

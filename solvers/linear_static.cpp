@@ -100,14 +100,18 @@ void LinearSystem::solve(const LoadSet& loads, LinearStaticResult& res, LinearSo
   ++solves_;
   res.free_dofs = s.map.free_size();
   element_loads(model, loads, res.element_loads);
-  const Eigen::VectorXd f_raw = external_force(model, s.map, loads, res.element_loads);
-  Eigen::VectorXd f = s.map.reduce(f_raw);
+  Eigen::VectorXd& f_raw = scratch.f_raw;
+  external_force(model, s.map, loads, res.element_loads, f_raw);
+  Eigen::VectorXd& f = scratch.f;
+  f.noalias() = s.map.T_free().transpose() * f_raw;  // DofMap::reduce
   if (s.map.prescribed_size() > 0) f -= s.assembler.K_fp() * s.up;
-  const Eigen::VectorXd uf = s.factor.solve(f);
-  res.u = s.map.expand(uf, s.up);
+  s.factor.solve(f, scratch.u_free, scratch.solve_work);
+  s.map.expand(scratch.u_free, s.up, res.u);
 
-  const Eigen::VectorXd r = s.structure.internal_force(s.map, res.u) - f_raw;
-  s.map.constraint_forces(r, scratch.constraint_forces, scratch.node_forces);
+  Eigen::VectorXd& r = scratch.residual;  // f_int - f_ext
+  s.structure.internal_force(s.map, res.u, r);
+  r -= f_raw;
+  s.map.constraint_forces(r, scratch.constraint_forces, scratch.constraint_scratch);
   const DofMap::ConstraintForces& cf = scratch.constraint_forces;
   res.reactions.assign(model.nodes.size(), Vec6::Zero());
   res.supported.assign(model.nodes.size(), 0);

@@ -46,8 +46,9 @@ struct LinearStaticResult {
 // The arrays of a solution besides its result, kept by a caller that solves case after case (a
 // sweep worker), with the result it writes over (LinearSystem::solve's second overload).
 struct LinearSolveScratch {
+  Eigen::VectorXd f_raw, f, u_free, solve_work, residual;  // external force, reduced, K_ff^-1 f, r
   DofMap::ConstraintForces constraint_forces;
-  std::vector<Vec6> node_forces;
+  DofMap::ConstraintForceScratch constraint_scratch;
 };
 
 // The linear system of a model, assembled and factorised once; every load case solves against the
@@ -63,7 +64,7 @@ class LinearSystem {
   LinearStaticResult solve(const LoadSet& loads) const;
   // The same written over `into`: afterwards equal, field for field, to what the overload above
   // returns, but its vectors and message keep their storage (with `scratch`'s), so that a sweep's
-  // case allocates no std containers once they have their sizes. Eigen's vectors are new.
+  // case of a small model (dense factor) allocates nothing once they have their sizes.
   void solve(const LoadSet& loads, LinearStaticResult& into, LinearSolveScratch& scratch) const;
   int factorizations() const { return factorizations_; }
   const Model& model() const { return *model_; }

@@ -103,7 +103,14 @@ Eigen::VectorXd external_force(const Model& m, const DofMap& map, const LoadSet&
 }
 
 Eigen::VectorXd external_force(const Model& m, const DofMap& map, const LoadSet& loads, const std::vector<ElementLoads>& el) {
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(map.raw_size());
+  Eigen::VectorXd f;
+  external_force(m, map, loads, el, f);
+  return f;
+}
+
+void external_force(const Model& m, const DofMap& map, const LoadSet& loads, const std::vector<ElementLoads>& el,
+                    Eigen::VectorXd& f) {
+  f.setZero(map.raw_size());
   for (const auto& l : loads.nodal) {
     f.segment<3>(map.raw_node(l.node, 0)) += l.force;
     f.segment<3>(map.raw_node(l.node, 3)) += l.moment;
@@ -119,7 +126,6 @@ Eigen::VectorXd external_force(const Model& m, const DofMap& map, const LoadSet&
     f.segment<6>(map.raw_node(E.nodes[1], 0)) += fe.tail<6>();
   }
   for (const auto& pm : m.masses) f.segment<3>(map.raw_node(pm.node, 0)) += pm.mass * loads.gravity;
-  return f;
 }
 
 std::vector<std::vector<DeadLoadTerm>> element_dead_loads(const Model& m, const LoadSet& loads) {

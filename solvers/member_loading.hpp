@@ -28,6 +28,9 @@ Eigen::VectorXd external_force(const Model& model, const DofMap& map, const Load
 // The same with the loads' element_loads(model, loads) already at hand.
 Eigen::VectorXd external_force(const Model& model, const DofMap& map, const LoadSet& loads,
                                const std::vector<ElementLoads>& element_loads);
+// The same written over `f` (its storage kept when it has the size).
+void external_force(const Model& model, const DofMap& map, const LoadSet& loads, const std::vector<ElementLoads>& element_loads,
+                    Eigen::VectorXd& f);
 
 // Dead-load terms of every element (global directions, fixed at the reference configuration),
 // for the co-rotational analyses (elements/member_loads.hpp, DeadLoadTerm).

@@ -168,16 +168,25 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
 }
 
 Eigen::VectorXd SparseFactor::solve(const Eigen::VectorXd& b) const {
-  if (s_.size() == 0) return Eigen::VectorXd(0);
-  if (!cholesky_ok_ && !lu_ok_) throw Error("SparseFactor::solve: no valid factorisation");
-  const Eigen::VectorXd sb = s_.cwiseProduct(b);
-  if (dense_ok_) {
-    Eigen::VectorXd x = sb;
-    cholesky_solve_in_place(impl_->dense_l, impl_->dense_last, x);
-    return s_.cwiseProduct(x);
+  Eigen::VectorXd x, work;
+  solve(b, x, work);
+  return x;
+}
+
+void SparseFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, Eigen::VectorXd& work) const {
+  if (s_.size() == 0) {
+    x.resize(0);
+    return;
   }
-  const Eigen::VectorXd y = cholesky_ok_ ? Eigen::VectorXd(impl_->llt.solve(sb)) : Eigen::VectorXd(impl_->lu.solve(sb));
-  return s_.cwiseProduct(y);
+  if (!cholesky_ok_ && !lu_ok_) throw Error("SparseFactor::solve: no valid factorisation");
+  work = s_.cwiseProduct(b);  // S b
+  if (dense_ok_) {
+    cholesky_solve_in_place(impl_->dense_l, impl_->dense_last, work);
+    x = s_.cwiseProduct(work);
+    return;
+  }
+  const Eigen::VectorXd y = cholesky_ok_ ? Eigen::VectorXd(impl_->llt.solve(work)) : Eigen::VectorXd(impl_->lu.solve(work));
+  x = s_.cwiseProduct(y);
 }
 
 Eigen::MatrixXd SparseFactor::solve(const Eigen::MatrixXd& B) const {

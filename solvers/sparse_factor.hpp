@@ -55,6 +55,9 @@ class SparseFactor {
   // Factorises K; the symbolic analysis is reused while the sparsity pattern is unchanged.
   FactorStatus factorize(const SparseMatrix& K, const FactorOptions& options = {});
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  // The same written over `x` (distinct from b), with `work` as scratch: no allocation on the dense
+  // path once both have the size (CHOLMOD's and UMFPACK's solves allocate their own).
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, Eigen::VectorXd& work) const;
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
 
   bool cholesky() const { return cholesky_ok_; }

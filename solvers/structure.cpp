@@ -79,7 +79,13 @@ void LinearStructure::assemble(const DofMap& map, SystemAssembler& assembler) co
 void LinearStructure::assemble(const DofMap& map, DenseAssembler& assembler) const { assemble_into(map, assembler); }
 
 Eigen::VectorXd LinearStructure::internal_force(const DofMap& map, const Eigen::VectorXd& u) const {
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(map.raw_size());
+  Eigen::VectorXd f;
+  internal_force(map, u, f);
+  return f;
+}
+
+void LinearStructure::internal_force(const DofMap& map, const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
+  f.setZero(map.raw_size());
   for (std::size_t e = 0; e < beams_.size(); ++e) {
     if (!beams_[e]) continue;
     const auto dofs = element_dofs(map, static_cast<int>(e));
@@ -94,7 +100,6 @@ Eigen::VectorXd LinearStructure::internal_force(const DofMap& map, const Eigen::
     const int r = map.raw_joint(static_cast<int>(j), 0);
     f.segment(r, jt.coordinates()) += jt.stiffness_as_matrix() * u.segment(r, jt.coordinates());
   }
-  return f;
 }
 
 Vec12 LinearStructure::end_forces(const DofMap& map, int element, const Eigen::VectorXd& u) const {

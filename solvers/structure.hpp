@@ -25,6 +25,8 @@ class LinearStructure {
   void assemble(const DofMap& map, DenseAssembler& assembler) const;
   // Internal force over raw DOFs for raw displacements u.
   Eigen::VectorXd internal_force(const DofMap& map, const Eigen::VectorXd& u_raw) const;
+  // The same written over `f` (its storage kept when it has the size).
+  void internal_force(const DofMap& map, const Eigen::VectorXd& u_raw, Eigen::VectorXd& f) const;
   // Raw DOFs of an element: its two nodes' 12 components.
   std::array<int, 12> element_dofs(const DofMap& map, int element) const;
   // Local end forces [N Vy Vz T My Mz] x 2 of a beam element for raw displacements u.
