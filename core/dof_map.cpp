@@ -13,12 +13,17 @@ namespace beamfea {
 
 Configuration reference_configuration(const Model& m) {
   Configuration c;
+  reference_configuration(m, c);
+  return c;
+}
+
+void reference_configuration(const Model& m, Configuration& c) {
+  c.x.clear();
   c.x.reserve(m.nodes.size());
   for (const auto& n : m.nodes) c.x.push_back(n.x);
   c.R.assign(m.nodes.size(), Mat3::Identity());
-  c.joint_axes.reserve(m.joints.size());
-  for (const auto& j : m.joints) c.joint_axes.push_back(j.axes);
-  return c;
+  c.joint_axes.resize(m.joints.size());
+  for (std::size_t j = 0; j < m.joints.size(); ++j) c.joint_axes[j] = m.joints[j].axes;
 }
 
 namespace {

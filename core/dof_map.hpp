@@ -44,6 +44,8 @@ struct Configuration {
 };
 // The reference configuration of a model: x = X, R = I, axes as given.
 Configuration reference_configuration(const Model& m);
+// The same written over `c` (its vectors keep their storage: a cache that builds map after map).
+void reference_configuration(const Model& m, Configuration& c);
 
 // One edge of the constraint graph (a rigid link or a joint).
 struct ConstraintEdge {

@@ -26,7 +26,8 @@ const LinearStructureCache::Parts& LinearStructureCache::get(const Model& model)
   // A throwing constructor leaves no pair behind (and a key without a pair matches nothing); the
   // key's storage is kept for the next one.
   parts_.reset();
-  parts_.emplace(model);
+  reference_configuration(model, reference_);
+  parts_.emplace(model, reference_);
   if (keeps(model)) key_.assign(model);
   else key_.clear();
   return *parts_;

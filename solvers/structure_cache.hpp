@@ -38,6 +38,7 @@ class LinearStructureCache {
     // Built in place: moving a DofMap copies its sparse matrices (Eigen's SparseMatrix has no move
     // constructor), three allocations each.
     explicit Parts(const Model& model) : map(model), structure(model) {}
+    Parts(const Model& model, const Configuration& reference) : map(model, reference), structure(model) {}
     DofMap map;
     LinearStructure structure;
   };
@@ -54,6 +55,7 @@ class LinearStructureCache {
 
  private:
   StructureKey key_{StructureKey::Springs::Excluded};
+  Configuration reference_;  // the last missed model's reference configuration (storage kept)
   std::optional<Parts> parts_;
   bool last_hit_ = false;
 };
