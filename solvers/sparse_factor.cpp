@@ -1,5 +1,7 @@
 #include "solvers/sparse_factor.hpp"
 
+#include <fmt/format.h>
+
 #include <Eigen/Cholesky>
 #include <Eigen/CholmodSupport>
 #include <Eigen/UmfPackSupport>
@@ -8,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "solvers/dense_condensation.hpp"
+#include "solvers/fill_ordering.hpp"
 
 namespace beamfea {
 
@@ -38,6 +41,32 @@ struct SparseFactor::Impl {
       c.method[0].ordering = on ? CHOLMOD_METIS : CHOLMOD_GIVEN;  // GIVEN: cholmod_defaults' value
       c.postorder = 1;
     }
+    // From kOrderedMinDofs: CHOLMOD's analysis tries two orderings, NESDIS of the compressed graph
+    // (solvers/fill_ordering.hpp; passed as the given permutation, method 0) and its own METIS
+    // (method 1), and keeps the one of fewer nonzeros in L (cholmod_analyze_p); METIS alone above
+    // kNesdisTrialMaxDofs or when the first could not be made. Eigen's analyzePattern, with the
+    // permutation passed.
+    void analyze_two_orderings(const SparseMatrix& A, bool try_nesdis, std::string& summary) {
+      cholmod_common& c = this->cholmod();
+      std::vector<int> perm = try_nesdis ? nested_dissection_by_supervariables(A, c) : std::vector<int>{};
+      c.nmethods = perm.empty() ? 1 : 2;
+      c.method[0].ordering = perm.empty() ? CHOLMOD_METIS : CHOLMOD_GIVEN;
+      c.method[1].ordering = CHOLMOD_METIS;
+      c.postorder = 1;
+      if (m_cholmodFactor) cholmod_free_factor(&m_cholmodFactor, &c);
+      cholmod_sparse a = Eigen::viewAsCholmod(A.selfadjointView<Eigen::Lower>());
+      m_cholmodFactor = cholmod_analyze_p(&a, perm.empty() ? nullptr : perm.data(), nullptr, 0, &c);
+      this->m_isInitialized = true;
+      m_analysisIsOk = m_cholmodFactor != nullptr;
+      m_factorizationIsOk = false;
+      this->m_info = m_cholmodFactor ? Eigen::Success : Eigen::NumericalIssue;
+      if (!m_cholmodFactor || perm.empty()) {
+        summary = "METIS";
+        return;
+      }
+      summary = fmt::format("{} (nnz(L): NESDIS of supervariables {:.3g}, METIS {:.3g})",
+                            c.selected == 0 ? "NESDIS" : "METIS", c.method[0].lnz, c.method[1].lnz);
+    }
   };
 
   // The dense factor (solvers/dense_condensation.hpp), kept between factorisations: no
@@ -47,6 +76,7 @@ struct SparseFactor::Impl {
   Cholesky llt;
   Eigen::UmfPackLU<SparseMatrix> lu;
   Eigen::Index rows = -1, nnz = -1;
+  std::string ordering;  // SparseFactor::ordering()
   bool analysed = false, lu_analysed = false;
 };
 
@@ -133,8 +163,13 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
   // CHOLMOD reads the lower triangle only (Eigen::Lower): the scaled copy is of that half.
   const SparseMatrix A = scaled_lower(K, s_);
   if (!impl_->analysed || impl_->rows != n || impl_->nnz != A.nonZeros()) {
-    impl_->llt.metis_only(n >= kMetisOnlyMinDofs);
-    impl_->llt.analyzePattern(A);
+    if (n >= kOrderedMinDofs) {
+      impl_->llt.analyze_two_orderings(A, n <= kNesdisTrialMaxDofs, impl_->ordering);
+    } else {
+      impl_->llt.metis_only(false);
+      impl_->llt.analyzePattern(A);
+      impl_->ordering = "CHOLMOD's choice";
+    }
     if (impl_->llt.info() != Eigen::Success) {
       impl_->analysed = false;
       return FactorStatus::TooLarge;
@@ -166,6 +201,8 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
   lu_ok_ = impl_->lu.info() == Eigen::Success;
   return lu_ok_ ? FactorStatus::NotPositiveDefinite : FactorStatus::Singular;
 }
+
+std::string SparseFactor::ordering() const { return impl_->ordering; }
 
 Eigen::VectorXd SparseFactor::solve(const Eigen::VectorXd& b) const {
   Eigen::VectorXd x, work;

@@ -31,12 +31,17 @@ const char* to_string(FactorStatus s);
 // condition estimate would decide singularity for models CHOLMOD decides today.
 inline constexpr int kDenseMaxDofs = 160;
 
-// From this many DOFs CHOLMOD orders by METIS alone. Its default tries AMD first and METIS when
-// AMD's fill looks poor (flops/nnz(L) >= 500), keeping the better; on the frames measured from
-// 2e4 DOFs up (cubes of 21,504 and 97,344 DOFs, a 3-storey building of 95,922) it always ended
-// with METIS, so the AMD trial (a fifth of the analysis at 97,344 DOFs) was spent for nothing.
-// Below, AMD alone is usually chosen and cheaper than METIS (docs/performance.md, "Orderings").
-inline constexpr int kMetisOnlyMinDofs = 20000;
+// From kOrderedMinDofs, CHOLMOD's default (AMD, then METIS when AMD's fill looks poor) is
+// replaced: on the frames measured from 2e4 DOFs up it always ended with METIS, so its AMD trial
+// was spent for nothing. Up to kNesdisTrialMaxDofs CHOLMOD's analysis tries two orderings and keeps
+// the one of fewer nonzeros in L: METIS (METIS_NodeND of the whole graph) and NESDIS of the graph
+// compressed by supervariables (solvers/fill_ordering.hpp); above, METIS alone. Measured on cube
+// frames (docs/performance.md, "Orderings"): NESDIS's factor has 13 % and 21 % fewer nonzeros at
+// 21,504 and 34,992 DOFs (process CPU 0.82x at 21,504), but 25 %, 7 % and 1.5 % more at 69,828,
+// 97,344 and 202,752, where the trial only costs (process CPU 1.06x at 97,344). Below
+// kOrderedMinDofs CHOLMOD's default is kept: AMD alone, usually, cheaper than METIS there.
+inline constexpr int kOrderedMinDofs = 20000;
+inline constexpr int kNesdisTrialMaxDofs = 50000;
 
 struct FactorOptions {
   double singular_rcond = 1e-13;  // below this (scaled) the matrix is treated as singular
@@ -64,6 +69,10 @@ class SparseFactor {
   bool dense() const { return dense_ok_; }  // the last factorisation was the dense one
   bool usable() const { return cholesky_ok_ || lu_ok_; }  // solve() may be called
   double rcond() const { return rcond_; }             // of the scaled matrix (Cholesky only)
+  // The fill-reducing ordering of the last sparse analysis, for reports: "NESDIS (...)" or
+  // "METIS (...)" with the nonzeros of L under both where both were tried, "METIS" where METIS
+  // alone was, "CHOLMOD's choice" below kOrderedMinDofs, "" before any.
+  std::string ordering() const;
   const Eigen::VectorXd& scaling() const { return s_; }  // S
   // DOFs with a zero or negative diagonal (no stiffness at all), if any.
   const std::vector<int>& unrestrained() const { return unrestrained_; }

@@ -1,0 +1,118 @@
+#include "solvers/fill_ordering.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+namespace beamfea {
+
+namespace {
+
+// Both triangles of the symmetric pattern whose lower triangle is `lower`, diagonal included,
+// rows sorted within each column (CSC).
+struct FullPattern {
+  std::vector<int> start, row;
+  const int* begin(int j) const { return row.data() + start[j]; }
+  int size(int j) const { return start[j + 1] - start[j]; }
+};
+
+FullPattern full_pattern(const SparseMatrix& lower) {
+  const int n = static_cast<int>(lower.cols());
+  const int* p = lower.outerIndexPtr();
+  const int* r = lower.innerIndexPtr();
+  FullPattern f;
+  f.start.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (int k = 0; k < n; ++k)
+    for (int q = p[k]; q < p[k + 1]; ++q) {
+      ++f.start[k + 1];
+      if (r[q] != k) ++f.start[r[q] + 1];
+    }
+  for (int j = 0; j < n; ++j) f.start[j + 1] += f.start[j];
+  f.row.resize(static_cast<std::size_t>(f.start[n]));
+  std::vector<int> next(f.start.begin(), f.start.end() - 1);
+  // Column k receives, in increasing k, its upper entries (rows k' < k, placed while column k' is
+  // visited) and then its own lower entries: sorted without a sort.
+  for (int k = 0; k < n; ++k)
+    for (int q = p[k]; q < p[k + 1]; ++q) {
+      const int i = r[q];
+      f.row[next[k]++] = i;
+      if (i != k) f.row[next[i]++] = k;
+    }
+  return f;
+}
+
+std::vector<int> supervariable_starts(const FullPattern& f, int n) {
+  std::vector<int> first{0};
+  for (int j = 1; j < n; ++j) {
+    const bool same = f.size(j) == f.size(j - 1) &&
+                      std::memcmp(f.begin(j), f.begin(j - 1), sizeof(int) * static_cast<std::size_t>(f.size(j))) == 0;
+    if (!same) first.push_back(j);
+  }
+  first.push_back(n);
+  return first;
+}
+
+// The lower triangle of the compressed graph (a vertex per supervariable, an edge where two
+// supervariables' columns couple), pattern only, as cholmod_metis and cholmod_nested_dissection
+// read it. Null when CHOLMOD cannot allocate it.
+cholmod_sparse* compressed_graph(const FullPattern& f, const std::vector<int>& first, cholmod_common& c) {
+  const int groups = static_cast<int>(first.size()) - 1;
+  std::vector<int> group_of(static_cast<std::size_t>(first.back()));
+  for (int g = 0; g < groups; ++g) std::fill(group_of.begin() + first[g], group_of.begin() + first[g + 1], g);
+  // Rows are sorted and groups are runs of consecutive columns: the groups of a column's rows are
+  // non-decreasing, so duplicates are adjacent.
+  std::vector<int> start{0}, row;
+  start.reserve(static_cast<std::size_t>(groups) + 1);
+  for (int g = 0; g < groups; ++g) {
+    const int j = first[g];
+    int last = g;
+    for (const int* q = f.begin(j); q != f.begin(j) + f.size(j); ++q) {
+      const int h = group_of[*q];
+      if (h > last) {
+        row.push_back(h);
+        last = h;
+      }
+    }
+    start.push_back(static_cast<int>(row.size()));
+  }
+  cholmod_sparse* g = cholmod_allocate_sparse(groups, groups, row.size(), 1, 1, -1, CHOLMOD_PATTERN, &c);
+  if (!g) return nullptr;
+  std::copy(start.begin(), start.end(), static_cast<int*>(g->p));
+  std::copy(row.begin(), row.end(), static_cast<int*>(g->i));
+  return g;
+}
+
+// Expands an ordering of the supervariables into one of the columns.
+std::vector<int> expand(const std::vector<int>& group_perm, const std::vector<int>& first) {
+  std::vector<int> perm;
+  perm.reserve(static_cast<std::size_t>(first.back()));
+  for (const int g : group_perm)
+    for (int j = first[g]; j < first[g + 1]; ++j) perm.push_back(j);
+  return perm;
+}
+
+}  // namespace
+
+std::vector<int> supervariable_starts(const SparseMatrix& lower) {
+  return supervariable_starts(full_pattern(lower), static_cast<int>(lower.cols()));
+}
+
+std::vector<int> nested_dissection_by_supervariables(const SparseMatrix& lower, cholmod_common& c) {
+  const int n = static_cast<int>(lower.cols());
+  if (n == 0 || lower.rows() != n || !lower.isCompressed()) return {};
+  const FullPattern f = full_pattern(lower);
+  const std::vector<int> first = supervariable_starts(f, n);
+  const std::size_t groups = first.size() - 1;
+  cholmod_sparse* g = compressed_graph(f, first, c);
+  if (!g) return {};
+  // cholmod_nested_dissection reads its parameters from method[current].
+  const int saved_current = c.current;
+  c.current = 0;
+  std::vector<int> group_perm(groups), cparent(groups), cmember(groups);
+  const bool ok = cholmod_nested_dissection(g, nullptr, 0, group_perm.data(), cparent.data(), cmember.data(), &c) >= 0;
+  c.current = saved_current;
+  cholmod_free_sparse(&g, &c);
+  c.status = CHOLMOD_OK;  // a failed ordering is not the caller's error: it orders without it
+  return ok ? expand(group_perm, first) : std::vector<int>{};
+}
+
+}  // namespace beamfea

@@ -1,0 +1,33 @@
+#pragma once
+// A fill-reducing ordering of a large stiffness matrix computed on its compressed graph, offered
+// to CHOLMOD's analysis beside its own METIS ordering (solvers/sparse_factor.cpp, from
+// kOrderedMinDofs to kNesdisTrialMaxDofs); CHOLMOD keeps the one whose factor has fewer nonzeros.
+//
+// The DOFs of a node share one sparsity pattern: the graph of a frame's stiffness matrix is its
+// node graph with every vertex repeated (six times; fewer at a released or eliminated DOF).
+// Consecutive columns whose patterns (diagonal included) are equal are merged into one vertex (a
+// "supervariable": Ashcraft, "Compressed graphs and the minimum degree algorithm", SIAM J. Sci.
+// Comput. 16 (1995); George & Liu, SIAM Review 31 (1989)), CHOLMOD's nested dissection (NESDIS:
+// METIS node bisections, constrained minimum degree on the parts; cholmod_nested_dissection) orders
+// that graph, and each vertex is expanded back into its columns, in their order. On the compressed
+// graph NESDIS costs about what METIS_NodeND costs on the whole one (which compresses internally);
+// neither ordering wins on every frame (docs/performance.md, "Orderings").
+#include <cholmod.h>
+
+#include <vector>
+
+#include "core/dof_map.hpp"
+
+namespace beamfea {
+
+// `lower`: the lower triangle of a symmetric matrix, compressed, rows sorted within each column (as
+// CHOLMOD reads it). Uses `common` for CHOLMOD's calls, with the parameters of its method[0]
+// (cholmod_defaults' nd_small, prune_dense, nd_camd ...). Empty when CHOLMOD cannot make the
+// ordering (out of memory, METIS's size limits): the caller then orders as it would without it.
+std::vector<int> nested_dissection_by_supervariables(const SparseMatrix& lower, cholmod_common& common);
+
+// The consecutive runs of columns of equal pattern (diagonal included) of the symmetric matrix
+// whose lower triangle is `lower`: run g is columns first[g] .. first[g + 1] - 1 (first.back() = n).
+std::vector<int> supervariable_starts(const SparseMatrix& lower);
+
+}  // namespace beamfea

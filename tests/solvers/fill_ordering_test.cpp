@@ -1,0 +1,110 @@
+// The ordering of large matrices by supervariables (solvers/fill_ordering.hpp) and its use by
+// SparseFactor from kOrderedMinDofs up.
+#include <gtest/gtest.h>
+
+#include <numeric>
+
+#include "solvers/fill_ordering.hpp"
+#include "solvers/sparse_factor.hpp"
+#include "support/matrices.hpp"
+
+namespace fill_ordering_test {
+
+using namespace beamfea;
+
+namespace {
+
+constexpr int kDofsPerNode = 6;
+
+// A frame-like matrix: the 7-point grid Laplacian of m^3 nodes (tests/support/matrices.hpp) with
+// every node carrying six DOFs coupled by the SPD block B = 6 I + ones (K = L (x) B, SPD as both
+// factors are). When `released` >= 0, DOF 5 of that node keeps only its diagonal, as a released
+// DOF with a spring to ground would: its pattern then differs from its node's other five.
+SparseMatrix node_grid(int m, int released = -1) {
+  const SparseMatrix L = test::grid_laplacian(m);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int j = 0; j < L.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(L, j); it; ++it)
+      for (int a = 0; a < kDofsPerNode; ++a)
+        for (int b = 0; b < kDofsPerNode; ++b) {
+          const int r = static_cast<int>(it.row()) * kDofsPerNode + a, c = j * kDofsPerNode + b;
+          const bool cut = (it.row() == released && a == 5) || (j == released && b == 5);
+          if (cut && r != c) continue;
+          t.emplace_back(r, c, cut ? 1.0 : it.value() * ((a == b ? 6.0 : 0.0) + 1.0));
+        }
+  SparseMatrix K(L.rows() * kDofsPerNode, L.cols() * kDofsPerNode);
+  K.setFromTriplets(t.begin(), t.end());
+  return K;
+}
+
+SparseMatrix lower(const SparseMatrix& K) {
+  SparseMatrix A = K.triangularView<Eigen::Lower>();
+  A.makeCompressed();
+  return A;
+}
+
+}  // namespace
+
+TEST(FillOrdering, SupervariablesAreTheNodesAndAReleasedDofStandsAlone) {
+  const int m = 4, nodes = m * m * m;
+  const std::vector<int> plain = supervariable_starts(lower(node_grid(m)));
+  ASSERT_EQ(static_cast<int>(plain.size()), nodes + 1);
+  for (int g = 0; g <= nodes; ++g) EXPECT_EQ(plain[g], g * kDofsPerNode);
+
+  const int released = 21;
+  const std::vector<int> split = supervariable_starts(lower(node_grid(m, released)));
+  ASSERT_EQ(static_cast<int>(split.size()), nodes + 2);
+  // Node 21's DOFs 0-4 stay one run, DOF 5 is a run of its own; its neighbours' runs are whole.
+  EXPECT_EQ(split[released], released * kDofsPerNode);
+  EXPECT_EQ(split[released + 1], released * kDofsPerNode + 5);
+  EXPECT_EQ(split[released + 2], (released + 1) * kDofsPerNode);
+  EXPECT_EQ(split.back(), nodes * kDofsPerNode);
+}
+
+TEST(FillOrdering, NestedDissectionIsAPermutationKeepingEachNodesDofsTogetherAndInOrder) {
+  const int m = 6, released = 100;
+  const SparseMatrix A = lower(node_grid(m, released));
+  cholmod_common c;
+  cholmod_start(&c);
+  const std::vector<int> perm = nested_dissection_by_supervariables(A, c);
+  EXPECT_EQ(c.status, CHOLMOD_OK);
+  cholmod_finish(&c);
+  ASSERT_EQ(perm.size(), static_cast<std::size_t>(A.cols()));
+  std::vector<int> sorted = perm;
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<int> identity(perm.size());
+  std::iota(identity.begin(), identity.end(), 0);
+  EXPECT_EQ(sorted, identity);
+  // Runs expanded in place: a node's first DOF is followed by its next ones (the released node's
+  // DOF 5 is a run of its own and may stand anywhere).
+  for (std::size_t k = 0; k < perm.size(); ++k) {
+    const int node = perm[k] / kDofsPerNode, dof = perm[k] % kDofsPerNode;
+    const int run_end = node == released ? 4 : kDofsPerNode - 1;
+    if (dof < run_end) {
+      ASSERT_LT(k + 1, perm.size());
+      EXPECT_EQ(perm[k + 1], perm[k] + 1) << "position " << k;
+    }
+  }
+}
+
+TEST(FillOrdering, SparseFactorFromTheThresholdSolvesAndNamesTheOrderingItKept) {
+  // 15^3 nodes x 6 = 20,250 DOFs >= kOrderedMinDofs.
+  const SparseMatrix K = node_grid(15, 7);
+  ASSERT_GE(K.rows(), kOrderedMinDofs);
+  SparseFactor f;
+  ASSERT_EQ(f.factorize(K), FactorStatus::Ok);
+  const std::string ordering = f.ordering();
+  EXPECT_TRUE(ordering.rfind("NESDIS (", 0) == 0 || ordering.rfind("METIS (", 0) == 0) << ordering;
+  EXPECT_NE(ordering.find("nnz(L): NESDIS of supervariables"), std::string::npos) << ordering;
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K.rows(), -1.0, 2.0);
+  const Eigen::VectorXd x = f.solve(b);
+  // Backward stable Cholesky of a matrix of condition ~1e2: the residual is rounding.
+  EXPECT_LT((K * x - b).norm() / b.norm(), 1e-13);
+
+  // Below the threshold CHOLMOD's own choice, as before.
+  SparseFactor small;
+  ASSERT_EQ(small.factorize(node_grid(8)), FactorStatus::Ok);
+  EXPECT_EQ(small.ordering(), "CHOLMOD's choice");
+}
+
+}  // namespace fill_ordering_test
