@@ -107,11 +107,15 @@ void LoadSet::add_scaled(const LoadSet& o, double k) {
 
 LoadSet Model::default_loads() const {
   LoadSet s;
-  s.nodal = loads;
-  s.joint = joint_loads;
-  s.member = member_loads;
-  s.gravity = gravity;
+  default_loads(s);
   return s;
+}
+
+void Model::default_loads(LoadSet& into) const {
+  into.nodal = loads;
+  into.joint = joint_loads;
+  into.member = member_loads;
+  into.gravity = gravity;
 }
 
 LoadSet Model::loads_of(const std::string& id) const {

@@ -294,8 +294,10 @@ struct Model {
   int find_section(const std::string& id) const;   // -1 if absent
   int find_load_case(const std::string& id) const;    // -1 if absent
   int find_combination(const std::string& id) const;  // -1 if absent
-  // The default load case (top-level loads and gravity).
+  // The default load case (top-level loads and gravity); the second form writes it over `into`,
+  // whose vectors keep their storage (a sweep worker's load set).
   LoadSet default_loads() const;
+  void default_loads(LoadSet& into) const;
   // The loads of a named case or combination (a combination: its cases' loads, factored);
   // throws ModelError when the id names neither.
   LoadSet loads_of(const std::string& case_or_combination) const;

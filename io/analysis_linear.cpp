@@ -91,14 +91,6 @@ void set_elements(ojson& v, const Model& model, const LinearStaticResult& r, int
   out.finish();
 }
 
-// Model::default_loads written over `loads` (its vectors keep their storage).
-void default_loads_into(const Model& model, LoadSet& loads) {
-  loads.nodal = model.loads;
-  loads.joint = model.joint_loads;
-  loads.member = model.member_loads;
-  loads.gravity = model.gravity;
-}
-
 // Interior stations per member (the spec's "stations"), default 10.
 constexpr int kDefaultStations = 10;
 constexpr int kMaxStations = 10000;
@@ -136,7 +128,7 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   std::vector<double> fresh_positions;
   if (kept) {
     if (case_id.empty()) {
-      default_loads_into(model, kept->loads);
+      model.default_loads(kept->loads);
       system->solve(kept->loads, kept->linear, kept->linear_scratch);
     } else {
       system->solve(model.loads_of(case_id), kept->linear, kept->linear_scratch);
