@@ -1,7 +1,11 @@
 #include "io/json_writer.hpp"
 
+#include <algorithm>
+#include <array>
+#include <bit>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 
 #include "core/errors.hpp"
@@ -62,17 +66,46 @@ void write_string(const std::string& s, std::string& out) {
   out += '"';
 }
 
+// The shortest round-trip text of a double, remembered. A results object repeats its numbers: a
+// member's axial and shear forces and torque at every one of its stations, its end forces again
+// with the sign flipped as section forces, the stations' positions along equal members. At
+// 21,504 DOFs (1.14 million numbers in results.json) 68 % of them are found in a table of 256
+// entries keyed by |x|, each one a look-up of a few ns where std::to_chars takes about 65 ns.
+// Direct-mapped: a slot holds the last value hashed to it. One table per thread (writers may run
+// on several), zero-initialised, so no guard on access: an empty slot's key ~0 is a NaN's bits,
+// which no finite value has.
+struct DoubleText {
+  std::uint64_t not_bits;  // ~bits of |x|
+  char text[31];           // |x| as written, ".0" included: at most 24 characters (to_chars writes
+                           // an integer of 17 digits in fixed notation up to 22 characters long)
+  std::uint8_t size;       // of text
+};
+inline constexpr std::size_t kDoubleTextSlots = 256;  // 64: 61 % found; 1,024: 70 % (same model)
+static_assert(std::has_single_bit(kDoubleTextSlots));
+thread_local std::array<DoubleText, kDoubleTextSlots> t_double_text{};
+
 void write_double(double x, std::string& out) {
   if (!std::isfinite(x)) {
     out += "null";
     return;
   }
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  out.append(buf, r.ptr);
-  for (const char* p = buf; p != r.ptr; ++p)
-    if (*p == '.' || *p == 'e') return;
-  out += ".0";
+  if (std::signbit(x)) out += '-';
+  const double a = std::fabs(x);
+  const auto bits = std::bit_cast<std::uint64_t>(a);
+  // Fibonacci hashing: the top bits of the product pick the slot.
+  constexpr int kShift = 64 - std::countr_zero(kDoubleTextSlots);
+  DoubleText& slot = t_double_text[(bits * 0x9E3779B97F4A7C15ULL) >> kShift];
+  if (slot.not_bits != ~bits) {
+    const auto r = std::to_chars(slot.text, slot.text + sizeof slot.text - 2, a);  // room for ".0"
+    char* end = r.ptr;
+    if (std::find_if(slot.text, end, [](char c) { return c == '.' || c == 'e'; }) == end) {
+      *end++ = '.';
+      *end++ = '0';
+    }
+    slot.size = static_cast<std::uint8_t>(end - slot.text);
+    slot.not_bits = ~bits;
+  }
+  out.append(slot.text, slot.size);
 }
 
 template <class Int>

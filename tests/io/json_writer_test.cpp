@@ -3,12 +3,16 @@
 // C++17 [utility.to.chars]), objects indented as dump(2), arrays of scalars on one line.
 #include <gtest/gtest.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <unistd.h>
+
+#include <string>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "io/json_writer.hpp"
@@ -65,6 +69,32 @@ TEST(JsonWriter, NumbersReadBackBitForBitAndStayFloatingPoint) {
   EXPECT_EQ(back[std::size(values)].get<std::int64_t>(), -42);
   EXPECT_EQ(back[std::size(values) + 1].get<std::uint64_t>(), 18446744073709551615u);
   EXPECT_EQ(text_of(ojson(3.0)), "3.0");
+}
+
+// The writer remembers the text of recent numbers (io/json_writer.cpp, write_double): a repeated
+// value, the same value negated, two values sharing a slot in turn, and the longest texts must
+// come out exactly as std::to_chars writes each one afresh (plus ".0" where it wrote an integer).
+TEST(JsonWriter, RememberedNumbersAreWrittenAsIfFormattedAfresh) {
+  std::vector<double> values = {0.0, -0.0, 0.0, 1e21, -1e21, 1234567890123456800000.0, -1234567890123456800000.0,
+                                2.2250738585072014e-308, -2.2250738585072014e-308, 4.9e-324, 1.7976931348623157e308,
+                                -17251.231662345606, 17251.231662345606, -17251.231662345606, 3.0, -3.0, 3.0};
+  for (int i = 0; i < 3000; ++i) {  // about 12 values per slot of the 256: each slot taken over many times
+    const double v = (i % 7 - 3) * 1234.5678 / (i + 1);
+    values.insert(values.end(), {v, -v, v, std::ldexp(v, i % 40)});
+  }
+  ojson a = ojson::array();
+  std::string expected = "[";
+  for (const double x : values) {
+    a.push_back(x);
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, x);
+    std::string t(buf, r.ptr);
+    if (t.find_first_of(".e") == std::string::npos) t += ".0";
+    expected += (expected.size() > 1 ? ", " : "") + t;
+  }
+  expected += "]";
+  EXPECT_EQ(text_of(a), expected);
+  EXPECT_EQ(text_of(a), expected);  // the second time from a table full of the first's texts
 }
 
 TEST(JsonWriter, NonFiniteNumbersAreNullAsNlohmannWritesThem) {
