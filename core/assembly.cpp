@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/errors.hpp"
+#include "core/huge_pages.hpp"
 
 namespace beamfea {
 
@@ -24,6 +25,12 @@ void SystemAssembler::begin() {
     tff_.clear();
     tfp_.clear();
   }
+}
+
+void SystemAssembler::expect(std::size_t entries) {
+  if (built_ || !tff_.empty() || entries <= tff_.capacity()) return;
+  tff_.reserve(entries);
+  advise_huge_pages(tff_.data(), tff_.capacity() * sizeof(Triplet));
 }
 
 void SystemAssembler::put(std::vector<Triplet>& trip, std::vector<int>& pos, std::size_t& k, SparseMatrix& A,

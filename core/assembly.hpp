@@ -26,6 +26,9 @@ class SystemAssembler {
 
   // Starts an assembly pass; zeroes the values once the pattern is known.
   void begin();
+  // Before the first pass: about how many matrix entries it adds (an upper bound is good: room
+  // reserved and not written costs no memory). Its triplets then grow in place, in huge pages.
+  void expect(std::size_t entries);
   // Adds a symmetric or unsymmetric matrix over raw DOFs.
   void add(std::span<const int> raw, const Eigen::Ref<const Eigen::MatrixXd>& K);
   // Ends the pass: on the first pass, builds the pattern.

@@ -7,8 +7,10 @@
 #include <Eigen/UmfPackSupport>
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 #include "core/errors.hpp"
+#include "core/huge_pages.hpp"
 #include "solvers/dense_condensation.hpp"
 #include "solvers/fill_ordering.hpp"
 
@@ -80,7 +82,22 @@ struct SparseFactor::Impl {
   bool analysed = false, lu_analysed = false;
 };
 
-SparseFactor::SparseFactor() : impl_(std::make_unique<Impl>()) {
+namespace {
+// CHOLMOD allocates its factor itself (83 MB at 21,504 DOFs), through SuiteSparse's process-wide
+// allocation functions: set once to malloc, calloc and realloc followed by huge-page advice for a
+// large block (core/huge_pages.hpp). Freeing stays std::free, so a block allocated before the
+// change, or by another CHOLMOD user in the process, is freed as before.
+void advise_cholmod_allocations() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    SuiteSparse_config.malloc_func = &malloc_advised;
+    SuiteSparse_config.calloc_func = &calloc_advised;
+    SuiteSparse_config.realloc_func = &realloc_advised;
+  });
+}
+}  // namespace
+
+SparseFactor::SparseFactor() : impl_((advise_cholmod_allocations(), std::make_unique<Impl>())) {
   impl_->llt.cholmod().print = 0;  // failures are outcomes here, reported by the caller
 }
 SparseFactor::~SparseFactor() = default;

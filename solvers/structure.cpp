@@ -2,8 +2,10 @@
 
 #include <array>
 #include <span>
+#include <type_traits>
 
 #include "core/errors.hpp"
+#include "core/huge_pages.hpp"
 #include "solvers/member_loading.hpp"
 
 namespace beamfea {
@@ -21,7 +23,11 @@ BeamSection beam_section(const Model& m, const Element& e) {
   return s;
 }
 
-LinearStructure::LinearStructure(const Model& model) : model_(&model), beams_(model.elements.size()) {
+LinearStructure::LinearStructure(const Model& model) : model_(&model) {
+  // 3.5 KB per element (37 MB at 21,504 DOFs): huge pages before the first touch (core/huge_pages.hpp).
+  beams_.reserve(model.elements.size());
+  advise_huge_pages(beams_.data(), beams_.capacity() * sizeof(beams_[0]));
+  beams_.resize(model.elements.size());
   for (std::size_t e = 0; e < model.elements.size(); ++e) {
     const auto& el = model.elements[e];
     if (el.type != MemberType::Beam) continue;
@@ -46,6 +52,13 @@ std::array<int, 12> LinearStructure::element_dofs(const DofMap& map, int element
 
 template <class Assembler>
 void LinearStructure::assemble_into(const DofMap& map, Assembler& assembler) const {
+  if constexpr (std::is_same_v<Assembler, SystemAssembler>) {
+    std::size_t entries = 0;  // 12 x 12 per beam, nq x nq per joint with stiffness
+    for (const auto& b : beams_) entries += b ? 144 : 0;
+    for (const auto& jt : model_->joints)
+      if (jt.has_stiffness()) entries += static_cast<std::size_t>(jt.coordinates()) * jt.coordinates();
+    assembler.expect(entries);
+  }
   for (std::size_t e = 0; e < beams_.size(); ++e) {
     if (!beams_[e]) continue;
     const auto dofs = element_dofs(map, static_cast<int>(e));
