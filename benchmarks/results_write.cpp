@@ -4,11 +4,13 @@
 //   python3 benchmarks/cube_frame.py 15x15x14 /tmp/cube.json    # 21,504 DOFs
 //   build/benchmarks/bench_results_write /tmp/cube.json [reps]
 //
-// Runs the model's analyses in process once (no files), then times, alternately, three writers of
+// Runs the model's analyses in process once (no files), then times, alternately, four writers of
 // the same results object into a temporary folder: nlohmann's dump(2) to a string + the atomic
-// write (before), write_results_json to a string + the same write, and write_results_json_file
-// (streamed in chunks: what `beamfea run` does now); prints the bytes, the times (thread CPU and
-// wall, median of the repetitions) and their ratios to the analysis (process CPU and wall).
+// write (before), write_results_json to a string + the same write, write_results_json_file
+// (streamed in chunks) on one thread, and the same with the program's threads
+// (app/parallel_tasks.hpp: what `beamfea run` does now); checks that the threaded text is the
+// serial one byte for byte; prints the bytes, the times (thread CPU of the calling thread, process
+// CPU and wall, median of the repetitions) and their ratios to the analysis (process CPU and wall).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -18,6 +20,7 @@
 #include <vector>
 
 #include "bench_blas.hpp"
+#include "app/parallel_tasks.hpp"
 #include "bench_timing.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json_writer.hpp"
@@ -57,15 +60,25 @@ int main(int argc, char** argv) {
 
   const auto dir = std::filesystem::temp_directory_path() / fmt::format("bench_results_write_{}", getpid());
   std::filesystem::create_directories(dir);
-  constexpr int kWriters = 3;
-  std::vector<double> cpu[kWriters], wall[kWriters];
+  const ParallelTasks threads = app::thread_tasks();
+  {
+    std::string serial, threaded;
+    write_results_json(report.results, serial);
+    write_results_json(report.results, threaded, threads);
+    if (serial != threaded) {
+      fmt::print(stderr, "the threaded text differs from the serial one\n");
+      return 1;
+    }
+  }
+  constexpr int kWriters = 4;
+  std::vector<double> cpu[kWriters], pcpu[kWriters], wall[kWriters];
   std::uintmax_t bytes[kWriters] = {};
   for (int r = 0; r < reps; ++r)
     for (int k = 0; k < kWriters; ++k) {
       const auto path = dir / "results.json";
-      const double t0 = bench::thread_cpu_s(), v0 = wall_s();
-      if (k == 2) {
-        write_results_json_file(report.results, path);
+      const double t0 = bench::thread_cpu_s(), p0 = process_cpu_s(), v0 = wall_s();
+      if (k >= 2) {
+        write_results_json_file(report.results, path, k == 3 ? threads : ParallelTasks());
       } else {
         std::string text;
         if (k == 0) text = report.results.dump(2);
@@ -74,6 +87,7 @@ int main(int argc, char** argv) {
         write_text_atomic(path, text);
       }
       cpu[k].push_back(bench::thread_cpu_s() - t0);
+      pcpu[k].push_back(process_cpu_s() - p0);
       wall[k].push_back(wall_s() - v0);
       bytes[k] = std::filesystem::file_size(path);
     }
@@ -81,13 +95,15 @@ int main(int argc, char** argv) {
 
   fmt::print("{}: {} nodes, {} elements; analysis {:.3f} s process CPU, {:.3f} s wall\n", argv[1],
              model.nodes.size(), model.elements.size(), analysis_cpu, analysis_wall);
-  fmt::print("| writer (text and atomic file write) | MB | thread CPU s | wall s | / analysis CPU | / analysis wall | / before, CPU |\n"
-             "|---|---:|---:|---:|---:|---:|---:|\n");
+  fmt::print("| writer (text and atomic file write) | MB | thread CPU s | process CPU s | wall s | / analysis CPU | / analysis wall | / before, CPU | / streamed, wall |\n"
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   const char* names[kWriters] = {"nlohmann dump(2) to a string (before)", "write_results_json to a string",
-                                 "write_results_json_file (streamed, now)"};
+                                 "write_results_json_file (streamed, one thread)",
+                                 "write_results_json_file (streamed, threads: now)"};
   for (int k = 0; k < kWriters; ++k)
-    fmt::print("| {} | {:.1f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.2f} |\n", names[k], static_cast<double>(bytes[k]) / 1e6,
-               median(cpu[k]), median(wall[k]), median(cpu[k]) / analysis_cpu, median(wall[k]) / analysis_wall,
-               median(cpu[k]) / median(cpu[0]));
+    fmt::print("| {} | {:.1f} | {:.4f} | {:.4f} | {:.4f} | {:.3f} | {:.3f} | {:.2f} | {:.2f} |\n", names[k],
+               static_cast<double>(bytes[k]) / 1e6, median(cpu[k]), median(pcpu[k]), median(wall[k]),
+               median(pcpu[k]) / analysis_cpu, median(wall[k]) / analysis_wall, median(pcpu[k]) / median(pcpu[0]),
+               median(wall[k]) / median(wall[2]));
   return 0;
 }

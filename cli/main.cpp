@@ -9,6 +9,7 @@
 
 #include "app/openblas.hpp"
 #include "app/openmp.hpp"
+#include "app/parallel_tasks.hpp"
 #include "cli/sweep_command.hpp"
 #include "core/errors.hpp"
 #include "core/version.hpp"
@@ -103,6 +104,7 @@ int main(int argc, char** argv) {
     if (!quiet) opt.progress = [](const std::string& s) { std::cerr << s << "\n"; };
     if (!quiet && !blas.replaced.empty()) std::cerr << "beamfea: BLAS: " << describe(blas) << "\n";
     opt.warning = [](const std::string& s) { std::cerr << "beamfea: warning: " << s << "\n"; };
+    opt.parallel = beamfea::app::thread_tasks();  // a large results.json formatted on all cores
     state.report = beamfea::run_document(state.model, state.document, opt);
     if (!quiet) std::cerr << "beamfea: wrote " << (opt.out_dir / "results.json").string() << "\n";
     return state.report.failed ? 1 : 0;

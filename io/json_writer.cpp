@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <optional>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
@@ -132,68 +134,157 @@ void newline(std::string& out, int indent) {
   out.append(static_cast<std::size_t>(indent), ' ');
 }
 
-void write_value(const ojson& v, Sink& sink, int indent) {
+// Writing in slices (write_members_in_slices). The figures are from docs/performance.md, "The
+// results writer on two threads" (21,504-DOF cube: 3,840 nodes of ~250 bytes, 10,304 elements of
+// ~3 kB; std::thread start and join ~0.05 ms a call):
+// - an object or array goes parallel from this many structured members: its text is then at least
+//   ~0.25 MB, some 1-3 ms of formatting, against the tens of microseconds of starting threads;
+//   an example model's results (tens of nodes) never reach it;
+inline constexpr std::size_t kMinParallelMembers = 1024;
+// - a window is cut into this many slices: tasks for up to 8 threads, and with fewer threads
+//   (2 on the machines measured) small enough pieces that the last one does not hold the others;
+inline constexpr std::size_t kSlicesPerWindow = 8;
+// - a slice aims at this many bytes (a window at 8 of them: ~2 MB in memory, whatever the size of
+//   the file), from the mean size of the members written so far;
+inline constexpr std::size_t kSliceBytes = std::size_t{256} << 10;
+// - the first window's slices have this many members (the mean is not known yet), and no slice
+//   more than the last (members of a few bytes).
+inline constexpr std::size_t kFirstSliceMembers = 16;
+inline constexpr std::size_t kMaxSliceMembers = 4096;
+
+// The hook and two windows' slices: one being formatted while the other is written. The strings
+// are kept for the whole text (no allocation per window once they have grown to a slice's size).
+struct Parallel {
+  const ParallelTasks& run;
+  std::vector<std::string> slices[2] = {std::vector<std::string>(kSlicesPerWindow), std::vector<std::string>(kSlicesPerWindow)};
+};
+
+void write_value(const ojson& v, Sink& sink, int indent, Parallel* parallel);
+
+// Member i of an object or of an array of structured values, with what goes before it: the comma
+// after the previous member, the line break, the indentation and an object's key.
+void write_member(const ojson& v, std::size_t i, Sink& sink, int indent, Parallel* parallel) {
   std::string& out = sink.out;
+  if (i > 0) out += ',';
+  newline(out, indent + 2);
   if (v.is_object()) {
-    if (v.empty()) {
-      out += "{}";
-      return;
-    }
-    out += '{';
-    bool first = true;
-    for (const auto& [key, member] : v.get_ref<const ojson::object_t&>()) {
-      if (!first) out += ',';
-      first = false;
-      newline(out, indent + 2);
-      write_string(key, out);
-      out += ": ";
-      write_value(member, sink, indent + 2);
-      sink.flush_if_full();
-    }
-    newline(out, indent);
-    out += '}';
-  } else if (v.is_array()) {
-    if (v.empty()) {
-      out += "[]";
-      return;
-    }
-    bool flat = true;
-    for (const auto& e : v)
-      if (!is_scalar(e)) {
-        flat = false;
-        break;
+    const auto& [key, member] = *(v.get_ref<const ojson::object_t&>().begin() + static_cast<std::ptrdiff_t>(i));
+    write_string(key, out);
+    out += ": ";
+    write_value(member, sink, indent + 2, parallel);
+  } else {
+    write_value(v.get_ref<const ojson::array_t&>()[i], sink, indent + 2, parallel);
+  }
+}
+
+// Appends the first `count` slices in order, handing the text to the stream as it fills.
+std::size_t append_slices(const std::vector<std::string>& slices, std::size_t count, Sink& sink) {
+  std::size_t bytes = 0;
+  for (std::size_t s = 0; s < count; ++s) {
+    sink.out += slices[s];
+    bytes += slices[s].size();
+    sink.flush_if_full();
+  }
+  return bytes;
+}
+
+// The members of `v` in windows, each cut into slices that the hook's tasks format into strings of
+// their own (serially inside: no nested tasks). One more task appends the previous window's slices
+// to the sink meanwhile, so that the stream is fed while the next window is formatted; the last
+// window is appended after the loop. The text is the serial one: a member's text depends only on
+// its index and indentation, and the windows reach the sink in order.
+void write_members_in_slices(const ojson& v, Sink& sink, int indent, Parallel& parallel) {
+  const std::size_t n = v.size();
+  std::size_t slice_members = kFirstSliceMembers;
+  std::size_t pending = 0;  // slices of the last window formatted, not yet appended
+  int current = 0;          // the window formatted next goes into parallel.slices[current]
+  for (std::size_t begin = 0; begin < n;) {
+    const std::size_t window = std::min(n - begin, slice_members * kSlicesPerWindow);
+    const std::size_t per_slice = (window + kSlicesPerWindow - 1) / kSlicesPerWindow;
+    const std::size_t slices = (window + per_slice - 1) / per_slice;
+    std::vector<std::string>& formatted = parallel.slices[current];
+    const std::vector<std::string>& written = parallel.slices[1 - current];
+    const std::size_t writer = pending > 0 ? 1 : 0;  // task 0 appends the last window, if any
+    parallel.run(writer + slices, [&](std::size_t task) {
+      if (task < writer) {
+        append_slices(written, pending, sink);
+        return;
       }
+      const std::size_t s = task - writer;
+      // Formatted in a string on this thread's stack (its storage moved in and back out): the
+      // strings' headers side by side in `formatted` share cache lines, and appending to them
+      // there from two threads cost more than the second thread gained (measured).
+      std::string text = std::move(formatted[s]);
+      text.clear();
+      Sink slice{text};
+      const std::size_t first = begin + s * per_slice, end = std::min(begin + window, first + per_slice);
+      for (std::size_t i = first; i < end; ++i) write_member(v, i, slice, indent, nullptr);
+      formatted[s] = std::move(text);
+    });
+    std::size_t bytes = 0;
+    for (std::size_t s = 0; s < slices; ++s) bytes += formatted[s].size();
+    pending = slices;
+    current = 1 - current;
+    begin += window;
+    slice_members = std::clamp<std::size_t>(kSliceBytes * window / std::max<std::size_t>(bytes, 1), 1, kMaxSliceMembers);
+  }
+  append_slices(parallel.slices[1 - current], pending, sink);
+}
+
+void write_value(const ojson& v, Sink& sink, int indent, Parallel* parallel) {
+  std::string& out = sink.out;
+  if (!v.is_structured()) {
+    write_scalar(v, out);
+    return;
+  }
+  const bool object = v.is_object();
+  if (v.empty()) {
+    out += object ? "{}" : "[]";
+    return;
+  }
+  if (!object && std::all_of(v.begin(), v.end(), is_scalar)) {  // on one line
     out += '[';
     bool first = true;
     for (const auto& e : v) {
-      if (!first) out += flat ? ", " : ",";
+      if (!first) out += ", ";
       first = false;
-      if (!flat) newline(out, indent + 2);
-      write_value(e, sink, indent + 2);
-      if (!flat) sink.flush_if_full();
+      write_scalar(e, out);
     }
-    if (!flat) newline(out, indent);
     out += ']';
-  } else {
-    write_scalar(v, out);
+    return;
   }
+  out += object ? '{' : '[';
+  if (parallel && v.size() >= kMinParallelMembers) {
+    write_members_in_slices(v, sink, indent, *parallel);
+  } else {
+    for (std::size_t i = 0, n = v.size(); i < n; ++i) {
+      write_member(v, i, sink, indent, parallel);
+      sink.flush_if_full();
+    }
+  }
+  newline(out, indent);
+  out += object ? '}' : ']';
 }
 
 }  // namespace
 
-void write_results_json(const ojson& value, std::string& out) {
+void write_results_json(const ojson& value, std::string& out, const ParallelTasks& parallel) {
   Sink sink{out};
-  write_value(value, sink, 0);
+  std::optional<Parallel> slices;
+  if (parallel) slices.emplace(Parallel{parallel});
+  write_value(value, sink, 0, slices ? &*slices : nullptr);
 }
 
-void write_results_json_file(const ojson& value, const std::filesystem::path& path) {
+void write_results_json_file(const ojson& value, const std::filesystem::path& path, const ParallelTasks& parallel) {
   write_atomic(path, [&](const std::filesystem::path& tmp) {
     std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
     if (!file) throw Error("cannot write '" + tmp.string() + "'");
     std::string buffer;
     buffer.reserve(kChunkBytes + (kChunkBytes >> 4));
     Sink sink{buffer, &file};
-    write_value(value, sink, 0);
+    std::optional<Parallel> slices;
+    if (parallel) slices.emplace(Parallel{parallel});
+    write_value(value, sink, 0, slices ? &*slices : nullptr);
     buffer += '\n';
     sink.flush();
     file.close();

@@ -9,17 +9,26 @@
 // (std::to_chars), with ".0" added to integral values so that they stay floating point for
 // readers that care; non-finite numbers are written as null, as nlohmann does. To a file the
 // text is streamed: it is never whole in memory.
+//
+// With a ParallelTasks hook (io/parallel_tasks.hpp), an object or array of many structured members
+// (the nodes, the elements of a large model) is formatted in windows of a few megabytes, each cut
+// into slices formatted at once into strings of their own and then appended in order: the text is
+// byte for byte the serial one, and still streamed. Small results start no tasks.
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "io/parallel_tasks.hpp"
+
 namespace beamfea {
 
-// Appends the text of `value` to `out` (no trailing newline).
-void write_results_json(const nlohmann::ordered_json& value, std::string& out);
+// Appends the text of `value` to `out` (no trailing newline). `parallel` empty: on this thread.
+void write_results_json(const nlohmann::ordered_json& value, std::string& out, const ParallelTasks& parallel = {});
 
 // Writes the text of `value` and a newline to `path` atomically (io/atomic_file.hpp), streamed in
-// chunks of about a megabyte; throws beamfea::Error when the file cannot be written.
-void write_results_json_file(const nlohmann::ordered_json& value, const std::filesystem::path& path);
+// chunks of about a megabyte; throws beamfea::Error when the file cannot be written. An exception
+// (from the file or from a task of `parallel`) leaves no file at `path`.
+void write_results_json_file(const nlohmann::ordered_json& value, const std::filesystem::path& path,
+                             const ParallelTasks& parallel = {});
 
 }  // namespace beamfea

@@ -149,7 +149,7 @@ void run_into(const Model& model, const nlohmann::json& document, const RunOptio
   if (cache.linear) results.slot("factorizations") = cache.linear->factorizations();
   results.finish();
   if (staging) {
-    write_results_json_file(report.results, staging->path() / "results.json");
+    write_results_json_file(report.results, staging->path() / "results.json", options.parallel);
     staging->commit("results.json");
   }
 }

@@ -11,6 +11,7 @@
 #include "core/model.hpp"
 #include "io/analysis.hpp"
 #include "io/model_reader.hpp"
+#include "io/parallel_tasks.hpp"
 
 namespace beamfea {
 
@@ -20,6 +21,8 @@ struct RunOptions {
   std::vector<std::string> only;     // run only these analysis ids (empty: all); unknown: InputError
   MessageSink progress;              // progress lines (empty: silent)
   MessageSink warning;               // warnings (empty: dropped)
+  ParallelTasks parallel;            // formats a large results.json on several threads (io/parallel_tasks.hpp;
+                                     // the program's: app/parallel_tasks.hpp); empty: on the calling thread
 };
 
 struct RunReport {

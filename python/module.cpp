@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "app/openblas.hpp"
+#include "app/parallel_tasks.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
 #include "python/convert.hpp"
@@ -96,6 +97,9 @@ py::object run(const py::object& model, const std::vector<std::string>& only, co
     if (out) options.out_dir = *out;
     options.write_vtk = vtk;
     options.only = only;
+    // As the program does: a large results.json formatted on all cores (app/parallel_tasks.hpp;
+    // a small one, as in a ThreadPoolExecutor of many cases, starts no threads).
+    if (out) options.parallel = app::thread_tasks();
     report = run_document(m, doc, options);
   } catch (const InputError& e) {
     raise_input_error(e, &doc);

@@ -1,6 +1,7 @@
 // write_results_json (io/json_writer.hpp): the text of results.json. What it must keep: every value
 // reads back exactly (numbers to the last bit: std::to_chars gives the shortest round-trip text,
-// C++17 [utility.to.chars]), objects indented as dump(2), arrays of scalars on one line.
+// C++17 [utility.to.chars]), objects indented as dump(2), arrays of scalars on one line; with a
+// ParallelTasks hook, byte for byte the text written on one thread, and no file when a task fails.
 #include <gtest/gtest.h>
 
 #include <charconv>
@@ -8,7 +9,13 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
+#include <memory>
+#include <mutex>
+#include <system_error>
+#include <thread>
+#include <vector>
 #include <unistd.h>
 
 #include <string>
@@ -140,6 +147,149 @@ TEST(JsonWriter, AFileThatCannotBeWrittenIsAnErrorAndLeavesNothing) {
   const auto dir = std::filesystem::temp_directory_path() / ("json_writer_missing_" + std::to_string(::getpid()));
   EXPECT_THROW(write_results_json_file(ojson{{"a", 1}}, dir / "results.json"), Error);
   EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+namespace {
+
+// Every task on a thread of its own, exceptions rethrown after all have joined: the hook's
+// contract (io/parallel_tasks.hpp) at its most concurrent, independent of app/'s implementation.
+struct ThreadPerTask {
+  std::shared_ptr<std::size_t> calls = std::make_shared<std::size_t>(0);
+  void operator()(std::size_t count, const std::function<void(std::size_t)>& task) const {
+    ++*calls;
+    std::mutex m;
+    std::exception_ptr error;
+    std::vector<std::thread> threads;
+    for (std::size_t i = 0; i < count; ++i)
+      threads.emplace_back([&, i] {
+        try {
+          task(i);
+        } catch (...) {
+          const std::lock_guard lock(m);
+          if (!error) error = std::current_exception();
+        }
+      });
+    for (auto& t : threads) t.join();
+    if (error) std::rethrow_exception(error);
+  }
+};
+
+// The tasks on the calling thread, last first: the text must not depend on their order.
+void last_first(std::size_t count, const std::function<void(std::size_t)>& task) {
+  for (std::size_t i = count; i-- > 0;) task(i);
+}
+
+// prefix + i, built by appending (GCC 12 warns falsely, -Wrestrict, on "literal" + std::string
+// inlined here: its bug 105329).
+std::string named(const char* prefix, int i, const char* suffix = "") {
+  std::string s = prefix;
+  s += std::to_string(i);
+  s += suffix;
+  return s;
+}
+
+// A results tree of the shape of a large model's, with what the writer must render exactly in
+// every slice: 20,000 nodes of two 6-double arrays (some non-finite: null), integers, strings to
+// escape (and UTF-8), small nested objects, an array of arrays, a flat array of 5,000 numbers (one
+// line: never sliced), and a big object nested inside a big array's member (written serially
+// inside its slice). `bad_utf8_at` >= 0: that node's tag is invalid UTF-8 (nlohmann then throws).
+ojson large_results(int bad_utf8_at = -1) {
+  ojson nodes = ojson::object();
+  for (int i = 0; i < 20000; ++i) {
+    const double a = 1.0 / (i + 3), b = -i * 1.25e-5;
+    ojson n = ojson::object();
+    n["displacement"] = {a, b, a * b, 0.0, -0.0, 1e-300 * i};
+    n["reaction"] = {i % 997 == 0 ? std::numeric_limits<double>::infinity() : 3.0 * i, std::nan(""), -a, 1e21, b, 2.5};
+    if (i % 7 == 0) n["tag"] = named("node \"", i, "\"\t\x01 \xce\xbb");
+    if (i == bad_utf8_at) n["tag"] = "bad \xff byte";
+    if (i % 5 == 0) n["support"] = {{"fixed", ojson::array({true, false, true})}, {"count", -i}, {"none", nullptr}};
+    nodes[named("n", i)] = std::move(n);
+  }
+  ojson steps = ojson::array();
+  for (int k = 0; k < 1500; ++k) {
+    ojson step = {{"k", k}, {"lambda", k / 7.0}};
+    if (k == 700) {
+      ojson inner = ojson::object();
+      for (int j = 0; j < 3000; ++j) inner[named("j", j)] = {{"u", j * 0.5}};
+      step["nodes"] = std::move(inner);
+    }
+    steps.push_back(std::move(step));
+  }
+  ojson modes = ojson::array();
+  for (int k = 0; k < 2000; ++k) modes.push_back({k * 0.1, -k / 3.0, std::uint64_t{18446744073709551615u}});
+  ojson flat = ojson::array();
+  for (int k = 0; k < 5000; ++k) flat.push_back(k / 9.0);
+  ojson lin = {{"type", "linear_static"}, {"status", "ok"}, {"nodes", std::move(nodes)}, {"steps", std::move(steps)},
+               {"modes", std::move(modes)}, {"flat", std::move(flat)}, {"empty", ojson::object()}, {"none", ojson::array()}};
+  return {{"beamfea", "0.1.0"}, {"analyses", {{"lin", std::move(lin)}}}};
+}
+
+std::filesystem::path temp_file(const std::string& stem) {
+  return std::filesystem::temp_directory_path() / (stem + "_" + std::to_string(::getpid()) + ".json");
+}
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST(JsonWriter, ALargeResultOnThreadsIsByteForByteTheSerialText) {
+  const ojson r = large_results();
+  const std::string serial = text_of(r);
+  ASSERT_GT(serial.size(), std::size_t{3} << 20);
+  const ThreadPerTask threads;
+  std::string threaded;
+  write_results_json(r, threaded, threads);
+  EXPECT_GT(*threads.calls, std::size_t{2});  // the big members went through the hook
+  EXPECT_TRUE(threaded == serial);            // (not EXPECT_EQ: a failure would print megabytes)
+  std::string reversed;
+  write_results_json(r, reversed, last_first);
+  EXPECT_TRUE(reversed == serial);
+  const ojson back = ojson::parse(serial);
+  EXPECT_TRUE(back["analyses"]["lin"]["nodes"]["n997"]["reaction"][0].is_null());
+  EXPECT_EQ(back["analyses"]["lin"]["nodes"]["n7"]["tag"], r["analyses"]["lin"]["nodes"]["n7"]["tag"]);
+  EXPECT_EQ(back["analyses"]["lin"]["steps"], r["analyses"]["lin"]["steps"]);
+
+  const auto path = temp_file("json_writer_threads");
+  write_results_json_file(r, path, threads);
+  const std::string file = read_file(path);
+  std::filesystem::remove(path);
+  EXPECT_TRUE(file == serial + "\n");
+}
+
+TEST(JsonWriter, ASmallResultCallsNoTasks) {
+  // Example-sized results (tens of nodes) are written on the calling thread: no threads started.
+  ojson r = large_results();
+  auto& nodes = r["analyses"]["lin"]["nodes"];
+  nodes.erase(std::next(nodes.begin(), 50), nodes.end());
+  r["analyses"]["lin"].erase("steps");
+  r["analyses"]["lin"].erase("modes");
+  const ThreadPerTask threads;
+  std::string threaded;
+  write_results_json(r, threaded, threads);
+  EXPECT_EQ(*threads.calls, std::size_t{0});
+  EXPECT_EQ(threaded, text_of(r));
+}
+
+TEST(JsonWriter, ATaskThatThrowsIsAnErrorAndLeavesNoFile) {
+  // Node 12,345's tag is invalid UTF-8: nlohmann's serialiser throws inside a task (as it does on
+  // one thread); the exception reaches the caller and the atomic write leaves nothing.
+  const ojson r = large_results(12345);
+  const auto dir = std::filesystem::temp_directory_path() / ("json_writer_throws_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const ThreadPerTask threads;
+  EXPECT_THROW(write_results_json_file(r, dir / "results.json", threads), nlohmann::json::type_error);
+  EXPECT_THROW(write_results_json_file(r, dir / "results.json"), nlohmann::json::type_error);
+  // A hook that fails by itself (no thread to be had) after running some windows.
+  const ParallelTasks failing = [calls = std::make_shared<int>(0)](std::size_t count, const std::function<void(std::size_t)>& task) {
+    if (++*calls == 3) throw std::system_error(std::make_error_code(std::errc::resource_unavailable_try_again));
+    for (std::size_t i = 0; i < count; ++i) task(i);
+  };
+  EXPECT_THROW(write_results_json_file(large_results(), dir / "results.json", failing), std::system_error);
+  EXPECT_TRUE(std::filesystem::is_empty(dir));  // neither results.json nor a temporary
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace json_writer_test
