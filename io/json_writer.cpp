@@ -134,18 +134,20 @@ void newline(std::string& out, int indent) {
   out.append(static_cast<std::size_t>(indent), ' ');
 }
 
-// Writing in slices (write_members_in_slices). The figures are from docs/performance.md, "The
-// results writer on two threads" (21,504-DOF cube: 3,840 nodes of ~250 bytes, 10,304 elements of
-// ~3 kB; std::thread start and join ~0.05 ms a call):
-// - an object or array goes parallel from this many structured members: its text is then at least
-//   ~0.25 MB, some 1-3 ms of formatting, against the tens of microseconds of starting threads;
-//   an example model's results (tens of nodes) never reach it;
+// Writing in slices (write_members_in_slices); docs/performance.md, "The results writer on
+// threads", has the measurements (2 cores; a std::thread started and joined in 0.05-0.15 ms):
+// - an object or array goes parallel from this many structured members. Cube frames written with
+//   the threshold at 32: at 729 nodes and 1,800 elements (6 MB) threads and one thread were level
+//   in wall clock, below that threads lost (up to 2x at 0.4 MB; a loaded machine, before the
+//   append overlapped the formatting); 1,024 nodes are ~0.25 MB, some 1.5 ms of formatting. An
+//   example model's results (tens of nodes) never reach it;
 inline constexpr std::size_t kMinParallelMembers = 1024;
 // - a window is cut into this many slices: tasks for up to 8 threads, and with fewer threads
-//   (2 on the machines measured) small enough pieces that the last one does not hold the others;
+//   (2 on the machines measured) pieces small enough that the last one does not hold the others;
 inline constexpr std::size_t kSlicesPerWindow = 8;
-// - a slice aims at this many bytes (a window at 8 of them: ~2 MB in memory, whatever the size of
-//   the file), from the mean size of the members written so far;
+// - a slice aims at this many bytes, from the mean size of the members written so far: a window
+//   of ~2 MB, two of them in memory whatever the size of the file (1 MB slices measured no faster
+//   at 21,504 DOFs);
 inline constexpr std::size_t kSliceBytes = std::size_t{256} << 10;
 // - the first window's slices have this many members (the mean is not known yet), and no slice
 //   more than the last (members of a few bytes).
