@@ -180,14 +180,11 @@ void write_member(const ojson& v, std::size_t i, Sink& sink, int indent, Paralle
 }
 
 // Appends the first `count` slices in order, handing the text to the stream as it fills.
-std::size_t append_slices(const std::vector<std::string>& slices, std::size_t count, Sink& sink) {
-  std::size_t bytes = 0;
+void append_slices(const std::vector<std::string>& slices, std::size_t count, Sink& sink) {
   for (std::size_t s = 0; s < count; ++s) {
     sink.out += slices[s];
-    bytes += slices[s].size();
     sink.flush_if_full();
   }
-  return bytes;
 }
 
 // The members of `v` in windows, each cut into slices that the hook's tasks format into strings of
