@@ -96,23 +96,60 @@ std::vector<int> supervariable_starts(const SparseMatrix& lower) {
   return supervariable_starts(full_pattern(lower), static_cast<int>(lower.cols()));
 }
 
-std::vector<int> nested_dissection_by_supervariables(const SparseMatrix& lower, cholmod_common& c) {
+namespace {
+
+// What both orderings start from: the supervariables and the compressed graph (null: none made).
+struct Compressed {
+  std::vector<int> first;
+  cholmod_sparse* graph = nullptr;
+};
+
+Compressed compress(const SparseMatrix& lower, cholmod_common& c) {
+  Compressed k;
   const int n = static_cast<int>(lower.cols());
-  if (n == 0 || lower.rows() != n || !lower.isCompressed()) return {};
+  if (n == 0 || lower.rows() != n || !lower.isCompressed()) return k;
   const FullPattern f = full_pattern(lower);
-  const std::vector<int> first = supervariable_starts(f, n);
-  const std::size_t groups = first.size() - 1;
-  cholmod_sparse* g = compressed_graph(f, first, c);
-  if (!g) return {};
+  k.first = supervariable_starts(f, n);
+  k.graph = compressed_graph(f, k.first, c);
+  return k;
+}
+
+std::vector<int> nesdis_of(const Compressed& k, cholmod_common& c) {
+  const std::size_t groups = k.first.size() - 1;
   // cholmod_nested_dissection reads its parameters from method[current].
   const int saved_current = c.current;
   c.current = 0;
   std::vector<int> group_perm(groups), cparent(groups), cmember(groups);
-  const bool ok = cholmod_nested_dissection(g, nullptr, 0, group_perm.data(), cparent.data(), cmember.data(), &c) >= 0;
+  const bool ok = cholmod_nested_dissection(k.graph, nullptr, 0, group_perm.data(), cparent.data(), cmember.data(), &c) >= 0;
   c.current = saved_current;
-  cholmod_free_sparse(&g, &c);
   c.status = CHOLMOD_OK;  // a failed ordering is not the caller's error: it orders without it
-  return ok ? expand(group_perm, first) : std::vector<int>{};
+  return ok ? expand(group_perm, k.first) : std::vector<int>{};
+}
+
+std::vector<int> metis_of(const Compressed& k, cholmod_common& c) {
+  std::vector<int> group_perm(k.first.size() - 1);
+  // No postordering here: the analysis postorders whatever ordering it is given.
+  const bool ok = cholmod_metis(k.graph, nullptr, 0, 0, group_perm.data(), &c) != 0;
+  c.status = CHOLMOD_OK;
+  return ok ? expand(group_perm, k.first) : std::vector<int>{};
+}
+
+}  // namespace
+
+std::vector<int> nested_dissection_by_supervariables(const SparseMatrix& lower, cholmod_common& c) {
+  Compressed k = compress(lower, c);
+  if (!k.graph) return {};
+  std::vector<int> perm = nesdis_of(k, c);
+  cholmod_free_sparse(&k.graph, &c);
+  return perm;
+}
+
+SupervariableOrderings orderings_by_supervariables(const SparseMatrix& lower, cholmod_common& c) {
+  Compressed k = compress(lower, c);
+  if (!k.graph) return {};
+  SupervariableOrderings o{nesdis_of(k, c), metis_of(k, c)};
+  cholmod_free_sparse(&k.graph, &c);
+  return o;
 }
 
 }  // namespace beamfea

@@ -1,7 +1,7 @@
 #pragma once
-// A fill-reducing ordering of a large stiffness matrix computed on its compressed graph, offered
-// to CHOLMOD's analysis beside its own METIS ordering (solvers/sparse_factor.cpp, from
-// kOrderedMinDofs to kNesdisTrialMaxDofs); CHOLMOD keeps the one whose factor has fewer nonzeros.
+// Fill-reducing orderings of a large stiffness matrix computed on its compressed graph: NESDIS and
+// METIS, both analysed, the one whose factor has fewer nonzeros kept (solvers/sparse_factor.cpp,
+// from kOrderedMinDofs to kNesdisTrialMaxDofs).
 //
 // The DOFs of a node share one sparsity pattern: the graph of a frame's stiffness matrix is its
 // node graph with every vertex repeated (six times; fewer at a released or eliminated DOF).
@@ -25,6 +25,17 @@ namespace beamfea {
 // (cholmod_defaults' nd_small, prune_dense, nd_camd ...). Empty when CHOLMOD cannot make the
 // ordering (out of memory, METIS's size limits): the caller then orders as it would without it.
 std::vector<int> nested_dissection_by_supervariables(const SparseMatrix& lower, cholmod_common& common);
+
+// Both orderings of the compressed graph, for the analysis to keep the better one: NESDIS as
+// above, and METIS (cholmod_metis: METIS_NodeND) on the same graph instead of CHOLMOD's METIS on
+// the whole one, which first builds the graph of all the DOFs and has METIS compress it again
+// (at 21,504 DOFs the analysis 0.96x, paired runs). Its vertices are unweighted, so its fill is
+// not quite METIS's on the whole graph (3-6 % more on the frames of docs/performance.md,
+// "Orderings"); NESDIS was kept on all of them. Either is empty when CHOLMOD could not make it.
+struct SupervariableOrderings {
+  std::vector<int> nesdis, metis;
+};
+SupervariableOrderings orderings_by_supervariables(const SparseMatrix& lower, cholmod_common& common);
 
 // The consecutive runs of columns of equal pattern (diagonal included) of the symmetric matrix
 // whose lower triangle is `lower`: run g is columns first[g] .. first[g + 1] - 1 (first.back() = n).

@@ -43,31 +43,46 @@ struct SparseFactor::Impl {
       c.method[0].ordering = on ? CHOLMOD_METIS : CHOLMOD_GIVEN;  // GIVEN: cholmod_defaults' value
       c.postorder = 1;
     }
-    // From kOrderedMinDofs: CHOLMOD's analysis tries two orderings, NESDIS of the compressed graph
-    // (solvers/fill_ordering.hpp; passed as the given permutation, method 0) and its own METIS
-    // (method 1), and keeps the one of fewer nonzeros in L (cholmod_analyze_p); METIS alone above
-    // kNesdisTrialMaxDofs or when the first could not be made. Eigen's analyzePattern, with the
-    // permutation passed.
-    void analyze_two_orderings(const SparseMatrix& A, bool try_nesdis, std::string& summary) {
+    // From kOrderedMinDofs to kNesdisTrialMaxDofs: two orderings of the compressed graph, NESDIS
+    // and METIS (solvers/fill_ordering.hpp), each analysed by CHOLMOD as the given permutation
+    // (cholmod_analyze_p), and the analysis whose factor has fewer nonzeros kept (the rule CHOLMOD
+    // applies between its own trials; NESDIS on a tie); CHOLMOD's METIS on the whole graph above
+    // kNesdisTrialMaxDofs or when neither ordering could be made. Eigen's analyzePattern, with the
+    // permutations passed.
+    void analyze_two_orderings(const SparseMatrix& A, bool try_supervariables, std::string& summary) {
       cholmod_common& c = this->cholmod();
-      std::vector<int> perm = try_nesdis ? nested_dissection_by_supervariables(A, c) : std::vector<int>{};
-      c.nmethods = perm.empty() ? 1 : 2;
-      c.method[0].ordering = perm.empty() ? CHOLMOD_METIS : CHOLMOD_GIVEN;
-      c.method[1].ordering = CHOLMOD_METIS;
-      c.postorder = 1;
+      const SupervariableOrderings orders = try_supervariables ? orderings_by_supervariables(A, c) : SupervariableOrderings{};
       if (m_cholmodFactor) cholmod_free_factor(&m_cholmodFactor, &c);
       cholmod_sparse a = Eigen::viewAsCholmod(A.selfadjointView<Eigen::Lower>());
-      m_cholmodFactor = cholmod_analyze_p(&a, perm.empty() ? nullptr : perm.data(), nullptr, 0, &c);
+      c.postorder = 1;
+      auto analyse = [&](const std::vector<int>& perm, double& lnz) -> cholmod_factor* {
+        c.nmethods = 1;
+        c.method[0].ordering = perm.empty() ? CHOLMOD_METIS : CHOLMOD_GIVEN;
+        cholmod_factor* L = cholmod_analyze_p(&a, perm.empty() ? nullptr : const_cast<int*>(perm.data()), nullptr, 0, &c);
+        lnz = L ? c.lnz : 0.0;
+        return L;
+      };
+      double lnz_nesdis = 0.0, lnz_metis = 0.0;
+      cholmod_factor* by_nesdis = orders.nesdis.empty() ? nullptr : analyse(orders.nesdis, lnz_nesdis);
+      cholmod_factor* by_metis = orders.metis.empty() ? nullptr : analyse(orders.metis, lnz_metis);
+      if (by_nesdis && by_metis) {
+        const bool nesdis = lnz_nesdis <= lnz_metis;
+        cholmod_free_factor(nesdis ? &by_metis : &by_nesdis, &c);
+        m_cholmodFactor = nesdis ? by_nesdis : by_metis;
+        summary = fmt::format("{} (nnz(L): NESDIS of supervariables {:.3g}, METIS of supervariables {:.3g})",
+                              nesdis ? "NESDIS" : "METIS", lnz_nesdis, lnz_metis);
+      } else if (by_nesdis || by_metis) {
+        m_cholmodFactor = by_nesdis ? by_nesdis : by_metis;
+        summary = by_nesdis ? "NESDIS of supervariables" : "METIS of supervariables";
+      } else {
+        double lnz = 0.0;
+        m_cholmodFactor = analyse({}, lnz);  // CHOLMOD's METIS on the whole graph
+        summary = "METIS";
+      }
       this->m_isInitialized = true;
       m_analysisIsOk = m_cholmodFactor != nullptr;
       m_factorizationIsOk = false;
       this->m_info = m_cholmodFactor ? Eigen::Success : Eigen::NumericalIssue;
-      if (!m_cholmodFactor || perm.empty()) {
-        summary = "METIS";
-        return;
-      }
-      summary = fmt::format("{} (nnz(L): NESDIS of supervariables {:.3g}, METIS {:.3g})",
-                            c.selected == 0 ? "NESDIS" : "METIS", c.method[0].lnz, c.method[1].lnz);
     }
   };
 
