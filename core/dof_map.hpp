@@ -104,6 +104,8 @@ class DofMap {
   // The same written over `u` (its storage kept when it has the size).
   void expand(const Eigen::VectorXd& u_free, const Eigen::VectorXd& u_prescribed, Eigen::VectorXd& u) const;
   Eigen::VectorXd reduce(const Eigen::VectorXd& f_raw) const { return Tf_.transpose() * f_raw; }
+  // The same written over `f` (its storage kept when it has the size).
+  void reduce(const Eigen::VectorXd& f_raw, Eigen::VectorXd& f) const { f.noalias() = Tf_.transpose() * f_raw; }
 
   // Constraint forces from the raw residual r = f_int - f_ext at an equilibrium.
   struct ConstraintForces {

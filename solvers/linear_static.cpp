@@ -103,7 +103,7 @@ void LinearSystem::solve(const LoadSet& loads, LinearStaticResult& res, LinearSo
   Eigen::VectorXd& f_raw = scratch.f_raw;
   external_force(model, s.map, loads, res.element_loads, f_raw);
   Eigen::VectorXd& f = scratch.f;
-  f.noalias() = s.map.T_free().transpose() * f_raw;  // DofMap::reduce
+  s.map.reduce(f_raw, f);
   if (s.map.prescribed_size() > 0) f -= s.assembler.K_fp() * s.up;
   s.factor.solve(f, scratch.u_free, scratch.solve_work);
   s.map.expand(scratch.u_free, s.up, res.u);

@@ -36,11 +36,12 @@ struct SparseFactor::Impl {
   class Cholesky : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
    public:
     double rcond() { return m_cholmodFactor ? cholmod_rcond(m_cholmodFactor, &this->cholmod()) : 0.0; }
-    // METIS alone, or CHOLMOD's default trials (nmethods = 0: AMD, then METIS if AMD's fill is poor).
-    void metis_only(bool on) {
+    // CHOLMOD's default trials (nmethods = 0: AMD, then METIS if AMD's fill is poor), undoing what
+    // analyze_two_orderings set.
+    void default_orderings() {
       cholmod_common& c = this->cholmod();
-      c.nmethods = on ? 1 : 0;
-      c.method[0].ordering = on ? CHOLMOD_METIS : CHOLMOD_GIVEN;  // GIVEN: cholmod_defaults' value
+      c.nmethods = 0;
+      c.method[0].ordering = CHOLMOD_GIVEN;  // cholmod_defaults' value
       c.postorder = 1;
     }
     // From kOrderedMinDofs to kNesdisTrialMaxDofs: two orderings of the compressed graph, NESDIS
@@ -198,7 +199,7 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
     if (n >= kOrderedMinDofs) {
       impl_->llt.analyze_two_orderings(A, n <= kNesdisTrialMaxDofs, impl_->ordering);
     } else {
-      impl_->llt.metis_only(false);
+      impl_->llt.default_orderings();
       impl_->llt.analyzePattern(A);
       impl_->ordering = "CHOLMOD's choice";
     }

@@ -36,8 +36,8 @@ inline constexpr int kDenseMaxDofs = 160;
 // was spent for nothing. Up to kNesdisTrialMaxDofs two orderings of the graph compressed by
 // supervariables (solvers/fill_ordering.hpp), NESDIS and METIS, are each analysed by CHOLMOD and
 // the one of fewer nonzeros in L kept (session 10: METIS of the compressed graph instead of
-// CHOLMOD's METIS of the whole one, the same fill for less time); above, CHOLMOD's METIS alone. Measured on cube
-// frames (docs/performance.md, "Orderings"): NESDIS's factor has 13 % and 21 % fewer nonzeros at
+// CHOLMOD's METIS of the whole one, 3-6 % more fill for less time, and NESDIS kept on every frame
+// measured in this band); above, CHOLMOD's METIS alone. Measured on cube frames (docs/performance.md, "Orderings"): NESDIS's factor has 13 % and 21 % fewer nonzeros at
 // 21,504 and 34,992 DOFs (process CPU 0.82x at 21,504), but 25 %, 7 % and 1.5 % more at 69,828,
 // 97,344 and 202,752, where the trial only costs (process CPU 1.06x at 97,344). Below
 // kOrderedMinDofs CHOLMOD's default is kept: AMD alone, usually, cheaper than METIS there.

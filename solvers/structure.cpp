@@ -50,15 +50,20 @@ std::array<int, 12> LinearStructure::element_dofs(const DofMap& map, int element
   return d;
 }
 
+std::size_t LinearStructure::assembly_entries() const {
+  std::size_t entries = 0;  // 12 x 12 per beam, nq x nq per joint with stiffness
+  for (const auto& b : beams_) entries += b ? 144 : 0;
+  for (const auto& jt : model_->joints)
+    if (jt.has_stiffness()) entries += static_cast<std::size_t>(jt.coordinates()) * jt.coordinates();
+  return entries;
+}
+
 template <class Assembler>
 void LinearStructure::assemble_into(const DofMap& map, Assembler& assembler) const {
-  if constexpr (std::is_same_v<Assembler, SystemAssembler>) {
-    std::size_t entries = 0;  // 12 x 12 per beam, nq x nq per joint with stiffness
-    for (const auto& b : beams_) entries += b ? 144 : 0;
-    for (const auto& jt : model_->joints)
-      if (jt.has_stiffness()) entries += static_cast<std::size_t>(jt.coordinates()) * jt.coordinates();
-    assembler.expect(entries);
-  }
+  // The first pass collects triplets: room for them all at once. A later pass writes through the
+  // pattern.
+  if constexpr (std::is_same_v<Assembler, SystemAssembler>)
+    if (!assembler.has_pattern()) assembler.expect(assembly_entries());
   for (std::size_t e = 0; e < beams_.size(); ++e) {
     if (!beams_[e]) continue;
     const auto dofs = element_dofs(map, static_cast<int>(e));

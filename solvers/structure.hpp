@@ -42,6 +42,8 @@ class LinearStructure {
  private:
   template <class Assembler>
   void assemble_into(const DofMap& map, Assembler& assembler) const;
+  // The matrix entries one assembly adds (an upper bound: SystemAssembler::expect).
+  std::size_t assembly_entries() const;
 
   const Model* model_;
   std::vector<std::optional<LinearBeam>> beams_;
