@@ -5,14 +5,16 @@
 // A case goes through what `beamfea sweep --jobs 1` does for it inline: run_sweep_case with the
 // worker's SweepWorkspace and SweepCaseResult, then its CSV row appended to the batch. After one
 // pass over the cases (the workspace takes its sizes), a second pass over the same cases must call
-// operator new not once: the three-link chain's stiffness sweep (joint springs change) and the
-// portal frame's load sweep of examples/04 (the lateral load changes, the structure does not).
+// operator new not once: the three-link chain's stiffness sweep (joint springs change), the
+// portal frame's load sweep of examples/04 (the lateral load changes, the structure does not) and
+// examples/03's workspace map (the geometry changes every case: the structure cache misses).
 // The results of the warm pass are also checked against fresh runs of the same cases, bit for bit.
 // Eigen's and CHOLMOD's arrays are malloc'ed, not new'ed: those are not counted here (heaptrack
 // counts them: docs/performance.md).
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <new>
 #include <nlohmann/json.hpp>
@@ -120,6 +122,28 @@ json load_sweep() {
             json{{"name", "ends"}, {"path", "analyses.lin.elements"}}}}};
 }
 
+// examples/03's workspace map on 3 x 4 poses, written as its make_cases.py writes them: an explicit
+// list of cases, each setting the elbow nodes E1, E2 and the tip T to the forward kinematics of the
+// two angles (a new geometry every case, so the structure cache misses every case).
+json workspace_map_sweep() {
+  constexpr double kPi = 3.14159265358979323846;
+  const double L1 = 0.4, L2 = 0.3;
+  json cases = json::array();
+  for (const double t1 : {0.0, 45.0, 90.0}) {
+    for (const double t2 : {-150.0, -45.0, 0.0, 120.0}) {
+      const double a = t1 * kPi / 180, b = (t1 + t2) * kPi / 180;
+      const json e = {L1 * std::cos(a), L1 * std::sin(a), 0.0};
+      const json t = {e[0].get<double>() + L2 * std::cos(b), e[1].get<double>() + L2 * std::sin(b), 0.0};
+      const std::string id =
+          std::string("t1=").append(std::to_string(static_cast<int>(t1))).append("_t2=").append(std::to_string(static_cast<int>(t2)));
+      cases.push_back({{"id", id},
+                       {"parameters", {{"theta1_deg", t1}, {"theta2_deg", t2}}},
+                       {"set", {{"/nodes/2/xyz", e}, {"/nodes/3/xyz", e}, {"/nodes/4/xyz", t}}}});
+    }
+  }
+  return {{"base", "model.json"}, {"cases", cases}, {"outputs", {json{{"name", "K"}, {"path", "analyses.K.matrix"}}}}};
+}
+
 struct Passes {
   long warm_pass_allocations = 0;
   std::vector<std::string> warm_rows;   // each case's row of the warm pass
@@ -173,6 +197,15 @@ TEST(SweepAllocations, ALoadSweepCaseAllocatesNothingOnceTheWorkspaceIsWarm) {
   ASSERT_EQ(sweep.size(), 11u);
   const Passes p = run_twice(sweep);
   EXPECT_EQ(p.warm_pass_allocations, 0) << "operator new calls over 11 warm cases";
+  EXPECT_EQ(p.warm_rows, p.fresh_rows);
+}
+
+TEST(SweepAllocations, AWorkspaceMapCaseAllocatesNothingOnceTheWorkspaceIsWarm) {
+  const Sweep sweep =
+      beamfea::read_sweep(workspace_map_sweep(), BEAMFEA_SOURCE_DIR "/examples/03_workspace_stiffness_map");
+  ASSERT_EQ(sweep.size(), 12u);
+  const Passes p = run_twice(sweep);
+  EXPECT_EQ(p.warm_pass_allocations, 0) << "operator new calls over 12 warm cases";
   EXPECT_EQ(p.warm_rows, p.fresh_rows);
 }
 
