@@ -38,15 +38,21 @@ double max_abs(const Expr& e) {
 
 }  // namespace
 
-DofMap::DofMap(const Model& model, const Configuration& configuration) : model_(&model) {
+void DofMap::rebuild(const Model& model, const Configuration& configuration) {
+  // Every member is set afresh below (assign, clear, resize): nothing of the last build's value
+  // survives, only its storage.
+  model_ = &model;
   n_nodes_ = static_cast<int>(model.nodes.size());
   n_raw_ = 6 * n_nodes_;
+  n_ind_ = 0;
+  n_free_ = 0;
+  joint_offset_.clear();
   joint_offset_.reserve(model.joints.size());
   for (const auto& j : model.joints) {
     joint_offset_.push_back(n_raw_);
     n_raw_ += j.coordinates();
   }
-  x_ = configuration.x;
+  x_ = configuration.x;  // copy-assigned: the storage is kept when it has room
   build_forest(model);
   build_tree_rows(model, configuration);
   build_extra_rows(model, configuration);
@@ -81,6 +87,7 @@ void DofMap::build_tree_rows(const Model& m, const Configuration& c) {
     if (!is_slave(n))
       for (int k = 0; k < 6; ++k) raw_to_ind_[6 * n + k] = 0;
   for (int r = 6 * n_nodes_; r < n_raw_; ++r) raw_to_ind_[r] = 0;
+  ind_to_raw_.clear();
   ind_to_raw_.reserve(n_raw_);
   for (int r = 0; r < n_raw_; ++r)
     if (raw_to_ind_[r] == 0) {
@@ -94,15 +101,17 @@ void DofMap::build_tree_rows(const Model& m, const Configuration& c) {
   // 3, 4, 5, 0, 1, 2: a virtual spring's lever term of u_s (rows 0..2) reads theta of the first
   // body, which may be the slave itself. Each row receives its terms in the same order as when
   // all six were built side by side, so its sums are the same.
-  std::vector<int> slave_slot(n_raw_, -1);
+  std::vector<int>& slave_slot = scratch_.slave_slot;
+  slave_slot.assign(n_raw_, -1);
   int n_slave_rows = 0;
   for (int ei : tree_order_) {
     const int s = tree_edges_[ei].child;
     for (int k = 0; k < 6; ++k) slave_slot[6 * s + k] = n_slave_rows++;
   }
-  RowStore slave_rows;
+  RowStore& slave_rows = scratch_.slave_rows;
   slave_rows.reset(n_slave_rows, 4 * static_cast<std::size_t>(n_slave_rows));
-  Expr acc, lever;
+  Expr& acc = scratch_.acc;
+  Expr& lever = scratch_.lever;
   acc.reserve(16);
   lever.reserve(16);
   auto add_row = [&](Expr& dst, int raw, double f) {
@@ -167,8 +176,8 @@ void DofMap::build_tree_rows(const Model& m, const Configuration& c) {
 }
 
 // Row k (0..5) of a loop edge over raw DOFs, from nodes[0] (parent) to nodes[1] (child).
-DofMap::Row DofMap::edge_row_raw(const Model& m, const Configuration& c, const ConstraintEdge& e, int k) const {
-  Row row;
+void DofMap::edge_row_raw(const Model& m, const Configuration& c, const ConstraintEdge& e, int k, Row& row) const {
+  row.clear();
   const int p = e.parent, s = e.child;
   const int i = k % 3;
   row.push_back({6 * s + k, 1.0});
@@ -185,12 +194,12 @@ DofMap::Row DofMap::edge_row_raw(const Model& m, const Configuration& c, const C
     for (int q = 0; q < static_cast<int>(axes.size()); ++q)
       if ((q < nt) == (k < 3) && axes[q][i] != 0.0) row.push_back({raw_joint(e.index, q), -axes[q][i]});
   }
-  return row;
 }
 
 void DofMap::build_extra_rows(const Model& m, const Configuration& c) {
   // Prescribed values: supports first (value 0), then "prescribed" entries override values.
   raw_prescribed_.assign(n_raw_, -1);
+  prescribed_.clear();
   auto prescribe = [&](int raw, double value, bool support) {
     int& p = raw_prescribed_[raw];
     if (p < 0) {
@@ -207,28 +216,40 @@ void DofMap::build_extra_rows(const Model& m, const Configuration& c) {
   for (const auto& p : m.prescribed) prescribe(raw_index(p.dof), p.value, false);
 
   ind_prescribed_.assign(n_ind_, -1);
+  // The rows are counted first and written over the last build's rows (their vectors keep their
+  // storage): a prescribed value on a slave, then six rows per loop edge.
+  std::size_t n_extra = 6 * loop_edges_.size();
+  for (int r = 0; r < n_raw_; ++r)
+    if (raw_prescribed_[r] >= 0 && raw_to_ind_[r] < 0) ++n_extra;
+  extra_.resize(n_extra);
+  std::size_t next = 0;
+  auto new_row = [&]() -> ExtraRow& {
+    ExtraRow& x = extra_[next++];
+    x.raw.clear();
+    x.rhs.clear();
+    x.joint = x.joint_row = x.prescribed = x.loop = -1;
+    return x;
+  };
   for (int r = 0; r < n_raw_; ++r) {
     const int p = raw_prescribed_[r];
     if (p < 0) continue;
     if (raw_to_ind_[r] >= 0) {
       ind_prescribed_[raw_to_ind_[r]] = p;
     } else {
-      ExtraRow x;
+      ExtraRow& x = new_row();
       x.raw.push_back({r, 1.0});
       x.rhs.push_back({p, 1.0});
       x.prescribed = p;
-      extra_.push_back(std::move(x));
     }
   }
   for (int li = 0; li < static_cast<int>(loop_edges_.size()); ++li)
     for (int k = 0; k < 6; ++k) {
       const auto& e = loop_edges_[li];
-      ExtraRow x;
-      x.raw = edge_row_raw(m, c, e, k);
+      ExtraRow& x = new_row();
+      edge_row_raw(m, c, e, k, x.raw);
       x.loop = li;
       x.joint_row = k;
       if (e.kind == ConstraintEdge::Kind::Joint) x.joint = e.index;
-      extra_.push_back(std::move(x));
     }
 }
 
@@ -236,24 +257,40 @@ void DofMap::build_extra_rows(const Model& m, const Configuration& c) {
 // independent DOFs are known values, encoded as keys -1 - p in the expressions.
 void DofMap::eliminate(const Model& m) {
   auto presc_key = [](int p) { return -1 - p; };
-  std::map<int, Expr> dependent;  // ind -> expression over free ind (keys >= 0) and prescribed
-  extra_ind_.clear();
-  for (const auto& x : extra_) {
-    Expr row;  // row . ind - rhs . p = 0
+  // ind -> expression over free ind (keys >= 0) and prescribed: the expression of a dependent
+  // DOF d is dependent[dependent_slot[d]] (slots in the order of elimination).
+  std::vector<Expr>& dependent = scratch_.dependent;
+  std::vector<int>& dependent_slot = scratch_.dependent_slot;
+  std::vector<int>& dependent_ind = scratch_.dependent_ind;
+  dependent_slot.assign(n_ind_, -1);
+  dependent_ind.clear();
+  auto dependent_expr = [&](int k) -> Expr* {
+    return dependent_slot[k] >= 0 ? &dependent[dependent_slot[k]] : nullptr;
+  };
+  redundant_.clear();
+  redundant_names_.clear();
+  redundant_what_.clear();
+  extra_ind_.resize(extra_.size());
+  Expr& row = scratch_.row;  // row . ind - rhs . p = 0
+  Expr& e = scratch_.e;
+  Expr& expr = scratch_.expr;
+  for (std::size_t xi = 0; xi < extra_.size(); ++xi) {
+    const ExtraRow& x = extra_[xi];
+    row.clear();
     for (const auto& t : x.raw)
       for (SparseRowMatrix::InnerIterator it(Tind_, t.ind); it; ++it) row[static_cast<int>(it.col())] += t.coef * it.value();
-    extra_ind_.emplace_back(row.begin(), row.end());
+    extra_ind_[xi] = row;  // copy-assigned into the last build's storage
     for (const auto& t : x.rhs) row[presc_key(t.ind)] -= t.coef;
     const double scale = max_abs(row);
     // Known values and earlier eliminations.
-    Expr e;
+    e.clear();
     for (const auto& [k, v] : row) {
       if (k < 0) {
         e[k] += v;
       } else if (ind_prescribed_[k] >= 0) {
         e[presc_key(ind_prescribed_[k])] += v;
-      } else if (auto it = dependent.find(k); it != dependent.end()) {
-        add_scaled(e, it->second, v);
+      } else if (const Expr* d = dependent_expr(k)) {
+        add_scaled(e, *d, v);
       } else {
         e[k] += v;
       }
@@ -277,34 +314,47 @@ void DofMap::eliminate(const Model& m) {
       continue;
     }
     const double cp = e[pivot];
-    Expr expr;
+    expr.clear();
     for (const auto& [k, v] : e)
       if (k != pivot && std::abs(v) > 1e-14 * scale) expr[k] = -v / cp;
-    for (auto& [d, de] : dependent) {
+    // Each earlier expression is updated on its own: the order of this loop changes no sum.
+    for (const int d : dependent_ind) {
+      Expr& de = dependent[dependent_slot[d]];
       auto it = de.find(pivot);
       if (it == de.end()) continue;
       const double f = it->second;
       de.erase(it);
       add_scaled(de, expr, f);
     }
-    dependent[pivot] = std::move(expr);
+    // The pivot was free (its key survived the substitutions above): it gets the next slot, whose
+    // storage is swapped with `expr`'s.
+    const int slot = static_cast<int>(dependent_ind.size());
+    if (static_cast<std::size_t>(slot) == dependent.size()) dependent.emplace_back();
+    std::swap(dependent[slot], expr);
+    dependent_slot[pivot] = slot;
+    dependent_ind.push_back(pivot);
   }
 
   raw_to_free_.assign(n_raw_, -1);
-  std::vector<int> ind_to_free(n_ind_, -1);
+  std::vector<int>& ind_to_free = scratch_.ind_to_free;
+  ind_to_free.assign(n_ind_, -1);
+  free_refs_.clear();
   free_refs_.reserve(n_ind_);
   for (int i = 0; i < n_ind_; ++i) {
-    if (ind_prescribed_[i] >= 0 || dependent.count(i)) continue;
+    if (ind_prescribed_[i] >= 0 || dependent_slot[i] >= 0) continue;
     ind_to_free[i] = n_free_++;
     raw_to_free_[ind_to_raw_[i]] = ind_to_free[i];
     free_refs_.push_back(raw_ref(ind_to_raw_[i]));
   }
   ind_dependent_.assign(n_ind_, 0);
-  for (const auto& [d, de] : dependent) ind_dependent_[d] = 1;
+  for (const int d : dependent_ind) ind_dependent_[d] = 1;
 
   // Tf_ and Tp_ row by row: a row's terms in the order they are produced, then sorted, duplicates
   // summed and zeros dropped (append_row).
-  std::vector<SparseRow::Term> tf, tp;
+  std::vector<SparseRow::Term>& tf = scratch_.tf;
+  std::vector<SparseRow::Term>& tp = scratch_.tp;
+  tf.clear();
+  tp.clear();
   tf.reserve(16);
   tp.reserve(16);
   auto emit = [&](int k, double v) {
@@ -320,8 +370,8 @@ void DofMap::eliminate(const Model& m) {
       const int ind = static_cast<int>(it.col());
       if (ind_prescribed_[ind] >= 0) {
         emit(presc_key(ind_prescribed_[ind]), it.value());
-      } else if (auto d = dependent.find(ind); d != dependent.end()) {
-        for (const auto& [k, v] : d->second) emit(k, it.value() * v);
+      } else if (const Expr* d = dependent_expr(ind)) {
+        for (const auto& [k, v] : *d) emit(k, it.value() * v);
       } else {
         emit(ind, it.value());
       }

@@ -25,11 +25,13 @@
 // the current configuration (Configuration), since rigid offsets and joint axes turn with bodies.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "core/model.hpp"
+#include "core/sparse_row.hpp"
 
 namespace beamfea {
 
@@ -59,8 +61,14 @@ struct ConstraintEdge {
 
 class DofMap {
  public:
-  DofMap(const Model& model, const Configuration& configuration);
+  DofMap(const Model& model, const Configuration& configuration) { rebuild(model, configuration); }
   explicit DofMap(const Model& model) : DofMap(model, reference_configuration(model)) {}
+
+  // Builds the map of `model` in `configuration` over this one: the same map as a new DofMap's,
+  // written into the storage of the last build (its vectors, sparse matrices and build scratch), so
+  // that a sweep whose geometry changes every case builds map after map without allocating once
+  // the sizes are reached. On a throw the map is unusable until the next rebuild succeeds.
+  void rebuild(const Model& model, const Configuration& configuration);
 
   int raw_size() const { return n_raw_; }
   int free_size() const { return n_free_; }
@@ -152,9 +160,10 @@ class DofMap {
   void build_tree_rows(const Model& m, const Configuration& c);
   void build_extra_rows(const Model& m, const Configuration& c);
   void eliminate(const Model& m);
-  Row edge_row_raw(const Model& m, const Configuration& c, const ConstraintEdge& e, int k) const;
+  // Row k of loop edge `e` over raw DOFs, written over `row`.
+  void edge_row_raw(const Model& m, const Configuration& c, const ConstraintEdge& e, int k, Row& row) const;
 
-  const Model* model_;
+  const Model* model_ = nullptr;
   int n_nodes_ = 0;
   int n_raw_ = 0;
   int n_ind_ = 0;
@@ -174,7 +183,7 @@ class DofMap {
     int prescribed = -1;                   // slave support rows: which prescribed value
     int loop = -1;                         // loop edge rows: which loop edge (row = joint_row)
   };
-  std::vector<ExtraRow> extra_;
+  std::vector<ExtraRow> extra_;  // resized, not cleared, by a rebuild: each row keeps its storage
   std::string describe_extra(const Model& m, const ExtraRow& x) const;
   std::vector<int> ind_prescribed_;         // per independent DOF: prescribed index or -1
   std::vector<PrescribedValue> prescribed_;
@@ -184,11 +193,41 @@ class DofMap {
   std::vector<Row> redundant_;              // rows over prescribed indices that must vanish
   std::vector<std::string> redundant_names_;
   std::vector<std::string> redundant_what_;  // per redundant_ row: the link, joint or DOF it came from
-  std::vector<std::map<int, double>> extra_ind_;  // extra rows over independent DOFs
+  std::vector<SparseRow> extra_ind_;        // extra rows over independent DOFs
   std::vector<char> ind_dependent_;
   std::vector<Vec3> x_;                     // node positions of the configuration
   SparseRowMatrix Tf_, Tp_;
   SparseRowMatrix Tind_;                    // raw <- independent (tree only): the tree rows
+
+  // The working arrays of a build (the forest's search, the slaves' rows, the elimination), kept
+  // for the next rebuild. Not part of the map's value: a copy of a map starts with none.
+  struct BuildScratch {
+    struct Adj {
+      ConstraintEdge::Kind kind;
+      int index, other;
+    };
+    BuildScratch() = default;
+    BuildScratch(const BuildScratch&) {}
+    BuildScratch& operator=(const BuildScratch&) { return *this; }
+    // build_forest
+    std::vector<int> first, fill, support_count, order, queue;
+    std::vector<Adj> adj;
+    std::vector<std::array<char, 6>> held;
+    std::vector<char> visited, used_rigid, used_joint;
+    // build_tree_rows
+    std::vector<int> slave_slot;
+    RowStore slave_rows;
+    SparseRow acc, lever;
+    // eliminate: each dependent independent DOF's expression in a slot of `dependent` (slots
+    // reused, with their storage, build after build), in the order the DOFs were eliminated.
+    SparseRow row, e, expr;
+    std::vector<SparseRow> dependent;
+    std::vector<int> dependent_slot;  // per independent DOF: its slot in `dependent`, or -1
+    std::vector<int> dependent_ind;   // per slot: the independent DOF
+    std::vector<int> ind_to_free;
+    std::vector<SparseRow::Term> tf, tp;
+  };
+  BuildScratch scratch_;
 };
 
 }  // namespace beamfea

@@ -9,14 +9,17 @@ namespace beamfea {
 
 // Spanning forest of the graph of rigid links and joints, rooted at the most supported node of
 // each connected component so that supports fall on independent DOFs whenever possible.
+// Its arrays are the build scratch's, written over (DofMap::rebuild).
 void DofMap::build_forest(const Model& m) {
-  struct Adj {
-    ConstraintEdge::Kind kind;
-    int index, other;
-  };
+  using Adj = BuildScratch::Adj;
+  BuildScratch& b = scratch_;
+  tree_edges_.clear();
+  tree_order_.clear();
+  loop_edges_.clear();
   // Adjacency lists in one array (node n's are adj[first[n]] .. adj[first[n + 1] - 1]), each in the
   // order rigid links by element, then joints by joint.
-  std::vector<int> first(n_nodes_ + 1, 0);
+  std::vector<int>& first = b.first;
+  first.assign(n_nodes_ + 1, 0);
   auto for_each_edge = [&](auto&& f) {
     for (int e = 0; e < static_cast<int>(m.elements.size()); ++e) {
       const auto& el = m.elements[e];
@@ -32,13 +35,16 @@ void DofMap::build_forest(const Model& m) {
   };
   for_each_edge([&](int n, const Adj&) { ++first[n + 1]; });
   for (int n = 0; n < n_nodes_; ++n) first[n + 1] += first[n];
-  std::vector<Adj> adj(first[n_nodes_]);
+  std::vector<Adj>& adj = b.adj;
+  adj.resize(first[n_nodes_]);
   {
-    std::vector<int> fill(first.begin(), first.end() - 1);
+    std::vector<int>& fill = b.fill;
+    fill.assign(first.begin(), first.end() - 1);
     for_each_edge([&](int n, const Adj& a) { adj[fill[n]++] = a; });
   }
   auto has_edges = [&](int n) { return first[n + 1] > first[n]; };
-  std::vector<int> support_count(n_nodes_, 0);
+  std::vector<int>& support_count = b.support_count;
+  support_count.assign(n_nodes_, 0);
   for (const auto& s : m.supports)
     for (bool f : s.fixed) support_count[s.node] += f ? 1 : 0;
   for (const auto& p : m.prescribed)
@@ -49,21 +55,31 @@ void DofMap::build_forest(const Model& m) {
   // stay short, and a loop between two grounds closes at an edge in its middle (a closure) rather
   // than through the supports of a slave (which would make one long chain through the loop). Then the
   // remaining components, each from its most supported node.
-  std::vector<std::array<char, 6>> held(n_nodes_, std::array<char, 6>{});
+  std::vector<std::array<char, 6>>& held = b.held;
+  held.assign(n_nodes_, std::array<char, 6>{});
   for (const auto& s : m.supports)
     for (int k = 0; k < 6; ++k) held[s.node][k] = held[s.node][k] || s.fixed[k];
   for (const auto& p : m.prescribed)
     if (p.dof.owner == DofRef::Owner::Node) held[p.dof.index][p.dof.comp] = 1;
-  std::vector<int> order(n_nodes_);
+  // Most supported first, ties in node order: the order of a stable sort by support count, by a
+  // sort that needs no buffer (std::stable_sort allocates one on every call).
+  std::vector<int>& order = b.order;
+  order.resize(n_nodes_);
   for (int i = 0; i < n_nodes_; ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return support_count[a] > support_count[b]; });
+  std::sort(order.begin(), order.end(), [&](int x, int y) {
+    return support_count[x] != support_count[y] ? support_count[x] > support_count[y] : x < y;
+  });
 
   parent_edge_.assign(n_nodes_, -1);
-  std::vector<char> visited(n_nodes_, 0);
-  std::vector<char> used_rigid(m.elements.size(), 0), used_joint(m.joints.size(), 0);
+  std::vector<char>& visited = b.visited;
+  std::vector<char>& used_rigid = b.used_rigid;
+  std::vector<char>& used_joint = b.used_joint;
+  visited.assign(n_nodes_, 0);
+  used_rigid.assign(m.elements.size(), 0);
+  used_joint.assign(m.joints.size(), 0);
   // Breadth first from the nodes in `queue` (a FIFO: `head` is its front).
-  std::vector<int> queue;
+  std::vector<int>& queue = b.queue;
+  queue.clear();
   queue.reserve(n_nodes_);
   const std::size_t n_edges = adj.size() / 2;
   tree_edges_.reserve(std::min<std::size_t>(n_edges, static_cast<std::size_t>(n_nodes_)));

@@ -80,6 +80,28 @@ const char* to_string(SweepCaseResult::Status s) {
   return "?";
 }
 
+namespace {
+
+// Whether a value is held in the json object itself (nothing on the heap).
+bool inline_value(const json& v) { return v.is_null() || v.is_boolean() || v.is_number(); }
+
+// to = from, written into `to`'s storage where the shapes agree: inline values, strings (the
+// string's capacity), arrays of the same length (element by element). Elsewhere (objects, a change
+// of kind or length) a plain assignment, which allocates. `to` equals `from` afterwards either way.
+void assign_in_place(json& to, const json& from) {
+  if (inline_value(to) && inline_value(from)) {
+    to = from;  // copies the type and the number as they are (integer, unsigned, float)
+  } else if (to.is_string() && from.is_string()) {
+    to.get_ref<std::string&>() = from.get_ref<const std::string&>();
+  } else if (to.is_array() && from.is_array() && to.size() == from.size()) {
+    for (std::size_t i = 0; i < from.size(); ++i) assign_in_place(to[i], from[i]);
+  } else {
+    to = from;
+  }
+}
+
+}  // namespace
+
 bool SweepCaseDocument::set(const json::json_pointer& p, const json& value) {
   // One traversal: `at` throws (out_of_range, or parse_error for an index that is not one) exactly
   // where `contains` says false, and a sweep sets its pointers for every case.
@@ -89,8 +111,11 @@ bool SweepCaseDocument::set(const json::json_pointer& p, const json& value) {
   } catch (const json::exception&) {
     return false;  // Sweep::document names the error
   }
-  saved_.emplace_back(&p, std::move(*slot));
-  *slot = value;
+  if (n_saved_ == saved_.size()) saved_.emplace_back();
+  auto& [pointer, old] = saved_[n_saved_++];
+  pointer = &p;
+  assign_in_place(old, *slot);
+  assign_in_place(*slot, value);
   return true;
 }
 
@@ -99,9 +124,10 @@ void SweepCaseDocument::restore() {
     doc_ = sweep_->base;
     fresh_ = false;
   } else {
-    for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) doc_.at(*it->first) = std::move(it->second);
+    // Last set first: a pointer set twice (or inside a value set before it) gets back its base value.
+    for (std::size_t k = n_saved_; k-- > 0;) assign_in_place(doc_.at(*saved_[k].first), saved_[k].second);
   }
-  saved_.clear();
+  n_saved_ = 0;
 }
 
 const json& SweepCaseDocument::apply(std::size_t index) {

@@ -94,8 +94,11 @@ struct Sweep {
 
 // A worker's copy of the base document that each case changes in place and puts back afterwards:
 // a case that sets values the base already has copies only those values, not the whole document
-// (a small model's sweep spends as long copying the document as analysing it). Cases with
-// patches, or pointers the base lacks, get a fresh copy (Sweep::document) as before.
+// (a small model's sweep spends as long copying the document as analysing it). The values are
+// written over the ones they replace where their shapes agree (numbers, strings, arrays of the
+// same length: a new pose's coordinates), and the replaced values are kept in slots reused case
+// after case, so a warm case allocates nothing. Cases with patches, or pointers the base lacks,
+// get a fresh copy (Sweep::document) as before.
 class SweepCaseDocument {
  public:
   explicit SweepCaseDocument(const Sweep& sweep) : sweep_(&sweep), doc_(sweep.base) {}
@@ -108,7 +111,10 @@ class SweepCaseDocument {
 
   const Sweep* sweep_;
   nlohmann::json doc_;
-  std::vector<std::pair<const nlohmann::json::json_pointer*, nlohmann::json>> saved_;  // values to put back
+  // Values to put back: the first n_saved_ entries; the others are spare slots whose storage the
+  // next case's values take.
+  std::vector<std::pair<const nlohmann::json::json_pointer*, nlohmann::json>> saved_;
+  std::size_t n_saved_ = 0;
   bool fresh_ = false;  // doc_ is a case's fresh copy: the base is copied back on the next call
 };
 

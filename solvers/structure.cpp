@@ -23,11 +23,16 @@ BeamSection beam_section(const Model& m, const Element& e) {
   return s;
 }
 
-LinearStructure::LinearStructure(const Model& model) : model_(&model) {
-  // 3.5 KB per element (37 MB at 21,504 DOFs): huge pages before the first touch (core/huge_pages.hpp).
-  beams_.reserve(model.elements.size());
-  advise_huge_pages(beams_.data(), beams_.capacity() * sizeof(beams_[0]));
-  beams_.resize(model.elements.size());
+void LinearStructure::rebuild(const Model& model) {
+  model_ = &model;
+  // 3.5 KB per element (37 MB at 21,504 DOFs): huge pages before the first touch (core/huge_pages.hpp),
+  // so only when the storage is new; a rebuild of a model that fits writes over the last one's.
+  if (beams_.capacity() < model.elements.size()) {
+    beams_.clear();
+    beams_.reserve(model.elements.size());
+    advise_huge_pages(beams_.data(), beams_.capacity() * sizeof(beams_[0]));
+  }
+  beams_.assign(model.elements.size(), std::nullopt);
   for (std::size_t e = 0; e < model.elements.size(); ++e) {
     const auto& el = model.elements[e];
     if (el.type != MemberType::Beam) continue;

@@ -17,7 +17,11 @@ BeamSection beam_section(const Model& m, const Element& e);
 
 class LinearStructure {
  public:
-  explicit LinearStructure(const Model& model);
+  explicit LinearStructure(const Model& model) { rebuild(model); }
+  // Builds `model`'s elements over this structure's: the same as a new LinearStructure's, in the
+  // storage of the last build (a sweep whose geometry changes every case). On a throw the structure
+  // is unusable until the next rebuild succeeds.
+  void rebuild(const Model& model);
 
   // Assembles the elastic stiffness (beams and joint springs) into `assembler`.
   void assemble(const DofMap& map, SystemAssembler& assembler) const;
@@ -45,7 +49,7 @@ class LinearStructure {
   // The matrix entries one assembly adds (an upper bound: SystemAssembler::expect).
   std::size_t assembly_entries() const;
 
-  const Model* model_;
+  const Model* model_ = nullptr;
   std::vector<std::optional<LinearBeam>> beams_;
 };
 

@@ -23,13 +23,14 @@ const LinearStructureCache::Parts& LinearStructureCache::get(const Model& model)
     parts_->structure.rebind(model);
     return *parts_;
   }
-  // A throwing constructor leaves no pair behind (and a key without a pair matches nothing); the
-  // key's storage is kept for the next one.
-  parts_.reset();
+  // A miss rebuilds the pair over the last one's storage (a sweep whose geometry changes every case
+  // then allocates nothing once warm). The key is cleared first: a throwing rebuild leaves a pair
+  // that no model matches, rebuilt again by the next call. The key's storage is kept too.
+  key_.clear();
   reference_configuration(model, reference_);
-  parts_.emplace(model, reference_);
+  if (parts_) parts_->rebuild(model, reference_);
+  else parts_.emplace(model, reference_);
   if (keeps(model)) key_.assign(model);
-  else key_.clear();
   return *parts_;
 }
 

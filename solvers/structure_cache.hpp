@@ -39,13 +39,18 @@ class LinearStructureCache {
     // constructor), three allocations each.
     explicit Parts(const Model& model) : map(model), structure(model) {}
     Parts(const Model& model, const Configuration& reference) : map(model, reference), structure(model) {}
+    // Both built over the last pair's storage (the same values as a new pair's).
+    void rebuild(const Model& model, const Configuration& reference) {
+      map.rebuild(model, reference);
+      structure.rebuild(model);
+    }
     DofMap map;
     LinearStructure structure;
   };
   // `model`'s DofMap in its reference configuration and its LinearStructure, bound to `model`:
-  // the kept pair when `model` equals the key, else a new pair (reused by later calls only when
-  // `keeps(model)`). Valid while `model` lives and until the next call. Throws what the
-  // constructors throw (nothing is kept then).
+  // the kept pair when `model` equals the key, else a pair rebuilt over the kept one's storage
+  // (reused by later calls only when `keeps(model)`). Valid while `model` lives and until the next
+  // call. Throws what the constructors throw (nothing reusable is kept then).
   const Parts& get(const Model& model);
 
   static bool keeps(const Model& model) { return structure_cache_keeps(model); }
