@@ -105,6 +105,8 @@ int main(int argc, char** argv) {
     if (!quiet && !blas.replaced.empty()) std::cerr << "beamfea: BLAS: " << describe(blas) << "\n";
     opt.warning = [](const std::string& s) { std::cerr << "beamfea: warning: " << s << "\n"; };
     opt.parallel = beamfea::app::thread_tasks();  // a large results.json formatted on all cores
+    opt.results_in_memory = false;  // the program only writes the results: the largest objects are made as
+                                    // results.json is written, never held whole (io/deferred_results.hpp)
     state.report = beamfea::run_document(state.model, state.document, opt);
     if (!quiet) std::cerr << "beamfea: wrote " << (opt.out_dir / "results.json").string() << "\n";
     return state.report.failed ? 1 : 0;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/model.hpp"
+#include "io/deferred_results.hpp"
 #include "io/json_pointer.hpp"
 #include "solvers/linear_static.hpp"
 #include "solvers/member_loading.hpp"
@@ -67,6 +68,11 @@ struct AnalysisContext {
   // May be null: the message of the outcome at this position in that previous run, whose storage
   // the analysis may take for its own message (swapped out) or leave.
   std::string* previous_message = nullptr;
+  // May be null (results read from the tree): where the analysis may defer a large object of its
+  // result, to be made only while results.json is written (io/deferred_results.hpp). What a
+  // deferred object's members are made from must outlive the run (the model does; the analysis's
+  // own arrays are held by the part).
+  DeferredParts* deferred = nullptr;
 };
 
 // How an analysis ended. results.json keeps its own "status" strings (a contract); this is the
@@ -135,8 +141,9 @@ std::string analysis_id(const nlohmann::json& v, const json_in::Pointer& pointer
 // states them, as an InputError at the analysis's pointer `p`.
 void check_nonlinear_model(const Model& model, const json_in::Pointer& p);
 
-// The first non-finite number in a result ("" when all are finite), as a path "a.b[2]".
-std::string first_non_finite(const ojson& v, const std::string& path = "");
+// The first non-finite number in a result ("" when all are finite), as a path "a.b[2]"; the
+// members of deferred objects included (their placeholders in `v` are looked up in `deferred`).
+std::string first_non_finite(const ojson& v, const std::string& path = "", const DeferredParts* deferred = nullptr);
 
 // Helpers shared by the analyses' JSON output.
 ojson to_json(const Vec3& v);

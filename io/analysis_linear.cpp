@@ -1,6 +1,7 @@
 // Analyses "linear_static" and "stiffness".
 #include <fmt/format.h>
 
+#include <memory>
 #include <utility>
 
 #include "core/errors.hpp"
@@ -48,47 +49,76 @@ void set_ends(ojson& v, const Vec12& x) {
   set_numbers(ends[1], x.data() + 6, 6);
 }
 
-// Member-level output, written over `v`: a member meshed into several elements reports the forces
+// One member's output, written over `v`: a member meshed into several elements reports the forces
 // at its own ends (first element's end 1, last element's end 2), and the section forces at
 // stations along it.
 // `stations`, `positions`: storage for member_stations, kept by the caller.
-void set_elements(ojson& v, const Model& model, const LinearStaticResult& r, int interior_stations,
-                  std::vector<Station>& stations, std::vector<double>& positions) {
+void set_member(ojson& v, const Model& model, const LinearStaticResult& r, std::size_t mi, int interior_stations,
+                std::vector<Station>& stations, std::vector<double>& positions) {
   const std::vector<Vec12>& end_forces = r.end_forces;
-  ObjectFiller out(v, model.members.size());
-  for (std::size_t mi = 0; mi < model.members.size(); ++mi) {
-    const auto& mem = model.members[mi];
-    const Vec12& first = end_forces[mem.elements.front()];
-    const Vec12& last = end_forces[mem.elements.back()];
-    Vec12 ends;
-    ends << first.head<6>(), last.tail<6>();
-    const Vec12 s = section_forces(ends);
-    ObjectFiller o(out.slot(mem.id), 4);
-    set_ends(o.slot("end_forces"), ends);
-    set_ends(o.slot("section_forces"), s);
-    if (mem.type == MemberType::Beam) {
-      member_stations(model, static_cast<int>(mi), end_forces, r.element_loads, interior_stations, stations, positions);
-      auto& items = set_array(o.slot("stations"), stations.size());
-      for (std::size_t k = 0; k < stations.size(); ++k) {
-        ObjectFiller station(items[k], 2);
-        station.slot("x") = stations[k].x;
-        set_numbers(station.slot("forces"), stations[k].forces.data(), 6);
-        station.finish();
-      }
+  const auto& mem = model.members[mi];
+  const Vec12& first = end_forces[mem.elements.front()];
+  const Vec12& last = end_forces[mem.elements.back()];
+  Vec12 ends;
+  ends << first.head<6>(), last.tail<6>();
+  const Vec12 s = section_forces(ends);
+  ObjectFiller o(v, 4);
+  set_ends(o.slot("end_forces"), ends);
+  set_ends(o.slot("section_forces"), s);
+  if (mem.type == MemberType::Beam) {
+    member_stations(model, static_cast<int>(mi), end_forces, r.element_loads, interior_stations, stations, positions);
+    auto& items = set_array(o.slot("stations"), stations.size());
+    for (std::size_t k = 0; k < stations.size(); ++k) {
+      ObjectFiller station(items[k], 2);
+      station.slot("x") = stations[k].x;
+      set_numbers(station.slot("forces"), stations[k].forces.data(), 6);
+      station.finish();
     }
-    if (mem.elements.size() > 1) {
-      auto& items = set_array(o.slot("segments"), mem.elements.size());
-      for (std::size_t k = 0; k < mem.elements.size(); ++k) {
-        const int e = mem.elements[k];
-        ObjectFiller seg(items[k], 2);
-        set_string(seg.slot("id"), model.elements[e].id);
-        set_ends(seg.slot("end_forces"), end_forces[e]);
-        seg.finish();
-      }
-    }
-    o.finish();
   }
-  out.finish();
+  if (mem.elements.size() > 1) {
+    auto& items = set_array(o.slot("segments"), mem.elements.size());
+    for (std::size_t k = 0; k < mem.elements.size(); ++k) {
+      const int e = mem.elements[k];
+      ObjectFiller seg(items[k], 2);
+      set_string(seg.slot("id"), model.elements[e].id);
+      set_ends(seg.slot("end_forces"), end_forces[e]);
+      seg.finish();
+    }
+  }
+  o.finish();
+}
+
+// One node's output, written over `v`: its displacement, and its reaction where it is supported.
+void set_node(ojson& v, const LinearStaticResult& r, std::size_t n) {
+  ObjectFiller o(v, 2);
+  set_numbers(o.slot("displacement"), r.u.data() + 6 * n, 6);
+  if (r.supported[n]) set_numbers(o.slot("reaction"), r.reactions[n].data(), 6);
+  o.finish();
+}
+
+// The nodes' and the members' objects, made member by member while results.json is written
+// (io/deferred_results.hpp) from `r`, which the parts share.
+void defer_nodes(DeferredParts& deferred, ojson& slot, const Model& model, std::shared_ptr<const LinearStaticResult> r) {
+  deferred.defer(slot, {model.nodes.size(), [&model, r](std::size_t first, std::size_t end, const MemberSink& emit) {
+                          ojson v;
+                          for (std::size_t n = first; n < end; ++n) {
+                            set_node(v, *r, n);
+                            emit(model.nodes[n].id, v);
+                          }
+                        }});
+}
+void defer_members(DeferredParts& deferred, ojson& slot, const Model& model, std::shared_ptr<const LinearStaticResult> r,
+                   int interior_stations) {
+  deferred.defer(slot, {model.members.size(), [&model, r, interior_stations](std::size_t first, std::size_t end,
+                                                                            const MemberSink& emit) {
+                          ojson v;
+                          std::vector<Station> stations;
+                          std::vector<double> positions;
+                          for (std::size_t m = first; m < end; ++m) {
+                            set_member(v, model, *r, m, interior_stations, stations, positions);
+                            emit(model.members[m].id, v);
+                          }
+                        }});
 }
 
 // Interior stations per member (the spec's "stations"), default 10.
@@ -123,7 +153,7 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   }
   std::string case_id;
   if (const nlohmann::json* load_case = json_in::field(ctx.spec, "load_case")) case_id = json_in::id(*load_case, "", "load_case");
-  LinearStaticResult fresh;
+  std::shared_ptr<const LinearStaticResult> fresh;  // when nothing is kept (shared with deferred parts)
   std::vector<Station> fresh_stations;
   std::vector<double> fresh_positions;
   if (kept) {
@@ -134,9 +164,10 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
       system->solve(model.loads_of(case_id), kept->linear, kept->linear_scratch);
     }
   } else {
-    fresh = system->solve(case_id.empty() ? model.default_loads() : model.loads_of(case_id));
+    fresh = std::make_shared<const LinearStaticResult>(
+        system->solve(case_id.empty() ? model.default_loads() : model.loads_of(case_id)));
   }
-  const LinearStaticResult& r = kept ? kept->linear : fresh;
+  const LinearStaticResult& r = kept ? kept->linear : *fresh;
   const nlohmann::json* stations_value = json_in::field(ctx.spec, "stations");
   const int stations = stations_value ? stations_value->get<int>() : kDefaultStations;
   // Written over the previous run's result when there is one (a sweep worker's: the nodes' and
@@ -158,18 +189,24 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
     res.finish();
     return out;
   }
-  {
+  if (ctx.deferred) {
+    // Nobody reads the tree (`beamfea run`): the nodes and members are made as results.json is
+    // written. The parts hold the solution: a fresh one is shared with them; a kept one (a reused
+    // report's) lives in the run's workspace, which outlives the writing.
+    auto held = kept ? std::shared_ptr<const LinearStaticResult>(std::shared_ptr<void>(), &kept->linear) : fresh;
+    defer_nodes(*ctx.deferred, res.slot("nodes"), model, held);
+    defer_members(*ctx.deferred, res.slot("elements"), model, held, stations);
+  } else {
     ObjectFiller nodes(res.slot("nodes"), model.nodes.size());
-    for (std::size_t n = 0; n < model.nodes.size(); ++n) {
-      ObjectFiller o(nodes.slot(model.nodes[n].id), 2);
-      set_numbers(o.slot("displacement"), r.u.data() + 6 * n, 6);
-      if (r.supported[n]) set_numbers(o.slot("reaction"), r.reactions[n].data(), 6);
-      o.finish();
-    }
+    for (std::size_t n = 0; n < model.nodes.size(); ++n) set_node(nodes.slot(model.nodes[n].id), r, n);
     nodes.finish();
+    ObjectFiller members(res.slot("elements"), model.members.size());
+    std::vector<Station>& station_storage = kept ? kept->stations : fresh_stations;
+    std::vector<double>& position_storage = kept ? kept->station_positions : fresh_positions;
+    for (std::size_t m = 0; m < model.members.size(); ++m)
+      set_member(members.slot(model.members[m].id), model, r, m, stations, station_storage, position_storage);
+    members.finish();
   }
-  set_elements(res.slot("elements"), model, r, stations, kept ? kept->stations : fresh_stations,
-               kept ? kept->station_positions : fresh_positions);
   {
     ObjectFiller joints(res.slot("joints"), model.joints.size());
     std::size_t offset = 6 * model.nodes.size();

@@ -94,29 +94,40 @@ std::string AnalysisOutcome::brief_report() const { return std::string(to_string
 
 namespace {
 // Over the containers themselves (ordered_json's iterators cost several times more per value).
-bool all_finite(const ojson& v) {
+bool all_finite(const ojson& v, const DeferredParts* deferred) {
   if (v.is_number_float()) return std::isfinite(v.get<double>());
   if (v.is_array()) {
     for (const auto& x : v.get_ref<const ojson::array_t&>())
-      if (!all_finite(x)) return false;
+      if (!all_finite(x, deferred)) return false;
   } else if (v.is_object()) {
     for (const auto& [k, x] : v.get_ref<const ojson::object_t&>())
-      if (!all_finite(x)) return false;
+      if (!all_finite(x, deferred)) return false;
+  } else if (const DeferredMembers* part = deferred ? deferred->find(v) : nullptr) {
+    bool finite = true;
+    part->make(0, part->size, [&](std::string_view, const ojson& x) { finite = finite && all_finite(x, deferred); });
+    return finite;
   }
   return true;
 }
 }  // namespace
 
-std::string first_non_finite(const ojson& v, const std::string& path) {
+std::string first_non_finite(const ojson& v, const std::string& path, const DeferredParts* deferred) {
   // The paths are built only when there is something to name (a result has thousands of numbers).
-  if (all_finite(v)) return "";
+  if (all_finite(v, deferred)) return "";
+  const auto member = [&](const std::string& key) { return path.empty() ? key : path + "." + key; };
   if (v.is_number_float()) return std::isfinite(v.get<double>()) ? "" : (path.empty() ? "(value)" : path);
   if (v.is_array()) {
     for (std::size_t i = 0; i < v.size(); ++i)
-      if (auto r = first_non_finite(v[i], path + "[" + std::to_string(i) + "]"); !r.empty()) return r;
+      if (auto r = first_non_finite(v[i], path + "[" + std::to_string(i) + "]", deferred); !r.empty()) return r;
   } else if (v.is_object()) {
     for (const auto& [k, x] : v.items())
-      if (auto r = first_non_finite(x, path.empty() ? k : path + "." + k); !r.empty()) return r;
+      if (auto r = first_non_finite(x, member(k), deferred); !r.empty()) return r;
+  } else if (const DeferredMembers* part = deferred ? deferred->find(v) : nullptr) {
+    std::string first;
+    part->make(0, part->size, [&](std::string_view k, const ojson& x) {
+      if (first.empty()) first = first_non_finite(x, member(std::string(k)), deferred);
+    });
+    return first;
   }
   return "";
 }

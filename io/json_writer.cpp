@@ -37,11 +37,11 @@ struct Sink {
 
 bool is_scalar(const ojson& v) { return !v.is_structured(); }
 
-void write_string(const std::string& s, std::string& out) {
+void write_string(std::string_view s, std::string& out) {
   for (const char c : s)
     if (static_cast<unsigned char>(c) >= 0x80) {
       // Non-ASCII: nlohmann's own serialiser (UTF-8 passed through, invalid UTF-8 an error).
-      out += ojson(s).dump();
+      out += ojson(std::string(s)).dump();
       return;
     }
   out += '"';
@@ -161,21 +161,56 @@ struct Parallel {
   std::vector<std::string> slices[2] = {std::vector<std::string>(kSlicesPerWindow), std::vector<std::string>(kSlicesPerWindow)};
 };
 
-void write_value(const ojson& v, Sink& sink, int indent, Parallel* parallel);
+// What a write reaches besides the value: the hook (null: on this thread; also inside a slice, which
+// starts no tasks of its own) and the deferred parts that placeholders stand for (may be null).
+struct Writer {
+  Parallel* parallel = nullptr;
+  const DeferredParts* deferred = nullptr;
+};
 
-// Member i of an object or of an array of structured values, with what goes before it: the comma
-// after the previous member, the line break, the indentation and an object's key.
-void write_member(const ojson& v, std::size_t i, Sink& sink, int indent, Parallel* parallel) {
-  std::string& out = sink.out;
+void write_value(const ojson& v, Sink& sink, int indent, const Writer& w);
+
+// Before member i of an object or array: the comma after the previous member, the line break, the
+// indentation and an object's key.
+void begin_member(std::size_t i, const std::string_view* key, std::string& out, int indent) {
   if (i > 0) out += ',';
   newline(out, indent + 2);
-  if (v.is_object()) {
-    const auto& [key, member] = *(v.get_ref<const ojson::object_t&>().begin() + static_cast<std::ptrdiff_t>(i));
-    write_string(key, out);
+  if (key) {
+    write_string(*key, out);
     out += ": ";
-    write_value(member, sink, indent + 2, parallel);
-  } else {
-    write_value(v.get_ref<const ojson::array_t&>()[i], sink, indent + 2, parallel);
+  }
+}
+
+// The members of a structured value of the tree, or of a deferred part (made as they are written).
+struct Members {
+  const ojson* tree = nullptr;
+  const DeferredMembers* part = nullptr;
+  bool object() const { return part || tree->is_object(); }
+  std::size_t size() const { return part ? part->size : tree->size(); }
+};
+
+// Members [first, end), each with what goes before it, the stream fed after each.
+void write_members(const Members& m, std::size_t first, std::size_t end, Sink& sink, int indent, const Writer& w) {
+  if (m.part) {
+    std::size_t i = first;
+    m.part->make(first, end, [&](std::string_view key, const ojson& value) {
+      begin_member(i++, &key, sink.out, indent);
+      write_value(value, sink, indent + 2, w);
+      sink.flush_if_full();
+    });
+    return;
+  }
+  for (std::size_t i = first; i < end; ++i) {
+    if (m.tree->is_object()) {
+      const auto& [key, member] = *(m.tree->get_ref<const ojson::object_t&>().begin() + static_cast<std::ptrdiff_t>(i));
+      const std::string_view k = key;
+      begin_member(i, &k, sink.out, indent);
+      write_value(member, sink, indent + 2, w);
+    } else {
+      begin_member(i, nullptr, sink.out, indent);
+      write_value(m.tree->get_ref<const ojson::array_t&>()[i], sink, indent + 2, w);
+    }
+    sink.flush_if_full();
   }
 }
 
@@ -187,13 +222,15 @@ void append_slices(const std::vector<std::string>& slices, std::size_t count, Si
   }
 }
 
-// The members of `v` in windows, each cut into slices that the hook's tasks format into strings of
-// their own (serially inside: no nested tasks). One more task appends the previous window's slices
-// to the sink meanwhile, so that the stream is fed while the next window is formatted; the last
+// The members in windows, each cut into slices that the hook's tasks format into strings of their
+// own (serially inside: no nested tasks). One more task appends the previous window's slices to
+// the sink meanwhile, so that the stream is fed while the next window is formatted; the last
 // window is appended after the loop. The text is the serial one: a member's text depends only on
 // its index and indentation, and the windows reach the sink in order.
-void write_members_in_slices(const ojson& v, Sink& sink, int indent, Parallel& parallel) {
-  const std::size_t n = v.size();
+void write_members_in_slices(const Members& m, Sink& sink, int indent, const Writer& w) {
+  Parallel& parallel = *w.parallel;
+  const Writer in_slice{nullptr, w.deferred};
+  const std::size_t n = m.size();
   std::size_t slice_members = kFirstSliceMembers;
   std::size_t pending = 0;  // slices of the last window formatted, not yet appended
   int current = 0;          // the window formatted next goes into parallel.slices[current]
@@ -217,7 +254,7 @@ void write_members_in_slices(const ojson& v, Sink& sink, int indent, Parallel& p
       text.clear();
       Sink slice{text};
       const std::size_t first = begin + s * per_slice, end = std::min(begin + window, first + per_slice);
-      for (std::size_t i = first; i < end; ++i) write_member(v, i, slice, indent, nullptr);
+      write_members(m, first, end, slice, indent, in_slice);
       formatted[s] = std::move(text);
     });
     std::size_t bytes = 0;
@@ -230,18 +267,34 @@ void write_members_in_slices(const ojson& v, Sink& sink, int indent, Parallel& p
   append_slices(parallel.slices[1 - current], pending, sink);
 }
 
-void write_value(const ojson& v, Sink& sink, int indent, Parallel* parallel) {
+// An object's or array's members between its brackets, one per line.
+void write_structured(const Members& m, Sink& sink, int indent, const Writer& w) {
+  std::string& out = sink.out;
+  const bool object = m.object();
+  if (m.size() == 0) {
+    out += object ? "{}" : "[]";
+    return;
+  }
+  out += object ? '{' : '[';
+  if (w.parallel && m.size() >= kMinParallelMembers)
+    write_members_in_slices(m, sink, indent, w);
+  else
+    write_members(m, 0, m.size(), sink, indent, w);
+  newline(out, indent);
+  out += object ? '}' : ']';
+}
+
+void write_value(const ojson& v, Sink& sink, int indent, const Writer& w) {
+  if (const DeferredMembers* part = w.deferred ? w.deferred->find(v) : nullptr) {
+    write_structured(Members{nullptr, part}, sink, indent, w);
+    return;
+  }
   std::string& out = sink.out;
   if (!v.is_structured()) {
     write_scalar(v, out);
     return;
   }
-  const bool object = v.is_object();
-  if (v.empty()) {
-    out += object ? "{}" : "[]";
-    return;
-  }
-  if (!object && std::all_of(v.begin(), v.end(), is_scalar)) {  // on one line
+  if (v.is_array() && !v.empty() && std::all_of(v.begin(), v.end(), is_scalar)) {  // on one line
     out += '[';
     bool first = true;
     for (const auto& e : v) {
@@ -252,29 +305,21 @@ void write_value(const ojson& v, Sink& sink, int indent, Parallel* parallel) {
     out += ']';
     return;
   }
-  out += object ? '{' : '[';
-  if (parallel && v.size() >= kMinParallelMembers) {
-    write_members_in_slices(v, sink, indent, *parallel);
-  } else {
-    for (std::size_t i = 0, n = v.size(); i < n; ++i) {
-      write_member(v, i, sink, indent, parallel);
-      sink.flush_if_full();
-    }
-  }
-  newline(out, indent);
-  out += object ? '}' : ']';
+  write_structured(Members{&v, nullptr}, sink, indent, w);
 }
 
 }  // namespace
 
-void write_results_json(const ojson& value, std::string& out, const ParallelTasks& parallel) {
+void write_results_json(const ojson& value, std::string& out, const ParallelTasks& parallel,
+                        const DeferredParts* deferred) {
   Sink sink{out};
   std::optional<Parallel> slices;
   if (parallel) slices.emplace(Parallel{parallel});
-  write_value(value, sink, 0, slices ? &*slices : nullptr);
+  write_value(value, sink, 0, Writer{slices ? &*slices : nullptr, deferred});
 }
 
-void write_results_json_file(const ojson& value, const std::filesystem::path& path, const ParallelTasks& parallel) {
+void write_results_json_file(const ojson& value, const std::filesystem::path& path, const ParallelTasks& parallel,
+                             const DeferredParts* deferred) {
   write_atomic(path, [&](const std::filesystem::path& tmp) {
     std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
     if (!file) throw Error("cannot write '" + tmp.string() + "'");
@@ -283,7 +328,7 @@ void write_results_json_file(const ojson& value, const std::filesystem::path& pa
     Sink sink{buffer, &file};
     std::optional<Parallel> slices;
     if (parallel) slices.emplace(Parallel{parallel});
-    write_value(value, sink, 0, slices ? &*slices : nullptr);
+    write_value(value, sink, 0, Writer{slices ? &*slices : nullptr, deferred});
     buffer += '\n';
     sink.flush();
     file.close();

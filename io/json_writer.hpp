@@ -14,21 +14,26 @@
 // (the nodes, the elements of a large model) is formatted in windows of a few megabytes, each cut
 // into slices formatted at once into strings of their own and then appended in order: the text is
 // byte for byte the serial one, and still streamed. Small results start no tasks.
+//
+// With DeferredParts (io/deferred_results.hpp), each placeholder in `value` is written as the
+// object its part makes member by member, exactly as the same object held in the tree.
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "io/deferred_results.hpp"
 #include "io/parallel_tasks.hpp"
 
 namespace beamfea {
 
 // Appends the text of `value` to `out` (no trailing newline). `parallel` empty: on this thread.
-void write_results_json(const nlohmann::ordered_json& value, std::string& out, const ParallelTasks& parallel = {});
+void write_results_json(const nlohmann::ordered_json& value, std::string& out, const ParallelTasks& parallel = {},
+                        const DeferredParts* deferred = nullptr);
 
 // Writes the text of `value` and a newline to `path` atomically (io/atomic_file.hpp), streamed in
 // chunks of about a megabyte; throws beamfea::Error when the file cannot be written. An exception
 // (from the file or from a task of `parallel`) leaves no file at `path`.
 void write_results_json_file(const nlohmann::ordered_json& value, const std::filesystem::path& path,
-                             const ParallelTasks& parallel = {});
+                             const ParallelTasks& parallel = {}, const DeferredParts* deferred = nullptr);
 
 }  // namespace beamfea

@@ -54,7 +54,7 @@ AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx) {
     o.message = e.what();
     return o;
   }
-  if (const std::string where = first_non_finite(o.result); !where.empty()) {
+  if (const std::string where = first_non_finite(o.result, "", ctx.deferred); !where.empty()) {
     o.termination = AnalysisTermination::NonFiniteResult;
     o.message = "the result is not finite at '" + where +
                 "' (an overflow: values or stiffnesses too far apart for double precision)";
@@ -116,6 +116,10 @@ void run_into(const Model& model, const nlohmann::json& document, const RunOptio
   std::optional<StagingDir> staging;
   if (!options.out_dir.empty()) staging.emplace(options.out_dir);
   ObjectFiller analyses(results.slot("analyses"), specs.size());
+  // The objects the analyses defer when nobody reads the results tree: made while results.json is
+  // written (io/deferred_results.hpp).
+  DeferredParts deferred;
+  DeferredParts* defer = staging && !options.results_in_memory ? &deferred : nullptr;
   RunCache cache;
   cache.workspace = workspace;
   for (std::size_t i = 0; i < specs.size(); ++i) {
@@ -127,7 +131,7 @@ void run_into(const Model& model, const nlohmann::json& document, const RunOptio
     ojson& result = analyses.slot(id);  // the last run's result of this id, or null
     std::string* previous_message = outcomes < report.outcomes.size() ? &report.outcomes[outcomes].second.message : nullptr;
     AnalysisContext ctx{model,   document, spec, json_in::child("/analyses", i), id, staging ? staging->path() : std::filesystem::path(),
-                        options.write_vtk, {}, options.warning, &cache, &result, previous_message};
+                        options.write_vtk, {}, options.warning, &cache, &result, previous_message, defer};
     if (options.progress) ctx.progress = [&](const std::string& s) { options.progress("[" + id + "] " + s); };
     const auto t0 = std::chrono::steady_clock::now();
     AnalysisOutcome o = run_one(*type, ctx);
@@ -149,8 +153,9 @@ void run_into(const Model& model, const nlohmann::json& document, const RunOptio
   if (cache.linear) results.slot("factorizations") = cache.linear->factorizations();
   results.finish();
   if (staging) {
-    write_results_json_file(report.results, staging->path() / "results.json", options.parallel);
+    write_results_json_file(report.results, staging->path() / "results.json", options.parallel, defer);
     staging->commit("results.json");
+    deferred.erase_placeholders(report.results);
   }
 }
 

@@ -23,10 +23,15 @@ struct RunOptions {
   MessageSink warning;               // warnings (empty: dropped)
   ParallelTasks parallel;            // formats a large results.json on several threads (io/parallel_tasks.hpp;
                                      // the program's: app/parallel_tasks.hpp); empty: on the calling thread
+  // false: the caller reads results.json, not RunReport::results (the program). The analyses may
+  // then make their largest objects (a linear analysis's nodes and members) only while results.json
+  // is written, member by member, instead of holding them in the results tree
+  // (io/deferred_results.hpp); RunReport::results lacks those objects. No effect without out_dir.
+  bool results_in_memory = true;
 };
 
 struct RunReport {
-  ojson results;        // the whole results.json
+  ojson results;        // the whole results.json (less the deferred objects: RunOptions::results_in_memory)
   bool failed = false;  // some analysis failed (exit code 1)
   std::vector<std::pair<std::string, AnalysisOutcome>> outcomes;  // per analysis run, in order (result moved to `results`)
   // Kept from run to run by run_document's overload that writes over a report (null until then):

@@ -1,0 +1,233 @@
+// Deferred parts of results.json (io/deferred_results.hpp): objects made member by member while
+// the file is written must give the text the results tree gives, byte for byte, on one thread and
+// in slices on several; a non-finite number inside them is found with its path, as in the tree.
+// (A linear analysis cannot be made to give one through its input: the input's bounds make it fail
+// at the factorisation first. The test on the parts themselves covers the check.)
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "io/analysis.hpp"
+#include "io/deferred_results.hpp"
+#include "io/json_util.hpp"
+#include "io/json_writer.hpp"
+#include "io/run.hpp"
+#include "support/models.hpp"
+
+namespace deferred_results_test {
+
+using json = nlohmann::json;
+using ojson = nlohmann::ordered_json;
+using beamfea::DeferredMembers;
+using beamfea::DeferredParts;
+using beamfea::MemberSink;
+using beamfea::ParallelTasks;
+
+// One thread per task, as the program's hook runs them at once.
+void thread_per_task(std::size_t count, const std::function<void(std::size_t)>& task) {
+  std::vector<std::thread> threads;
+  std::mutex m;
+  std::exception_ptr error;
+  for (std::size_t i = 0; i < count; ++i)
+    threads.emplace_back([&, i] {
+      try {
+        task(i);
+      } catch (...) {
+        const std::lock_guard lock(m);
+        if (!error) error = std::current_exception();
+      }
+    });
+  for (auto& t : threads) t.join();
+  if (error) std::rethrow_exception(error);
+}
+
+// The tasks on the calling thread, last first: the text must not depend on their order.
+void last_first(std::size_t count, const std::function<void(std::size_t)>& task) {
+  for (std::size_t i = count; i-- > 0;) task(i);
+}
+
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Run `doc` with results.json written; the analyses' measured wall_time_s (the one value that
+// differs from run to run) set to 0 in the text.
+struct Written {
+  std::string text;
+  beamfea::RunReport report;
+};
+Written run(const json& doc, bool in_memory, const ParallelTasks& parallel, const std::string& name) {
+  const auto dir = beamfea::test::temp_dir(std::string("deferred_").append(name).append(in_memory ? "_tree" : "_deferred"));
+  const beamfea::Model model = beamfea::load_and_check(doc);
+  beamfea::RunOptions options;
+  options.out_dir = dir;
+  options.write_vtk = false;
+  options.results_in_memory = in_memory;
+  options.parallel = parallel;
+  Written r;
+  r.report = beamfea::run_document(model, doc, options);
+  static const std::regex wall_time("\"wall_time_s\": [-+.0-9e]+");
+  r.text = std::regex_replace(read_text(dir / "results.json"), wall_time, "\"wall_time_s\": 0");
+  std::filesystem::remove_all(dir);
+  return r;
+}
+
+json read_json(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return json::parse(in);
+}
+
+// A frame of (nx+1)(ny+1)(nz+1) nodes with what a member's output can hold: columns in two
+// segments (their "segments"), distributed loads over part of some beams (stations at the load's
+// ends), a rigid link (no stations) and a revolute joint with a spring (the "joints" object),
+// supports with reactions, nodal loads.
+json frame(int nx, int ny, int nz) {
+  json nodes = json::array(), elements = json::array(), supports = json::array(), loads = json::array();
+  const auto id = [&](int i, int j, int k) {
+    std::string s = "n";
+    s += std::to_string(i).append("_").append(std::to_string(j)).append("_").append(std::to_string(k));
+    return s;
+  };
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) {
+        nodes.push_back({{"id", id(i, j, k)}, {"xyz", {4.0 * i, 5.0 * j, 3.0 * k}}});
+        if (k == 0) supports.push_back({{"node", id(i, j, k)}, {"fix", "all"}});
+        if (k > 0 && (i + j) % 3 == 0) loads.push_back({{"node", id(i, j, k)}, {"force", {1e3 * i, -2e2 * j, -5e3}}});
+      }
+  int e = 0;
+  const auto beam = [&](const std::string& a, const std::string& b, int divisions) {
+    elements.push_back({{"id", std::string("e").append(std::to_string(e++))}, {"type", "beam"}, {"nodes", {a, b}}, {"material", "steel"},
+                        {"section", "ipe"}, {"divisions", divisions}});
+  };
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) beam(id(i, j, k), id(i, j, k + 1), 2);
+  for (int k = 1; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) {
+        if (i < nx) {
+          beam(id(i, j, k), id(i + 1, j, k), 1);
+          if ((i + j + k) % 4 == 0)
+            loads.push_back({{"element", elements.back()["id"]}, {"distributed", {0, 0, -2e3}}, {"from", 0.25}, {"to", 0.8}});
+        }
+        if (j < ny) beam(id(i, j, k), id(i, j + 1, k), 1);
+      }
+  // A tip on a rigid link and a revolute joint off the roof's corner.
+  nodes.push_back({{"id", "arm"}, {"xyz", {0.0, 0.0, 3.0 * nz}}});
+  nodes.push_back({{"id", "tip"}, {"xyz", {-1.0, 0.0, 3.0 * nz}}});
+  elements.push_back({{"id", "link"}, {"type", "rigid"}, {"nodes", {"arm", "tip"}}});
+  loads.push_back({{"node", "tip"}, {"force", {0, 0, -1e3}}});
+  json joints = json::array({{{"id", "hinge"}, {"type", "revolute"}, {"nodes", {id(0, 0, nz), "arm"}}, {"axes", {{0, 1, 0}}},
+                              {"stiffness", {5e6}}}});
+  return {{"nodes", nodes},
+          {"materials", {{{"id", "steel"}, {"E", 2.1e11}, {"G", 8.1e10}}}},
+          {"sections", {{{"id", "ipe"}, {"A", 5.4e-3}, {"Iy", 8.4e-5}, {"Iz", 6.0e-6}, {"J", 2.0e-7}}}},
+          {"elements", elements},
+          {"joints", joints},
+          {"supports", supports},
+          {"loads", loads},
+          {"analyses", {{{"id", "lin"}, {"type", "linear_static"}, {"stations", 4}}}}};
+}
+
+TEST(DeferredResults, ALargeFrameIsWrittenByteForByteAsFromTheTree) {
+  // 1,183 nodes and 2,887 members: both objects go through the slices when a hook is given.
+  const json doc = frame(12, 12, 6);
+  const Written tree = run(doc, true, {}, "frame");
+  ASSERT_FALSE(tree.report.failed);
+  ASSERT_GT(tree.text.size(), std::size_t{2} << 20);
+  for (const auto& [name, hook] : {std::pair<const char*, ParallelTasks>{"serial", {}},
+                                   {"threads", thread_per_task}, {"last_first", last_first}}) {
+    const Written deferred = run(doc, false, hook, std::string("frame_").append(name));
+    EXPECT_FALSE(deferred.report.failed) << name;
+    EXPECT_TRUE(deferred.text == tree.text) << name;  // (not EXPECT_EQ: a failure would print megabytes)
+    // The tree the caller gets back lacks the deferred objects, and only them.
+    const ojson& lin = deferred.report.results["analyses"]["lin"];
+    EXPECT_FALSE(lin.contains("nodes")) << name;
+    EXPECT_FALSE(lin.contains("elements")) << name;
+    EXPECT_EQ(lin["status"], "ok") << name;
+    EXPECT_TRUE(lin.contains("joints")) << name;
+  }
+  // What the text holds is what the tree held (the comparison above is not between two empties).
+  const ojson& lin = tree.report.results["analyses"]["lin"];
+  EXPECT_EQ(lin["nodes"].size(), 13u * 13u * 7u + 2u + 13u * 13u * 6u);  // and the columns' middle nodes
+  EXPECT_EQ(lin["elements"].size(), 13u * 13u * 6u + 2u * 12u * 13u * 6u + 1u);
+  EXPECT_EQ(lin["elements"]["e0"]["segments"].size(), 2u);
+  EXPECT_TRUE(lin["nodes"]["n0_0_0"].contains("reaction"));
+}
+
+TEST(DeferredResults, TheExamplesAreWrittenByteForByteAsFromTheTree) {
+  for (const char* example : {"01_space_frame", "04_load_sweep", "09_robot_arm_self_weight"}) {
+    const json doc = read_json(std::filesystem::path(BEAMFEA_SOURCE_DIR) / "examples" / example / "model.json");
+    const Written tree = run(doc, true, {}, example);
+    const Written deferred = run(doc, false, thread_per_task, example);
+    EXPECT_EQ(deferred.text, tree.text) << example;
+    EXPECT_NE(tree.text.find("\"stations\""), std::string::npos) << example;
+  }
+}
+
+TEST(DeferredResults, AFailedAnalysisIsWrittenAsFromTheTree) {
+  // Stiffnesses 12 E I / L^3 of ~1e350 overflow double precision inside the analysis (as in
+  // tests/cli/trust_test.cpp): the factorisation fails, and the result has no nodes or members.
+  json d = beamfea::test::cantilever(1e-50, 1e100, 1e100, 1e100, 1e100, 1e100, 1e100);
+  d["loads"] = {{{"node", "B"}, {"force", {0, -1, 0}}}};
+  d["analyses"] = {{{"id", "lin"}, {"type", "linear_static"}}};
+  const Written tree = run(d, true, {}, "failed");
+  const Written deferred = run(d, false, {}, "failed");
+  ASSERT_TRUE(tree.report.failed);
+  EXPECT_TRUE(deferred.report.failed);
+  EXPECT_EQ(deferred.report.outcomes.at(0).second.message, tree.report.outcomes.at(0).second.message);
+  EXPECT_EQ(deferred.text, tree.text);
+}
+
+// The writer alone: a deferred object of `n` members {"i": i, "u": [..]} beside the same object
+// held in the tree, and an empty one.
+ojson member(std::size_t i) { return {{"i", i}, {"u", {0.1 * static_cast<double>(i), -1.0 / static_cast<double>(i + 1)}}}; }
+DeferredMembers numbered(std::size_t n) {
+  return {n, [](std::size_t first, std::size_t end, const MemberSink& emit) {
+            for (std::size_t i = first; i < end; ++i) emit(std::string("m").append(std::to_string(i)), member(i));
+          }};
+}
+
+TEST(DeferredResults, ThePlaceholdersAreWrittenAsTheObjectsTheyStandFor) {
+  ojson tree = {{"a", 1}, {"big", ojson::object()}, {"empty", ojson::object()}, {"after", {1.5, 2.5}}};
+  for (std::size_t i = 0; i < 5000; ++i) tree["big"][std::string("m").append(std::to_string(i))] = member(i);
+  ojson with_parts = {{"a", 1}, {"big", nullptr}, {"empty", nullptr}, {"after", {1.5, 2.5}}};
+  DeferredParts parts;
+  parts.defer(with_parts["big"], numbered(5000));
+  parts.defer(with_parts["empty"], numbered(0));
+  EXPECT_EQ(parts.size(), 2u);
+  EXPECT_EQ(parts.find(with_parts["a"]), nullptr);
+  ASSERT_NE(parts.find(with_parts["big"]), nullptr);
+  std::string expected;
+  beamfea::write_results_json(tree, expected);
+  for (const auto& hook : {ParallelTasks{}, ParallelTasks{thread_per_task}, ParallelTasks{last_first}}) {
+    std::string text;
+    beamfea::write_results_json(with_parts, text, hook, &parts);
+    EXPECT_TRUE(text == expected);
+  }
+  // Non-finite numbers inside a part are found with their path.
+  DeferredParts bad;
+  ojson holder = {{"x", nullptr}};
+  bad.defer(holder["x"], {3, [](std::size_t first, std::size_t end, const MemberSink& emit) {
+                            for (std::size_t i = first; i < end; ++i)
+                              emit(std::string("m").append(std::to_string(i)), ojson{{"v", i == 2 ? std::nan("") : 1.0}});
+                          }});
+  EXPECT_EQ(beamfea::first_non_finite(holder, "", &bad), "x.m2.v");
+  EXPECT_EQ(beamfea::first_non_finite(with_parts, "", &parts), "");
+  // Once written, the placeholders leave the tree.
+  parts.erase_placeholders(with_parts);
+  EXPECT_EQ(with_parts, (ojson{{"a", 1}, {"after", {1.5, 2.5}}}));
+}
+
+}  // namespace deferred_results_test
