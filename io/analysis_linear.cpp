@@ -1,6 +1,7 @@
 // Analyses "linear_static" and "stiffness".
 #include <fmt/format.h>
 
+#include <cmath>
 #include <memory>
 #include <utility>
 
@@ -97,28 +98,55 @@ void set_node(ojson& v, const LinearStaticResult& r, std::size_t n) {
 }
 
 // The nodes' and the members' objects, made member by member while results.json is written
-// (io/deferred_results.hpp) from `r`, which the parts share.
+// (io/deferred_results.hpp) from `r`, which the parts share. Whether their numbers are all finite
+// is answered from what they are made of: a node's displacement and reaction; a member's elements'
+// end forces (its end and section forces are those with signs changed, its segments' are those)
+// and its stations.
 void defer_nodes(DeferredParts& deferred, ojson& slot, const Model& model, std::shared_ptr<const LinearStaticResult> r) {
-  deferred.defer(slot, {model.nodes.size(), [&model, r](std::size_t first, std::size_t end, const MemberSink& emit) {
-                          ojson v;
-                          for (std::size_t n = first; n < end; ++n) {
-                            set_node(v, *r, n);
-                            emit(model.nodes[n].id, v);
-                          }
-                        }});
+  DeferredMembers part;
+  part.size = model.nodes.size();
+  part.make = [&model, r](std::size_t first, std::size_t end, const MemberSink& emit) {
+    ojson v;
+    for (std::size_t n = first; n < end; ++n) {
+      set_node(v, *r, n);
+      emit(model.nodes[n].id, v);
+    }
+  };
+  part.all_finite = [r] {
+    for (std::size_t n = 0; n < r->supported.size(); ++n)
+      if (r->supported[n] && !r->reactions[n].allFinite()) return false;
+    return r->u.head(static_cast<Eigen::Index>(6 * r->supported.size())).allFinite();
+  };
+  deferred.defer(slot, std::move(part));
 }
 void defer_members(DeferredParts& deferred, ojson& slot, const Model& model, std::shared_ptr<const LinearStaticResult> r,
                    int interior_stations) {
-  deferred.defer(slot, {model.members.size(), [&model, r, interior_stations](std::size_t first, std::size_t end,
-                                                                            const MemberSink& emit) {
-                          ojson v;
-                          std::vector<Station> stations;
-                          std::vector<double> positions;
-                          for (std::size_t m = first; m < end; ++m) {
-                            set_member(v, model, *r, m, interior_stations, stations, positions);
-                            emit(model.members[m].id, v);
-                          }
-                        }});
+  DeferredMembers part;
+  part.size = model.members.size();
+  part.make = [&model, r, interior_stations](std::size_t first, std::size_t end, const MemberSink& emit) {
+    ojson v;
+    std::vector<Station> stations;
+    std::vector<double> positions;
+    for (std::size_t m = first; m < end; ++m) {
+      set_member(v, model, *r, m, interior_stations, stations, positions);
+      emit(model.members[m].id, v);
+    }
+  };
+  part.all_finite = [&model, r, interior_stations] {
+    std::vector<Station> stations;
+    std::vector<double> positions;
+    for (std::size_t m = 0; m < model.members.size(); ++m) {
+      const auto& mem = model.members[m];
+      for (const int e : mem.elements)
+        if (!r->end_forces[e].allFinite()) return false;
+      if (mem.type != MemberType::Beam) continue;
+      member_stations(model, static_cast<int>(m), r->end_forces, r->element_loads, interior_stations, stations, positions);
+      for (const auto& s : stations)
+        if (!std::isfinite(s.x) || !s.forces.allFinite()) return false;
+    }
+    return true;
+  };
+  deferred.defer(slot, std::move(part));
 }
 
 // Interior stations per member (the spec's "stations"), default 10.

@@ -103,6 +103,7 @@ bool all_finite(const ojson& v, const DeferredParts* deferred) {
     for (const auto& [k, x] : v.get_ref<const ojson::object_t&>())
       if (!all_finite(x, deferred)) return false;
   } else if (const DeferredMembers* part = deferred ? deferred->find(v) : nullptr) {
+    if (part->all_finite) return part->all_finite();
     bool finite = true;
     part->make(0, part->size, [&](std::string_view, const ojson& x) { finite = finite && all_finite(x, deferred); });
     return finite;

@@ -30,6 +30,10 @@ struct DeferredMembers {
   // (the writer, the check for non-finite numbers) and at once on several threads for disjoint
   // ranges, so everything it writes into is its own (a range's scratch, on its stack).
   std::function<void(std::size_t first, std::size_t end, const MemberSink& emit)> make;
+  // Optional: whether every number the members would hold is finite, answered from what they are
+  // made of without making them (a run checks its results for overflow before writing them,
+  // io/run.cpp). Empty: the members are made and looked at.
+  std::function<bool()> all_finite;
 };
 
 // The deferred parts of one run's results tree, each standing in the tree as a placeholder (a

@@ -196,7 +196,8 @@ ojson member(std::size_t i) { return {{"i", i}, {"u", {0.1 * static_cast<double>
 DeferredMembers numbered(std::size_t n) {
   return {n, [](std::size_t first, std::size_t end, const MemberSink& emit) {
             for (std::size_t i = first; i < end; ++i) emit(std::string("m").append(std::to_string(i)), member(i));
-          }};
+          },
+          {}};
 }
 
 TEST(DeferredResults, ThePlaceholdersAreWrittenAsTheObjectsTheyStandFor) {
@@ -216,14 +217,21 @@ TEST(DeferredResults, ThePlaceholdersAreWrittenAsTheObjectsTheyStandFor) {
     beamfea::write_results_json(with_parts, text, hook, &parts);
     EXPECT_TRUE(text == expected);
   }
-  // Non-finite numbers inside a part are found with their path.
+  // Non-finite numbers inside a part are found with their path: by making the members, or, where
+  // the part answers whether they are finite, only when it says they are not.
+  const auto with_nan = [](std::size_t first, std::size_t end, const MemberSink& emit) {
+    for (std::size_t i = first; i < end; ++i)
+      emit(std::string("m").append(std::to_string(i)), ojson{{"v", i == 2 ? std::nan("") : 1.0}});
+  };
   DeferredParts bad;
-  ojson holder = {{"x", nullptr}};
-  bad.defer(holder["x"], {3, [](std::size_t first, std::size_t end, const MemberSink& emit) {
-                            for (std::size_t i = first; i < end; ++i)
-                              emit(std::string("m").append(std::to_string(i)), ojson{{"v", i == 2 ? std::nan("") : 1.0}});
-                          }});
-  EXPECT_EQ(beamfea::first_non_finite(holder, "", &bad), "x.m2.v");
+  ojson holder = {{"x", nullptr}, {"y", nullptr}, {"z", nullptr}};
+  bad.defer(holder["x"], {3, with_nan, [] { return true; }});  // (says all are finite: not made)
+  EXPECT_EQ(beamfea::first_non_finite(holder, "", &bad), "");
+  bad.defer(holder["y"], {3, with_nan, [] { return false; }});
+  EXPECT_EQ(beamfea::first_non_finite(holder, "", &bad), "y.m2.v");
+  bad.defer(holder["z"], {3, with_nan, {}});
+  holder.erase("y");
+  EXPECT_EQ(beamfea::first_non_finite(holder, "", &bad), "z.m2.v");
   EXPECT_EQ(beamfea::first_non_finite(with_parts, "", &parts), "");
   // Once written, the placeholders leave the tree.
   parts.erase_placeholders(with_parts);
