@@ -9,11 +9,9 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "io/analysis.hpp"
@@ -22,6 +20,7 @@
 #include "io/json_writer.hpp"
 #include "io/run.hpp"
 #include "support/models.hpp"
+#include "support/parallel_hooks.hpp"
 
 namespace deferred_results_test {
 
@@ -32,28 +31,9 @@ using beamfea::DeferredParts;
 using beamfea::MemberSink;
 using beamfea::ParallelTasks;
 
-// One thread per task, as the program's hook runs them at once.
-void thread_per_task(std::size_t count, const std::function<void(std::size_t)>& task) {
-  std::vector<std::thread> threads;
-  std::mutex m;
-  std::exception_ptr error;
-  for (std::size_t i = 0; i < count; ++i)
-    threads.emplace_back([&, i] {
-      try {
-        task(i);
-      } catch (...) {
-        const std::lock_guard lock(m);
-        if (!error) error = std::current_exception();
-      }
-    });
-  for (auto& t : threads) t.join();
-  if (error) std::rethrow_exception(error);
-}
-
-// The tasks on the calling thread, last first: the text must not depend on their order.
-void last_first(std::size_t count, const std::function<void(std::size_t)>& task) {
-  for (std::size_t i = count; i-- > 0;) task(i);
-}
+// Every task on a thread of its own, and the tasks last first (tests/support/parallel_hooks.hpp).
+const ParallelTasks thread_per_task = beamfea::test::ThreadPerTask{};
+using beamfea::test::last_first;
 
 std::string read_text(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);

@@ -23,6 +23,7 @@
 
 #include "core/errors.hpp"
 #include "io/json_writer.hpp"
+#include "support/parallel_hooks.hpp"
 
 namespace json_writer_test {
 
@@ -151,33 +152,8 @@ TEST(JsonWriter, AFileThatCannotBeWrittenIsAnErrorAndLeavesNothing) {
 
 namespace {
 
-// Every task on a thread of its own, exceptions rethrown after all have joined: the hook's
-// contract (io/parallel_tasks.hpp) at its most concurrent, independent of app/'s implementation.
-struct ThreadPerTask {
-  std::shared_ptr<std::size_t> calls = std::make_shared<std::size_t>(0);
-  void operator()(std::size_t count, const std::function<void(std::size_t)>& task) const {
-    ++*calls;
-    std::mutex m;
-    std::exception_ptr error;
-    std::vector<std::thread> threads;
-    for (std::size_t i = 0; i < count; ++i)
-      threads.emplace_back([&, i] {
-        try {
-          task(i);
-        } catch (...) {
-          const std::lock_guard lock(m);
-          if (!error) error = std::current_exception();
-        }
-      });
-    for (auto& t : threads) t.join();
-    if (error) std::rethrow_exception(error);
-  }
-};
-
-// The tasks on the calling thread, last first: the text must not depend on their order.
-void last_first(std::size_t count, const std::function<void(std::size_t)>& task) {
-  for (std::size_t i = count; i-- > 0;) task(i);
-}
+using beamfea::test::last_first;
+using beamfea::test::ThreadPerTask;
 
 // prefix + i, built by appending (GCC 12 warns falsely, -Wrestrict, on "literal" + std::string
 // inlined here: its bug 105329).
