@@ -125,7 +125,7 @@ void write_scalar(const ojson& v, std::string& out) {
     case ojson::value_t::number_integer: write_integer(v.get_ref<const std::int64_t&>(), out); break;
     case ojson::value_t::number_unsigned: write_integer(v.get_ref<const std::uint64_t&>(), out); break;
     case ojson::value_t::string: write_string(v.get_ref<const std::string&>(), out); break;
-    default: out += v.dump(); break;  // binary: not produced by beamfea
+    default: out += v.dump(); break;  // binary: a deferred part's placeholder whose parts were not given
   }
 }
 
