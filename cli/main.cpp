@@ -9,6 +9,7 @@
 
 #include "app/openblas.hpp"
 #include "app/openmp.hpp"
+#include "app/prefault.hpp"
 #include "app/parallel_tasks.hpp"
 #include "cli/sweep_command.hpp"
 #include "core/errors.hpp"
@@ -52,6 +53,8 @@ int main(int argc, char** argv) {
   const auto blas = beamfea::app::choose_openblas_core();
   // Before a library opens a parallel region (app/openmp.hpp).
   const bool openmp_serial = beamfea::app::serialize_library_openmp();
+  // A very large factor faulted in on the other core while the factorisation starts (app/prefault.hpp).
+  beamfea::app::install_background_prefault();
   CLI::App app{"beamfea: matrix structural analysis of 3-D frames of Euler-Bernoulli beams"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("beamfea ") + beamfea::kVersion + "\nBLAS: " + describe(blas) +

@@ -1,5 +1,6 @@
 #include "core/huge_pages.hpp"
 
+#include <atomic>
 #include <cstdint>
 #include <cstdlib>
 
@@ -11,7 +12,17 @@ namespace beamfea {
 
 namespace {
 constexpr std::uintptr_t kHugePageBytes = std::uintptr_t{2} << 20;  // x86-64 and arm64 (4 KiB base pages)
+std::atomic<PrefaultHook> g_prefault{nullptr};
+
+// Huge-page advice, then the prefault hook for a very large block.
+void advise(void* p, std::size_t bytes) noexcept {
+  advise_huge_pages(p, bytes);
+  if (p && bytes >= kPrefaultMinBytes)
+    if (const PrefaultHook hook = g_prefault.load(std::memory_order_acquire)) hook(p, bytes);
+}
 }  // namespace
+
+void set_prefault_hook(PrefaultHook hook) noexcept { g_prefault.store(hook, std::memory_order_release); }
 
 void advise_huge_pages(void* data, std::size_t bytes) noexcept {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
@@ -28,20 +39,20 @@ void advise_huge_pages(void* data, std::size_t bytes) noexcept {
 
 void* malloc_advised(std::size_t bytes) noexcept {
   void* p = std::malloc(bytes);
-  advise_huge_pages(p, bytes);
+  advise(p, bytes);
   return p;
 }
 
 void* calloc_advised(std::size_t count, std::size_t size) noexcept {
   void* p = std::calloc(count, size);
   // calloc has already written zeros into reused heap memory; a fresh mapping it leaves untouched.
-  if (p && size != 0 && count <= SIZE_MAX / size) advise_huge_pages(p, count * size);
+  if (p && size != 0 && count <= SIZE_MAX / size) advise(p, count * size);
   return p;
 }
 
 void* realloc_advised(void* block, std::size_t bytes) noexcept {
   void* p = std::realloc(block, bytes);
-  advise_huge_pages(p, bytes);
+  advise(p, bytes);
   return p;
 }
 

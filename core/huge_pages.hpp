@@ -21,9 +21,24 @@ inline constexpr std::size_t kHugePageMinBytes = std::size_t{4} << 20;
 // refusal (huge pages off) is ignored. Call it before the buffer is first written.
 void advise_huge_pages(void* data, std::size_t bytes) noexcept;
 
-// std::malloc, std::calloc and std::realloc, each followed by advise_huge_pages on the new block:
-// the allocation functions given to a C library that allocates its large arrays itself (CHOLMOD,
-// solvers/sparse_factor.cpp). Freed with std::free.
+// Faulting a very large block in ahead of its use. The kernel zeroes each page at its first
+// touch, on the touching thread: CHOLMOD's factor (0.73 GB at 97,344 DOFs) is touched by its
+// numeric factorisation supernode by supernode on the main thread, 17 % of a 1e5 run's CPU in
+// `clear_page_erms` on the machine measured, while OpenBLAS's worker waits. A program may install
+// a hook that faults such a block in on another thread as soon as it is allocated
+// (app/prefault.hpp: MADV_POPULATE_WRITE, which changes nothing already written). Threads are the
+// program's, so core only calls the hook. Blocks below kPrefaultMinBytes are left alone: at
+// 21,504 DOFs (an 83 MB factor, numeric factorisation 0.3 s) the thread cost more than it saved
+// (docs/performance.md).
+inline constexpr std::size_t kPrefaultMinBytes = std::size_t{256} << 20;
+using PrefaultHook = void (*)(void* data, std::size_t bytes) noexcept;
+// Sets the hook called by the *_advised functions below for a new block of at least
+// kPrefaultMinBytes; null (the default) calls nothing. Set it once, before analyses run.
+void set_prefault_hook(PrefaultHook hook) noexcept;
+
+// std::malloc, std::calloc and std::realloc, each followed by advise_huge_pages on the new block
+// (and the prefault hook on a very large one): the allocation functions given to a C library that
+// allocates its large arrays itself (CHOLMOD, solvers/sparse_factor.cpp). Freed with std::free.
 void* malloc_advised(std::size_t bytes) noexcept;
 void* calloc_advised(std::size_t count, std::size_t size) noexcept;
 void* realloc_advised(void* block, std::size_t bytes) noexcept;
