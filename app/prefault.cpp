@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <system_error>
 #include <thread>
 
 #include "core/huge_pages.hpp"
@@ -27,8 +26,9 @@ void prefault_in_background(void* data, std::size_t bytes) noexcept {
       for (std::uintptr_t a = first; a < last; a += kStep)
         if (madvise(reinterpret_cast<void*>(a), std::min(last, a + kStep) - a, MADV_POPULATE_WRITE) != 0) return;
     }).detach();
-  } catch (const std::system_error&) {
-    // No thread to be had: the owner faults its pages in itself, as without the hook.
+  } catch (...) {
+    // No thread to be had (std::system_error, or no memory for its state): the owner faults its
+    // pages in itself, as without the hook.
   }
 #else
   (void)data;
