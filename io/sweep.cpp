@@ -80,81 +80,38 @@ const char* to_string(SweepCaseResult::Status s) {
   return "?";
 }
 
-namespace {
-
-// Whether a value is held in the json object itself (nothing on the heap).
-bool inline_value(const json& v) { return v.is_null() || v.is_boolean() || v.is_number(); }
-
-// to = from, written into `to`'s storage where the shapes agree: inline values, strings (the
-// string's capacity), arrays of the same length (element by element). Elsewhere (objects, a change
-// of kind or length) a plain assignment, which allocates. `to` equals `from` afterwards either way.
-void assign_in_place(json& to, const json& from) {
-  if (inline_value(to) && inline_value(from)) {
-    to = from;  // copies the type and the number as they are (integer, unsigned, float)
-  } else if (to.is_string() && from.is_string()) {
-    to.get_ref<std::string&>() = from.get_ref<const std::string&>();
-  } else if (to.is_array() && from.is_array() && to.size() == from.size()) {
-    for (std::size_t i = 0; i < from.size(); ++i) assign_in_place(to[i], from[i]);
-  } else {
-    to = from;
-  }
-}
-
-}  // namespace
-
-bool SweepCaseDocument::set(const json::json_pointer& p, const json& value) {
-  // One traversal: `at` throws (out_of_range, or parse_error for an index that is not one) exactly
-  // where `contains` says false, and a sweep sets its pointers for every case.
-  json* slot = nullptr;
-  try {
-    slot = &doc_.at(p);
-  } catch (const json::exception&) {
-    return false;  // Sweep::document names the error
-  }
-  if (n_saved_ == saved_.size()) saved_.emplace_back();
-  auto& [pointer, old] = saved_[n_saved_++];
-  pointer = &p;
-  assign_in_place(old, *slot);
-  assign_in_place(*slot, value);
-  return true;
-}
-
-void SweepCaseDocument::restore() {
+const json& SweepCaseDocument::apply(std::size_t index) {
   if (fresh_) {
-    doc_ = sweep_->base;
+    doc_.reset(sweep_->base);
     fresh_ = false;
   } else {
-    // Last set first: a pointer set twice (or inside a value set before it) gets back its base value.
-    for (std::size_t k = n_saved_; k-- > 0;) assign_in_place(doc_.at(*saved_[k].first), saved_[k].second);
+    doc_.restore();
   }
-  n_saved_ = 0;
-}
-
-const json& SweepCaseDocument::apply(std::size_t index) {
-  restore();
   bool in_place = true;
   auto set_all = [&](const std::vector<json::json_pointer>& pointers, const json& value) {
     for (const auto& p : pointers)
-      if (in_place) in_place = set(p, value);
+      if (in_place) in_place = doc_.set(p, value);
   };
   if (!sweep_->grid.empty()) {
     for (std::size_t a = 0; a < sweep_->grid.size() && in_place; ++a) {
       const auto& axis = sweep_->grid[a];
-      if (!axis.patches.empty()) in_place = false;
-      else set_all(axis.pointers, axis.values[sweep_->grid_value(index, a)]);
+      const std::size_t v = sweep_->grid_value(index, a);
+      if (!axis.patches.empty()) in_place = doc_.patch(axis.patches[v]);
+      else set_all(axis.pointers, axis.values[v]);
     }
   } else {
     for (const auto& c : sweep_->list[index].changes) {
-      if (!c.patch.is_null()) in_place = false;
+      if (!in_place) break;
+      if (!c.patch.is_null()) in_place = doc_.patch(c.patch);
       else set_all(c.pointers, c.value);
     }
   }
   if (!in_place) {
-    restore();
-    doc_ = sweep_->document(index);
+    doc_.restore();
+    doc_.reset(sweep_->document(index));  // throws the case's InputError
     fresh_ = true;
   }
-  return doc_;
+  return doc_.doc();
 }
 
 namespace {

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "io/analysis.hpp"
+#include "io/editable_document.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
 
@@ -92,29 +93,22 @@ struct Sweep {
   std::size_t grid_value(std::size_t index, std::size_t axis) const;
 };
 
-// A worker's copy of the base document that each case changes in place and puts back afterwards:
-// a case that sets values the base already has copies only those values, not the whole document
-// (a small model's sweep spends as long copying the document as analysing it). The values are
-// written over the ones they replace where their shapes agree (numbers, strings, arrays of the
-// same length: a new pose's coordinates), and the replaced values are kept in slots reused case
-// after case, so a warm case allocates nothing. Cases with patches, or pointers the base lacks,
-// get a fresh copy (Sweep::document) as before.
+// A worker's copy of the base document that each case changes in place and puts back afterwards
+// (io/editable_document.hpp): a case copies only the values it changes, not the whole document (a
+// small model's sweep spends as long copying the document as analysing it), and a warm case that
+// sets values or replaces them by patches allocates nothing. A case whose changes do not apply in
+// place gets a fresh copy (Sweep::document), which reports the error exactly as before.
 class SweepCaseDocument {
  public:
   explicit SweepCaseDocument(const Sweep& sweep) : sweep_(&sweep), doc_(sweep.base) {}
   // The case's document (throws InputError as Sweep::document); valid until the next call.
   const nlohmann::json& apply(std::size_t index);
+  // Whether the last apply() changed the worker's copy in place (false: a fresh copy).
+  bool in_place() const { return !fresh_; }
 
  private:
-  bool set(const nlohmann::json::json_pointer& p, const nlohmann::json& value);
-  void restore();
-
   const Sweep* sweep_;
-  nlohmann::json doc_;
-  // Values to put back: the first n_saved_ entries; the others are spare slots whose storage the
-  // next case's values take.
-  std::vector<std::pair<const nlohmann::json::json_pointer*, nlohmann::json>> saved_;
-  std::size_t n_saved_ = 0;
+  EditableDocument doc_;
   bool fresh_ = false;  // doc_ is a case's fresh copy: the base is copied back on the next call
 };
 

@@ -4,6 +4,7 @@
 // its cases. One case runs in io/sweep.cpp, the table is io/sweep_table.cpp, the loop app/.
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "core/errors.hpp"
@@ -69,7 +70,9 @@ void check_value(const json& base, const json::json_pointer& p, const json& v, c
   }
 }
 
-void check_patch(const json& base, const json& patch, const std::string& where) {
+// A patch must apply to `base` (the base model, with a list case's "set" changes): it is applied in
+// place and put back, and only where that fails, to a copy, which names the error.
+void check_patch(EditableDocument& base, const json& patch, const std::string& where) {
   if (!patch.is_array()) throw InputError(where, "a JSON Patch must be an array of operations");
   for (std::size_t k = 0; k < patch.size(); ++k) {
     const auto& op = patch[k];
@@ -79,12 +82,17 @@ void check_patch(const json& base, const json& patch, const std::string& where) 
     // Type check for a plain replacement of an existing value, as for "set".
     if (op["op"] == "replace" && op.contains("value") && op["path"].is_string()) {
       const auto p = read_pointer(op["path"], child(child(where, k), "path"));
-      check_exists(base, p, child(child(where, k), "path"));
-      check_value(base, p, op["value"], child(child(where, k), "value"));
+      check_exists(base.doc(), p, child(child(where, k), "path"));
+      check_value(base.doc(), p, op["value"], child(child(where, k), "value"));
     }
   }
+  const std::size_t mark = base.changes();
+  const bool applied = base.patch(patch);
+  base.restore(mark);
+  base.forget_patches();
+  if (applied) return;
   try {
-    json copy = base;
+    json copy = base.doc();
     copy.patch_inplace(patch);
   } catch (const json::exception& e) {
     throw InputError(where, std::string("the JSON Patch does not apply to the base model: ") + e.what());
@@ -271,6 +279,10 @@ Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
   if (auto it = s.base.find("analyses"); it != s.base.end())
     for (const auto& a : *it) analysis_ids.insert(json_in::id(a.at("id"), "", "analysis"));
 
+  // The base, changed in place to check each patch and put back (one copy, made at the first patch).
+  std::optional<EditableDocument> edits;
+  auto editable = [&]() -> EditableDocument& { return edits ? *edits : edits.emplace(s.base); };
+
   // Cases.
   if (doc.contains("grid") == doc.contains("cases"))
     throw InputError("/grid", "give the cases either as a \"grid\" or as a \"cases\" list (exactly one)");
@@ -288,7 +300,7 @@ Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
         const auto& ps = json_in::array(ax["patches"], child(p, "patches"), "grid axis patches");
         if (ps.empty()) throw InputError(child(p, "patches"), "empty grid axis: no patches");
         for (std::size_t k = 0; k < ps.size(); ++k) {
-          check_patch(s.base, ps[k], child(child(p, "patches"), k));
+          check_patch(editable(), ps[k], child(child(p, "patches"), k));
           axis.patches.push_back(ps[k]);
         }
         if (ax.contains("values")) {
@@ -343,10 +355,11 @@ Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
         }
       }
       if (c.contains("patch")) {
-        // Checked on the base with this case's "set" changes applied.
-        json b = s.base;
-        for (const auto& ch : lc.changes) b[ch.pointers[0]] = ch.value;
+        // Checked on the base with this case's "set" changes applied (each pointer exists: checked above).
+        EditableDocument& b = editable();
+        for (const auto& ch : lc.changes) b.set(ch.pointers[0], ch.value);
         check_patch(b, c["patch"], child(p, "patch"));
+        b.restore();
         lc.changes.push_back({{}, json(), c["patch"]});
       }
       lc.parameters = c.contains("parameters") ? json_in::object(c["parameters"], child(p, "parameters"), "case parameters")

@@ -7,7 +7,8 @@
 // pass over the cases (the workspace takes its sizes), a second pass over the same cases must call
 // operator new not once: the three-link chain's stiffness sweep (joint springs change), the
 // portal frame's load sweep of examples/04 (the lateral load changes, the structure does not) and
-// examples/03's workspace map (the geometry changes every case: the structure cache misses).
+// examples/03's workspace map (the geometry changes every case: the structure cache misses), and
+// the chain's sweep again with its springs set by JSON Patches.
 // The results of the warm pass are also checked against fresh runs of the same cases, bit for bit.
 // Eigen's and CHOLMOD's arrays are malloc'ed, not new'ed: those are not counted here (heaptrack
 // counts them: docs/performance.md).
@@ -144,6 +145,22 @@ json workspace_map_sweep() {
   return {{"base", "model.json"}, {"cases", cases}, {"outputs", {json{{"name", "K"}, {"path", "analyses.K.matrix"}}}}};
 }
 
+// The chain's sweep with its springs set by JSON Patches instead of pointers: one axis of three
+// patches, each a "test" of the ground's support and "replace"s of the three springs.
+json chain_patch_sweep() {
+  json s = chain_sweep();
+  s["grid"] = json::array();
+  json patches = json::array();
+  for (const double k : {500.0, 800.0, 1100.0}) {
+    json patch = {json{{"op", "test"}, {"path", "/supports/0/node"}, {"value", "G"}}};
+    for (int j = 0; j < 3; ++j)
+      patch.push_back({{"op", "replace"}, {"path", "/joints/" + std::to_string(j) + "/stiffness/0"}, {"value", k + 100.0 * j}});
+    patches.push_back(patch);
+  }
+  s["grid"].push_back({{"name", "springs"}, {"patches", patches}});
+  return s;
+}
+
 struct Passes {
   long warm_pass_allocations = 0;
   std::vector<std::string> warm_rows;   // each case's row of the warm pass
@@ -206,6 +223,16 @@ TEST(SweepAllocations, AWorkspaceMapCaseAllocatesNothingOnceTheWorkspaceIsWarm) 
   ASSERT_EQ(sweep.size(), 12u);
   const Passes p = run_twice(sweep);
   EXPECT_EQ(p.warm_pass_allocations, 0) << "operator new calls over 12 warm cases";
+  EXPECT_EQ(p.warm_rows, p.fresh_rows);
+}
+
+TEST(SweepAllocations, APatchedCaseAllocatesNothingOnceTheWorkspaceIsWarm) {
+  // Patches are applied to the worker's document in place and undone (before: a copy of the whole
+  // document per case).
+  const Sweep sweep = beamfea::read_sweep(chain_patch_sweep(), BEAMFEA_SOURCE_DIR);
+  ASSERT_EQ(sweep.size(), 3u);
+  const Passes p = run_twice(sweep);
+  EXPECT_EQ(p.warm_pass_allocations, 0) << "operator new calls over 3 warm cases";
   EXPECT_EQ(p.warm_rows, p.fresh_rows);
 }
 

@@ -56,6 +56,17 @@ TEST(SweepFile, BadSweepFilesNameTheEntry) {
             "/cases/1/set/~1materials~10~1X");
   EXPECT_EQ(pointer_of(read({{"cases", {json{{"patch", {json{{"op", "remove"}, {"path", "/supports/4"}}}}}}}})),
             "/cases/0/patch");
+  // A patch is checked on the base with the case's "set" applied (the test fails: force/1 is 5), and
+  // each patch on the base as it was (the second applies after the first removed the load; the
+  // third's test fails).
+  EXPECT_EQ(pointer_of(read({{"cases", {json{{"set", {{"/loads/0/force/1", 5.0}}},
+                                             {"patch", {json{{"op", "test"}, {"path", "/loads/0/force/1"}, {"value", -1000}}}}}}}})),
+            "/cases/0/patch");
+  EXPECT_EQ(pointer_of(read({{"grid", {json{{"name", "p"},
+                                            {"patches", {{json{{"op", "remove"}, {"path", "/loads/0"}}},
+                                                         {json{{"op", "test"}, {"path", "/loads/0/node"}, {"value", "B"}}},
+                                                         {json{{"op", "test"}, {"path", "/loads/0/node"}, {"value", "X"}}}}}}}}})),
+            "/grid/0/patches/2");
   EXPECT_EQ(pointer_of(read({{"cases", json::array()}})), "/cases");
   EXPECT_EQ(pointer_of(read({{"cases", {json::object()}}, {"outputs", {"analyses.nope.x"}}})), "/outputs/0");
   EXPECT_EQ(pointer_of(read({{"cases", {json::object()}}, {"output", out}})), "/output");
@@ -245,6 +256,74 @@ TEST(SweepCase, AReusedDocumentGivesEachCaseTheFreshCopysDocument) {
     const SweepCaseResult reused = beamfea::run_sweep_case(s, 1, {}, &documents);
     const SweepCaseResult fresh = beamfea::run_sweep_case(s, 1);
     EXPECT_EQ(reused.outputs, fresh.outputs);
+  }
+}
+
+// JSON Patches are applied to the worker's document in place and undone after the case: every
+// RFC 6902 operation, on objects and arrays, gives the fresh copy's document (Sweep::document) in
+// any order of the cases; a patch of the whole document gets a fresh copy; a combination of patches
+// that does not apply fails with the fresh copy's error and leaves the next case intact.
+TEST(SweepCase, PatchesAppliedInPlaceGiveEachCaseTheFreshCopysDocument) {
+  const json list = json::parse(R"({"cases": [
+    {"id": "add_member", "patch": [{"op": "add", "path": "/loads/0/moment", "value": [0, 0, 1.5]}]},
+    {"id": "add_elements", "patch": [{"op": "add", "path": "/nodes/1", "value": {"id": "C", "xyz": [1, 0, 0]}},
+                                     {"op": "add", "path": "/loads/-", "value": {"node": "C", "force": [0, 0, -2]}}]},
+    {"id": "remove", "patch": [{"op": "remove", "path": "/analyses/0"}, {"op": "remove", "path": "/loads/0/force"}]},
+    {"id": "move_copy", "patch": [{"op": "move", "from": "/loads/0/force", "path": "/loads/0/moment"},
+                                  {"op": "copy", "from": "/nodes/1/xyz", "path": "/nodes/0/xyz"},
+                                  {"op": "copy", "from": "/nodes/0", "path": "/nodes/-"}]},
+    {"id": "test_replace", "set": {"/loads/0/force/0": 7.0},
+     "patch": [{"op": "test", "path": "/loads/0/force/0", "value": 7.0},
+               {"op": "replace", "path": "/loads/0/force/1", "value": -3.0},
+               {"op": "add", "path": "/supports/0/fix", "value": ["ux", "uy", "uz", "rx", "ry"]},
+               {"op": "remove", "path": "/supports/0/fix"},
+               {"op": "add", "path": "/supports/0/fix", "value": "all"}]},
+    {"id": "whole", "patch": [{"op": "replace", "path": "", "value": {"nodes": []}}]},
+    {"id": "plain", "set": {"/nodes/1/xyz/0": 4.0}}],
+    "outputs": ["analyses.K.matrix"]})");
+  json list_file = list;
+  list_file["model"] = cantilever();
+  const json grid = json::parse(R"({"grid": [
+    {"name": "first", "patches": [[{"op": "remove", "path": "/loads/0"}],
+                                  [{"op": "test", "path": "/loads/0/node", "value": "B"}]]},
+    {"name": "second", "patches": [[{"op": "replace", "path": "/loads/0/force/1", "value": -5.0}],
+                                   [{"op": "add", "path": "/loads/0/moment", "value": [0, 0, 2.0]}]]}],
+    "outputs": ["analyses.K.matrix"]})");
+  json grid_file = grid;
+  grid_file["model"] = cantilever();
+  for (const json& file : {list_file, grid_file}) {
+    const Sweep s = beamfea::read_sweep(file, fs::temp_directory_path());
+    beamfea::SweepCaseDocument documents(s);
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < s.size(); ++i) order.push_back(i);
+    for (std::size_t i = s.size(); i-- > 0;) order.push_back(i);
+    for (std::size_t i = 0; i < s.size(); ++i) order.push_back(i);
+    std::size_t failed = 0;
+    for (const std::size_t i : order) {
+      std::string fresh_error;
+      json fresh;
+      try {
+        fresh = s.document(i);
+      } catch (const InputError& e) {
+        fresh_error = e.what();
+      }
+      if (!fresh_error.empty()) {
+        ++failed;
+        try {
+          documents.apply(i);
+          ADD_FAILURE() << "case " << i << " applied; the fresh copy says " << fresh_error;
+        } catch (const InputError& e) {
+          EXPECT_EQ(std::string(e.what()), fresh_error) << "case " << i;
+        }
+        continue;
+      }
+      EXPECT_EQ(documents.apply(i), fresh) << "case " << i;
+      EXPECT_NE(documents.apply(i), s.base) << "case " << i << " changed nothing";
+      // In place, but for the patch of the whole document.
+      EXPECT_EQ(documents.in_place(), s.case_id(i) != "whole") << "case " << i;
+    }
+    // The grid's two combinations that remove the load and then change it fail, three times each.
+    EXPECT_EQ(failed, file.contains("grid") ? 6u : 0u);
   }
 }
 
