@@ -14,7 +14,7 @@ namespace beamfea::app {
 
 void prefault_in_background(void* data, std::size_t bytes) noexcept {
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-  constexpr std::uintptr_t kPage = 4096, kStep = std::uintptr_t{2} << 20;
+  constexpr std::uintptr_t kPage = 4096, kStep = kHugePageBytes;  // one huge page per step
   const auto begin = reinterpret_cast<std::uintptr_t>(data);
   const std::uintptr_t first = (begin + kPage - 1) & ~(kPage - 1);  // madvise wants page-aligned ranges
   const std::uintptr_t last = (begin + bytes) & ~(kPage - 1);

@@ -11,7 +11,6 @@
 namespace beamfea {
 
 namespace {
-constexpr std::uintptr_t kHugePageBytes = std::uintptr_t{2} << 20;  // x86-64 and arm64 (4 KiB base pages)
 std::atomic<PrefaultHook> g_prefault{nullptr};
 
 // Huge-page advice, then the prefault hook for a very large block.
@@ -28,8 +27,9 @@ void advise_huge_pages(void* data, std::size_t bytes) noexcept {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   if (!data || bytes < kHugePageMinBytes) return;
   const auto begin = reinterpret_cast<std::uintptr_t>(data);
-  const std::uintptr_t first = (begin + kHugePageBytes - 1) & ~(kHugePageBytes - 1);
-  const std::uintptr_t last = (begin + bytes) & ~(kHugePageBytes - 1);
+  constexpr std::uintptr_t kHuge = kHugePageBytes;
+  const std::uintptr_t first = (begin + kHuge - 1) & ~(kHuge - 1);
+  const std::uintptr_t last = (begin + bytes) & ~(kHuge - 1);
   if (last > first) (void)madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
 #else
   (void)data;

@@ -12,6 +12,9 @@
 
 namespace beamfea {
 
+// The huge page size (x86-64 and arm64 with 4 KiB base pages).
+inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
+
 // Buffers below this size are not advised: a huge page is only given for a whole aligned 2 MiB
 // inside the buffer, and a small buffer's pages are mostly reused heap pages already.
 inline constexpr std::size_t kHugePageMinBytes = std::size_t{4} << 20;
