@@ -267,9 +267,10 @@ void DofMap::eliminate(const Model& m) {
   auto dependent_expr = [&](int k) -> Expr* {
     return dependent_slot[k] >= 0 ? &dependent[dependent_slot[k]] : nullptr;
   };
-  redundant_.clear();
-  redundant_names_.clear();
-  redundant_what_.clear();
+  // The redundant rows and their names are written over the last build's (n_names, n_rows of
+  // them), and the vectors cut to size at the end: a rebuild with the same redundancy allocates
+  // nothing for them.
+  std::size_t n_names = 0, n_rows = 0;
   extra_ind_.resize(extra_.size());
   Expr& row = scratch_.row;  // row . ind - rhs . p = 0
   Expr& e = scratch_.e;
@@ -303,14 +304,18 @@ void DofMap::eliminate(const Model& m) {
         pivot = k;
       }
     if (pivot < 0) {
-      redundant_names_.push_back(describe_extra(m, x));
-      Row r;
+      if (n_names == redundant_names_.size()) redundant_names_.emplace_back();
+      std::string& name = redundant_names_[n_names++];
+      describe_extra(m, x, name);
+      if (n_rows == redundant_.size()) {
+        redundant_.emplace_back();
+        redundant_what_.emplace_back();
+      }
+      Row& r = redundant_[n_rows];
+      r.clear();
       for (const auto& [k, v] : e)
         if (k < 0 && std::abs(v) > 1e-10 * scale) r.push_back({-1 - k, v});
-      if (!r.empty()) {
-        redundant_.push_back(r);
-        redundant_what_.push_back(redundant_names_.back());
-      }
+      if (!r.empty()) redundant_what_[n_rows++] = name;
       continue;
     }
     const double cp = e[pivot];
@@ -334,6 +339,10 @@ void DofMap::eliminate(const Model& m) {
     dependent_slot[pivot] = slot;
     dependent_ind.push_back(pivot);
   }
+
+  redundant_names_.resize(n_names);
+  redundant_.resize(n_rows);
+  redundant_what_.resize(n_rows);
 
   raw_to_free_.assign(n_raw_, -1);
   std::vector<int>& ind_to_free = scratch_.ind_to_free;
@@ -384,20 +393,26 @@ void DofMap::eliminate(const Model& m) {
   (void)m;
 }
 
-std::string DofMap::describe_extra(const Model& m, const ExtraRow& x) const {
-  auto edge_name = [&](const ConstraintEdge& e) {
-    return e.kind == ConstraintEdge::Kind::Rigid ? "element '" + m.elements[e.index].id + "'"
-                                                 : "joint '" + m.joints[e.index].id + "'";
+void DofMap::describe_extra(const Model& m, const ExtraRow& x, std::string& out) const {
+  // Appended piece by piece into `out` (no temporary strings).
+  auto append_edge_name = [&](const ConstraintEdge& e) {
+    const bool rigid = e.kind == ConstraintEdge::Kind::Rigid;
+    out.append(rigid ? "element '" : "joint '").append(rigid ? m.elements[e.index].id : m.joints[e.index].id).append("'");
   };
+  out.clear();
   if (x.prescribed >= 0) {
     // A support or prescribed value on a slave node: name the link or joint that carries the node.
     const DofRef& d = prescribed_[x.prescribed].dof;
-    std::string s = m.describe(d);
-    if (d.owner == DofRef::Owner::Node && is_slave(d.index))
-      s += " (carried by " + edge_name(tree_edges_[parent_edge_[d.index]]) + ")";
-    return s;
+    out.append(m.describe(d));
+    if (d.owner == DofRef::Owner::Node && is_slave(d.index)) {
+      out.append(" (carried by ");
+      append_edge_name(tree_edges_[parent_edge_[d.index]]);
+      out.append(")");
+    }
+    return;
   }
-  return edge_name(loop_edges_[x.loop]) + " " + kDofNames[x.joint_row];
+  append_edge_name(loop_edges_[x.loop]);
+  out.append(" ").append(kDofNames[x.joint_row]);
 }
 
 Eigen::VectorXd DofMap::expand(const Eigen::VectorXd& u_free, const Eigen::VectorXd& u_prescribed) const {

@@ -184,7 +184,8 @@ class DofMap {
     int loop = -1;                         // loop edge rows: which loop edge (row = joint_row)
   };
   std::vector<ExtraRow> extra_;  // resized, not cleared, by a rebuild: each row keeps its storage
-  std::string describe_extra(const Model& m, const ExtraRow& x) const;
+  // The link, joint or DOF an extra row came from, written over `out` (its storage kept).
+  void describe_extra(const Model& m, const ExtraRow& x, std::string& out) const;
   std::vector<int> ind_prescribed_;         // per independent DOF: prescribed index or -1
   std::vector<PrescribedValue> prescribed_;
   std::vector<int> raw_prescribed_;         // per raw DOF: prescribed index or -1

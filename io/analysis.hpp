@@ -15,6 +15,7 @@
 #include "core/model.hpp"
 #include "io/deferred_results.hpp"
 #include "io/json_pointer.hpp"
+#include "solvers/condensed_stiffness.hpp"
 #include "solvers/linear_static.hpp"
 #include "solvers/member_loading.hpp"
 #include "solvers/structure_cache.hpp"
@@ -32,7 +33,8 @@ using MessageSink = std::function<void(const std::string&)>;
 
 // What a RunReport reused run after run (a sweep worker's, io/run.hpp) keeps for its analyses: a
 // small model's linear system while its structure stays the same (a load sweep factorises once:
-// solvers/structure_cache.hpp), and the storage of the last linear solution and of its stations.
+// solvers/structure_cache.hpp), and the storage of the last linear solution and of its stations,
+// and of the last node stiffness (its directions and names).
 struct RunWorkspace {
   LinearSystemCache systems;
   LoadSet loads;
@@ -40,6 +42,7 @@ struct RunWorkspace {
   LinearSolveScratch linear_scratch;
   std::vector<Station> stations;
   std::vector<double> station_positions;
+  CondensedStiffness stiffness;
 };
 
 // Shared by the analyses of one run: the model's linear system, factorised once for all the load

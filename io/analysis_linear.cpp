@@ -288,7 +288,11 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
   AnalysisOutcome out;
   // With a load case, the loaded-mode stiffness about its preload (K + K_g).
   const bool loaded = ctx.spec.contains("load_case");
-  CondensedStiffness k;
+  // Written over the last run's when a workspace is kept (a sweep worker's: the vectors of
+  // directions and names keep their storage).
+  RunWorkspace* kept = ctx.cache ? ctx.cache->workspace : nullptr;
+  CondensedStiffness fresh;
+  CondensedStiffness& k = kept ? kept->stiffness : fresh;
   if (loaded) {
     k = loaded_node_stiffness(model_for_load_case(model, ctx.spec), node);
   } else {

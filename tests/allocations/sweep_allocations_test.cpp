@@ -7,14 +7,16 @@
 // pass over the cases (the workspace takes its sizes), a second pass over the same cases must call
 // operator new not once: the three-link chain's stiffness sweep (joint springs change), the
 // portal frame's load sweep of examples/04 (the lateral load changes, the structure does not) and
-// examples/03's workspace map (the geometry changes every case: the structure cache misses), and
-// the chain's sweep again with its springs set by JSON Patches.
+// examples/03's workspace map (the geometry changes every case: the structure cache misses), the
+// chain's sweep again with its springs set by JSON Patches, and a pose sweep of examples/08's
+// five-bar linkage, a closed loop, as beams and as rigid links (redundant constraint rows).
 // The results of the warm pass are also checked against fresh runs of the same cases, bit for bit.
 // Eigen's and CHOLMOD's arrays are malloc'ed, not new'ed: those are not counted here (heaptrack
 // counts them: docs/performance.md).
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <fstream>
 #include <cmath>
 #include <cstdlib>
 #include <new>
@@ -161,6 +163,42 @@ json chain_patch_sweep() {
   return s;
 }
 
+// examples/08's five-bar linkage (a parallel mechanism: two actuated proximal links, two distal
+// links, the loop closed by the revolute joint pE) as beams, its tip stiffness over 3 x 4 poses of
+// the two actuators: each case sets the elbows B1, B2 and the tip E (and their joint partners) to
+// the forward kinematics, so the structure cache misses every case and the loop's DofMap is
+// rebuilt. beam.json has the links as beams; lumped.json as rigid links (the lumped model, whose
+// planar loop is over-constrained in 3-D: redundant rows, named in the results).
+json five_bar_sweep(const char* model) {
+  constexpr double kPi = 3.14159265358979323846;
+  const double a = 0.2, l1 = 0.25, l2 = 0.25;  // base width, proximal and distal lengths
+  json cases = json::array();
+  for (const double t1 : {105.0, 115.0, 125.0}) {
+    for (const double t2 : {55.0, 65.0, 75.0, 85.0}) {
+      const double b1x = l1 * std::cos(t1 * kPi / 180), b1y = l1 * std::sin(t1 * kPi / 180);
+      const double b2x = a + l1 * std::cos(t2 * kPi / 180), b2y = l1 * std::sin(t2 * kPi / 180);
+      // E: the upper intersection of the circles of radius l2 about B1 and B2.
+      const double dx = b2x - b1x, dy = b2y - b1y, d = std::hypot(dx, dy);
+      const double h = std::sqrt(l2 * l2 - d * d / 4);
+      const double ex = b1x + dx / 2 - h * dy / d, ey = b1y + dy / 2 + h * dx / d;
+      const json b1 = {b1x, b1y, 0.0}, b2 = {b2x, b2y, 0.0}, e = {ex, ey, 0.0};
+      cases.push_back({{"id", std::string("t1=").append(std::to_string(static_cast<int>(t1)))
+                                  .append("_t2=").append(std::to_string(static_cast<int>(t2)))},
+                       {"parameters", {{"theta1_deg", t1}, {"theta2_deg", t2}}},
+                       {"set",
+                        {{"/nodes/4/xyz", b1}, {"/nodes/5/xyz", b1}, {"/nodes/6/xyz", b2}, {"/nodes/7/xyz", b2},
+                         {"/nodes/8/xyz", e}, {"/nodes/9/xyz", e}}}});
+    }
+  }
+  json base = json::parse(std::ifstream(std::string(BEAMFEA_SOURCE_DIR "/examples/08_five_bar_lumped_vs_beam/models/") + model));
+  base["analyses"] = {json{{"id", "K"}, {"type", "stiffness"}, {"node", "E"}}};
+  return {{"model", base},
+          {"cases", cases},
+          {"outputs",
+           {json{{"name", "K"}, {"path", "analyses.K.matrix"}}, json{{"name", "rigid"}, {"path", "analyses.K.rigid_directions"}},
+            json{{"name", "redundant"}, {"path", "analyses.K.statically_indeterminate"}}}}};
+}
+
 struct Passes {
   long warm_pass_allocations = 0;
   std::vector<std::string> warm_rows;   // each case's row of the warm pass
@@ -234,6 +272,22 @@ TEST(SweepAllocations, APatchedCaseAllocatesNothingOnceTheWorkspaceIsWarm) {
   const Passes p = run_twice(sweep);
   EXPECT_EQ(p.warm_pass_allocations, 0) << "operator new calls over 3 warm cases";
   EXPECT_EQ(p.warm_rows, p.fresh_rows);
+}
+
+TEST(SweepAllocations, AFiveBarPoseCaseAllocatesNothingOnceTheWorkspaceIsWarm) {
+  // A closed loop: the DofMap's elimination of the loop-closing joint is rebuilt for every pose.
+  for (const char* model : {"beam.json", "lumped.json"}) {
+    const Sweep sweep = beamfea::read_sweep(five_bar_sweep(model), BEAMFEA_SOURCE_DIR);
+    ASSERT_EQ(sweep.size(), 12u);
+    const Passes p = run_twice(sweep);
+    EXPECT_EQ(p.warm_pass_allocations, 0) << model << ": operator new calls over 12 warm cases";
+    EXPECT_EQ(p.warm_rows, p.fresh_rows) << model;
+    // The rigid body model is over-constrained out of its plane: three redundant rows of the loop,
+    // named in each row (the beams' loop has none).
+    const bool lumped = std::string(model) == "lumped.json";
+    for (const std::string& row : p.warm_rows)
+      EXPECT_EQ(row.find("joint 'pE'") != std::string::npos, lumped) << model << ": " << row;
+  }
 }
 
 }  // namespace sweep_allocations_test
