@@ -7,6 +7,7 @@
 
 #include <iostream>
 
+#include "app/huge_pages_policy.hpp"
 #include "app/openblas.hpp"
 #include "app/openmp.hpp"
 #include "app/prefault.hpp"
@@ -55,11 +56,14 @@ int main(int argc, char** argv) {
   const bool openmp_serial = beamfea::app::serialize_library_openmp();
   // A very large factor faulted in on the other core while the factorisation starts (app/prefault.hpp).
   beamfea::app::install_background_prefault();
+  // Huge pages for the large buffers, unless the host takes free ones back (app/huge_pages_policy.hpp).
+  const auto huge_pages = beamfea::app::configure_huge_pages();
   CLI::App app{"beamfea: matrix structural analysis of 3-D frames of Euler-Bernoulli beams"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("beamfea ") + beamfea::kVersion + "\nBLAS: " + describe(blas) +
                                           "\nOpenMP: " + (openmp_serial ? "the libraries' parallel regions on one thread"
-                                                                         : "as the environment says"));
+                                                                         : "as the environment says") +
+                                          "\nHuge pages: " + huge_pages.reason);
 
   std::string model_path, out_dir = "out";
   bool no_vtk = false, quiet = false;

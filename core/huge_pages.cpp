@@ -12,6 +12,7 @@ namespace beamfea {
 
 namespace {
 std::atomic<PrefaultHook> g_prefault{nullptr};
+std::atomic<bool> g_advise{true};
 
 // Huge-page advice, then the prefault hook for a very large block.
 void advise(void* p, std::size_t bytes) noexcept {
@@ -23,9 +24,12 @@ void advise(void* p, std::size_t bytes) noexcept {
 
 void set_prefault_hook(PrefaultHook hook) noexcept { g_prefault.store(hook, std::memory_order_release); }
 
+void set_huge_page_advice(bool on) noexcept { g_advise.store(on, std::memory_order_relaxed); }
+bool huge_page_advice() noexcept { return g_advise.load(std::memory_order_relaxed); }
+
 void advise_huge_pages(void* data, std::size_t bytes) noexcept {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  if (!data || bytes < kHugePageMinBytes) return;
+  if (!data || bytes < kHugePageMinBytes || !huge_page_advice()) return;
   const auto begin = reinterpret_cast<std::uintptr_t>(data);
   constexpr std::uintptr_t kHuge = kHugePageBytes;
   const std::uintptr_t first = (begin + kHuge - 1) & ~(kHuge - 1);

@@ -19,9 +19,18 @@ inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
 // inside the buffer, and a small buffer's pages are mostly reused heap pages already.
 inline constexpr std::size_t kHugePageMinBytes = std::size_t{4} << 20;
 
+// Whether advise_huge_pages advises at all (true by default). A program may turn the advice off
+// once at start, before analyses run: on a virtual machine whose host takes back every free 2 MiB
+// block of the guest (free page reporting), a huge page is almost always one the host must back
+// afresh, and faulting it costs more than the 4 KiB pages the kernel hands out from its warmer
+// small free blocks (app/huge_pages_policy.hpp, docs/performance.md).
+void set_huge_page_advice(bool on) noexcept;
+bool huge_page_advice() noexcept;
+
 // Advises the kernel to back the 2 MiB-aligned part of [data, data + bytes) with huge pages when
-// it is first touched (not const: the memory is not read, and may be uninitialised). Advice only: nothing below kHugePageMinBytes, nothing outside Linux, and a
-// refusal (huge pages off) is ignored. Call it before the buffer is first written.
+// it is first touched (not const: the memory is not read, and may be uninitialised). Advice only:
+// nothing below kHugePageMinBytes, nothing while set_huge_page_advice(false), nothing outside
+// Linux, and a refusal (huge pages off) is ignored. Call it before the buffer is first written.
 void advise_huge_pages(void* data, std::size_t bytes) noexcept;
 
 // Faulting a very large block in ahead of its use. The kernel zeroes each page at its first

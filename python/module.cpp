@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "app/huge_pages_policy.hpp"
 #include "app/openblas.hpp"
 #include "app/parallel_tasks.hpp"
 #include "io/model_reader.hpp"
@@ -161,6 +162,8 @@ PYBIND11_MODULE(_beamfea, m) {
   // As the program does at start (app/openblas.hpp): OpenBLAS's generic kernels replaced on a CPU
   // it did not recognise. At import, before this module's engine calls the BLAS.
   static const app::BlasCores blas = app::choose_openblas_core();
+  // Huge pages for the large buffers unless the host takes free ones back (app/huge_pages_policy.hpp).
+  app::configure_huge_pages();
   m.def("blas", [] {
     py::dict d;
     d["openblas"] = blas.openblas;

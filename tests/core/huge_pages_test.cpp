@@ -78,6 +78,21 @@ TEST(HugePages, AdviceMarksALargeBlockAsTheSystemsModeSays) {
   EXPECT_EQ(*plain_flag, mode == "always" ? 1 : 0) << mode;
 }
 
+TEST(HugePages, NoBlockIsAdvisedWhileTheAdviceIsOff) {
+  // The program turns the advice off on a machine whose host takes free huge pages back
+  // (app/huge_pages_policy.hpp): an advised block is then a plain one, in every mode but "always".
+  const std::string mode = thp_mode();
+  ASSERT_TRUE(huge_page_advice());  // the default
+  set_huge_page_advice(false);
+  void* advised = malloc_advised(kBlock);
+  ASSERT_NE(advised, nullptr);
+  const auto flag = thp_eligible(middle_page(advised));
+  std::free(advised);
+  set_huge_page_advice(true);
+  ASSERT_TRUE(flag) << "no THPeligible line in /proc/self/smaps";
+  EXPECT_EQ(*flag, mode == "always" ? 1 : 0) << mode;
+}
+
 TEST(HugePages, TheAllocationFunctionsBehaveAsTheCLibrarys) {
   auto* z = static_cast<unsigned char*>(calloc_advised(kBlock, 1));
   ASSERT_NE(z, nullptr);
