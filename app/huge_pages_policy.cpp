@@ -5,7 +5,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <strings.h>
-#include <stdexcept>
+#include <exception>
 #include <system_error>
 
 #include "core/huge_pages.hpp"

@@ -7,11 +7,8 @@
 
 #include <iostream>
 
-#include "app/huge_pages_policy.hpp"
-#include "app/openblas.hpp"
-#include "app/openmp.hpp"
-#include "app/prefault.hpp"
 #include "app/parallel_tasks.hpp"
+#include "app/program_settings.hpp"
 #include "cli/sweep_command.hpp"
 #include "core/errors.hpp"
 #include "core/version.hpp"
@@ -38,32 +35,18 @@ struct RunState {
 };
 RunState* volatile g_run_state = nullptr;
 
-// "OpenBLAS, SkylakeX kernels (OpenBLAS chose Prescott)": for --version and the progress lines.
-std::string describe(const beamfea::app::BlasCores& blas) {
-  if (!blas.openblas) return "not OpenBLAS with runtime kernel selection";
-  std::string s = "OpenBLAS, " + blas.core + " kernels";
-  if (!blas.replaced.empty())
-    s += " (OpenBLAS chose " + blas.replaced + " on this CPU; OPENBLAS_CORETYPE chooses otherwise)";
-  return s;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Before anything calls the BLAS (app/openblas.hpp).
-  const auto blas = beamfea::app::choose_openblas_core();
-  // Before a library opens a parallel region (app/openmp.hpp).
-  const bool openmp_serial = beamfea::app::serialize_library_openmp();
-  // A very large factor faulted in on the other core while the factorisation starts (app/prefault.hpp).
-  beamfea::app::install_background_prefault();
-  // Huge pages for the large buffers, unless the host takes free ones back (app/huge_pages_policy.hpp).
-  const auto huge_pages = beamfea::app::configure_huge_pages();
+  // The BLAS kernels, the libraries' OpenMP, the prefault thread and the huge-page advice, before
+  // any analysis (app/program_settings.hpp).
+  const auto settings = beamfea::app::configure_program();
   CLI::App app{"beamfea: matrix structural analysis of 3-D frames of Euler-Bernoulli beams"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("beamfea ") + beamfea::kVersion + "\nBLAS: " + describe(blas) +
-                                          "\nOpenMP: " + (openmp_serial ? "the libraries' parallel regions on one thread"
+  app.set_version_flag("--version", std::string("beamfea ") + beamfea::kVersion + "\nBLAS: " + beamfea::app::describe(settings.blas) +
+                                          "\nOpenMP: " + (settings.openmp_serial ? "the libraries' parallel regions on one thread"
                                                                          : "as the environment says") +
-                                          "\nHuge pages: " + huge_pages.reason);
+                                          "\nHuge pages: " + settings.huge_pages.reason);
 
   std::string model_path, out_dir = "out";
   bool no_vtk = false, quiet = false;
@@ -109,7 +92,7 @@ int main(int argc, char** argv) {
     opt.write_vtk = !no_vtk;
     opt.only = only;
     if (!quiet) opt.progress = [](const std::string& s) { std::cerr << s << "\n"; };
-    if (!quiet && !blas.replaced.empty()) std::cerr << "beamfea: BLAS: " << describe(blas) << "\n";
+    if (!quiet && !settings.blas.replaced.empty()) std::cerr << "beamfea: BLAS: " << beamfea::app::describe(settings.blas) << "\n";
     opt.warning = [](const std::string& s) { std::cerr << "beamfea: warning: " << s << "\n"; };
     opt.parallel = beamfea::app::thread_tasks();  // a large results.json formatted on all cores
     opt.results_in_memory = false;  // the program only writes the results: the largest objects are made as

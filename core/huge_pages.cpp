@@ -31,9 +31,8 @@ void advise_huge_pages(void* data, std::size_t bytes) noexcept {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   if (!data || bytes < kHugePageMinBytes || !huge_page_advice()) return;
   const auto begin = reinterpret_cast<std::uintptr_t>(data);
-  constexpr std::uintptr_t kHuge = kHugePageBytes;
-  const std::uintptr_t first = (begin + kHuge - 1) & ~(kHuge - 1);
-  const std::uintptr_t last = (begin + bytes) & ~(kHuge - 1);
+  const std::uintptr_t first = (begin + kHugePageBytes - 1) & ~(kHugePageBytes - 1);
+  const std::uintptr_t last = (begin + bytes) & ~(kHugePageBytes - 1);
   if (last > first) (void)madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
 #else
   (void)data;
