@@ -6,7 +6,10 @@
 //   K_ff += T_f,e^T K_e T_f,e      K_fp += T_f,e^T K_e T_p,e
 // The first assembly builds the CSC pattern from triplets; later assemblies with the same
 // sequence of calls write straight into the values (the pattern, and hence the symbolic
-// factorisation, is reused).
+// factorisation, is reused). Or the pattern of K_ff is planned before any element matrix exists,
+// from the raw DOFs each call will name (`plan`): the first assembly then writes into it too, and
+// the pattern can be ordered and analysed while the element matrices are computed
+// (solvers/linear_static.cpp).
 #include <Eigen/SparseCore>
 #include <span>
 #include <vector>
@@ -14,6 +17,27 @@
 #include "core/dof_map.hpp"
 
 namespace beamfea {
+
+// The raw DOFs of each `add` call of an assembly, in the order of the calls: block b is
+// raw[start[b]] .. raw[start[b + 1] - 1].
+struct AssemblyBlocks {
+  std::vector<int> start{0};
+  std::vector<int> raw;
+  void add(std::span<const int> dofs) {
+    raw.insert(raw.end(), dofs.begin(), dofs.end());
+    start.push_back(static_cast<int>(raw.size()));
+  }
+  std::size_t size() const { return start.size() - 1; }
+  std::span<const int> block(std::size_t b) const {
+    return {raw.data() + start[b], static_cast<std::size_t>(start[b + 1] - start[b])};
+  }
+};
+
+// The pattern of K_ff (free x free, both triangles, rows sorted in each column, every value zero)
+// that an assembly of `blocks` through `map` makes: the entries (i, j) with i and j among the free
+// DOFs that the T_f rows of one block's raw DOFs reach, explicit zeros of the element matrices
+// included, as the first pass's triplets make it.
+SparseMatrix planned_pattern(const DofMap& map, const AssemblyBlocks& blocks);
 
 class SystemAssembler {
  public:
@@ -33,10 +57,16 @@ class SystemAssembler {
   void add(std::span<const int> raw, const Eigen::Ref<const Eigen::MatrixXd>& K);
   // Ends the pass: on the first pass, builds the pattern.
   void end();
+  // Before the first pass: K_ff's pattern, as planned_pattern(map, blocks) makes it for the blocks
+  // the pass will add (in any order). The first pass then writes K_ff's values into it instead of
+  // collecting triplets (K_fp, small, still comes from triplets). Adding outside the plan throws.
+  void plan(SparseMatrix pattern);
+  bool planned() const { return planned_; }
 
   const SparseMatrix& K_ff() const { return Kff_; }   // free x free
   const SparseMatrix& K_fp() const { return Kfp_; }   // free x prescribed
-  bool has_pattern() const { return built_; }
+  // True when the next pass collects no triplets for K_ff (a pass has built the pattern, or it was planned).
+  bool has_pattern() const { return built_ || planned_; }
   // Must be called when the DofMap changes structure (a new map object).
   void reset(const DofMap& map);
 
@@ -50,11 +80,14 @@ class SystemAssembler {
     double value() const { return v; }
   };
   void put(std::vector<Triplet>& trip, std::vector<int>& pos, std::size_t& k, SparseMatrix& A, int r, int c, double v);
+  // The first pass into a planned K_ff: column by column, each entry found from the last one's.
+  void add_planned(int n, const Eigen::Ref<const Eigen::MatrixXd>& K);
   static void build(SparseMatrix& A, int rows, int cols, const std::vector<Triplet>& trip, std::vector<int>* pos);
 
   const DofMap* map_;
   bool one_pass_ = false;
   bool built_ = false;
+  bool planned_ = false;
   SparseMatrix Kff_, Kfp_;
   std::vector<Triplet> tff_, tfp_;
   std::vector<int> pos_ff_, pos_fp_;

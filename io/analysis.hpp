@@ -15,6 +15,7 @@
 #include "core/model.hpp"
 #include "io/deferred_results.hpp"
 #include "io/json_pointer.hpp"
+#include "io/parallel_tasks.hpp"
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/linear_static.hpp"
 #include "solvers/member_loading.hpp"
@@ -76,6 +77,9 @@ struct AnalysisContext {
   // deferred object's members are made from must outlive the run (the model does; the analysis's
   // own arrays are held by the part).
   DeferredParts* deferred = nullptr;
+  // The program's threads (RunOptions::parallel: the linear analysis computes its element matrices
+  // beside the ordering of the stiffness's pattern); empty: all on the calling thread.
+  ParallelTasks parallel;
 };
 
 // How an analysis ended. results.json keeps its own "status" strings (a contract); this is the

@@ -176,7 +176,9 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   std::shared_ptr<const LinearSystem> system;
   if (ctx.cache && ctx.cache->linear) system = ctx.cache->linear;
   if (!system) {
-    system = kept ? kept->systems.get(model) : std::make_shared<const LinearSystem>(model);
+    LinearStaticOptions options;
+    options.parallel = ctx.parallel;
+    system = kept ? kept->systems.get(model) : std::make_shared<const LinearSystem>(model, options);
     if (ctx.cache) ctx.cache->linear = system;
   }
   std::string case_id;

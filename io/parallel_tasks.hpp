@@ -1,18 +1,4 @@
 #pragma once
-// The hook through which io runs independent pieces of work at once (formatting a large
-// results.json in slices: io/json_writer.hpp). Threads are a process-wide matter that belongs to
-// the program, not to io: the program (cli/) passes an implementation (app/parallel_tasks.hpp)
-// through RunOptions::parallel; without one (empty: a library user, a sweep's workers, which
-// already run cases on threads) everything runs on the calling thread, in order.
-#include <cstddef>
-#include <functional>
-
-namespace beamfea {
-
-// Runs task(0), ..., task(count - 1), possibly several at once and in any order, and returns when
-// all that were started have finished. An exception thrown by a task is rethrown by the call after
-// the others have finished (tasks not yet started may then be skipped). The tasks of one call must
-// not depend on each other; a task must not call the hook again.
-using ParallelTasks = std::function<void(std::size_t count, const std::function<void(std::size_t)>& task)>;
-
-}  // namespace beamfea
+// io's side of the ParallelTasks hook (core/parallel_tasks.hpp): the program passes its threads
+// through RunOptions::parallel (io/run.hpp).
+#include "core/parallel_tasks.hpp"

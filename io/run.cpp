@@ -131,7 +131,7 @@ void run_into(const Model& model, const nlohmann::json& document, const RunOptio
     ojson& result = analyses.slot(id);  // the last run's result of this id, or null
     std::string* previous_message = outcomes < report.outcomes.size() ? &report.outcomes[outcomes].second.message : nullptr;
     AnalysisContext ctx{model,   document, spec, json_in::child("/analyses", i), id, staging ? staging->path() : std::filesystem::path(),
-                        options.write_vtk, {}, options.warning, &cache, &result, previous_message, defer};
+                        options.write_vtk, {}, options.warning, &cache, &result, previous_message, defer, options.parallel};
     if (options.progress) ctx.progress = [&](const std::string& s) { options.progress("[" + id + "] " + s); };
     const auto t0 = std::chrono::steady_clock::now();
     AnalysisOutcome o = run_one(*type, ctx);

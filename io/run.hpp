@@ -21,8 +21,9 @@ struct RunOptions {
   std::vector<std::string> only;     // run only these analysis ids (empty: all); unknown: InputError
   MessageSink progress;              // progress lines (empty: silent)
   MessageSink warning;               // warnings (empty: dropped)
-  ParallelTasks parallel;            // formats a large results.json on several threads (io/parallel_tasks.hpp;
-                                     // the program's: app/parallel_tasks.hpp); empty: on the calling thread
+  ParallelTasks parallel;            // the program's threads (core/parallel_tasks.hpp; app/parallel_tasks.hpp):
+                                     // a linear analysis's element matrices beside its ordering, a large
+                                     // results.json formatted in slices; empty: all on the calling thread
   // false: the caller reads results.json, not RunReport::results (the program). The analyses may
   // then make their largest objects (a linear analysis's nodes and members) only while results.json
   // is written, member by member, instead of holding them in the results tree

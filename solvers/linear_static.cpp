@@ -26,8 +26,15 @@ void LinearStaticOptions::validate() const {
   if (!(zero_energy_tolerance > 0.0)) throw Error("LinearStaticOptions: zero_energy_tolerance must be positive");
 }
 
+namespace {
+// Free DOFs from which the element matrices and the pattern's analysis run on two threads when the
+// caller gives them (LinearStaticOptions::parallel); below, both together take a few
+// milliseconds, and a second thread would gain little.
+constexpr int kParallelMinDofs = 2000;
+}  // namespace
+
 struct LinearSystem::Impl {
-  explicit Impl(const Model& m) : map(m), structure(m), assembler(map, SystemAssembler::Passes::One) {}
+  explicit Impl(const Model& m) : map(m), assembler(map, SystemAssembler::Passes::One) {}
   DofMap map;
   LinearStructure structure;
   SystemAssembler assembler;
@@ -44,15 +51,29 @@ LinearSystem::LinearSystem(const Model& model, const LinearStaticOptions& option
   Impl& s = *impl_;
   s.up = s.map.prescribed_values();
   if (auto conflict = s.map.check_consistency(s.up); !conflict.empty()) throw ModelError("supports and prescribed values", conflict);
-  s.assembler.begin();
-  s.structure.assemble(s.map, s.assembler);
-  s.assembler.end();
+  FactorOptions fo;
+  fo.singular_rcond = options.singular_rcond;
+  // K_ff's pattern follows from the DOF map and the connectivity alone (core/assembly.hpp,
+  // planned_pattern): it is ordered and analysed (the part of the factorisation that reads no
+  // value) while the element matrices are computed and assembled into it, without triplets to
+  // sort. The two tasks share K_ff: the analysis reads its pattern, the assembly writes its values.
+  // Below kParallelMinDofs they run one after the other: a second thread would gain little.
+  s.assembler.plan(planned_pattern(s.map, LinearStructure::assembly_blocks(model, s.map)));
+  const auto tasks = [&](std::size_t task) {
+    if (task == 0) {
+      s.structure.rebuild(model);
+      s.assembler.begin();
+      s.structure.assemble(s.map, s.assembler);
+      s.assembler.end();
+      return;
+    }
+    s.factor.analyze(s.assembler.K_ff(), fo);
+  };
+  run_tasks(s.map.free_size() >= kParallelMinDofs ? options.parallel : ParallelTasks{}, 2, tasks);
   const SparseMatrix& K = s.assembler.K_ff();
   LinearStaticResult& res = s.failure;
   res.free_dofs = s.map.free_size();
   res.status = SolveStatus::Converged;
-  FactorOptions fo;
-  fo.singular_rcond = options.singular_rcond;
   const FactorStatus fs = s.factor.factorize(K, fo);
   if (fs == FactorStatus::TooLarge) {
     res.status = SolveStatus::Failed;

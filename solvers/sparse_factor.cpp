@@ -195,23 +195,7 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
   }
   // CHOLMOD reads the lower triangle only (Eigen::Lower): the scaled copy is of that half.
   const SparseMatrix A = scaled_lower(K, s_);
-  if (!impl_->analysed || impl_->rows != n || impl_->nnz != A.nonZeros()) {
-    if (n >= kOrderedMinDofs) {
-      impl_->llt.analyze_two_orderings(A, n <= kNesdisTrialMaxDofs, impl_->ordering);
-    } else {
-      impl_->llt.default_orderings();
-      impl_->llt.analyzePattern(A);
-      impl_->ordering = "CHOLMOD's choice";
-    }
-    if (impl_->llt.info() != Eigen::Success) {
-      impl_->analysed = false;
-      return FactorStatus::TooLarge;
-    }
-    impl_->analysed = true;
-    impl_->lu_analysed = false;
-    impl_->rows = n;
-    impl_->nnz = A.nonZeros();
-  }
+  if (!analyse(A)) return FactorStatus::TooLarge;
   if (n == 0) {
     cholesky_ok_ = true;
     rcond_ = 1.0;
@@ -233,6 +217,56 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
   impl_->lu.factorize(full);
   lu_ok_ = impl_->lu.info() == Eigen::Success;
   return lu_ok_ ? FactorStatus::NotPositiveDefinite : FactorStatus::Singular;
+}
+
+bool SparseFactor::analyse(const SparseMatrix& A) {
+  const Eigen::Index n = A.rows();
+  if (impl_->analysed && impl_->rows == n && impl_->nnz == A.nonZeros()) return true;
+  if (n >= kOrderedMinDofs) {
+    impl_->llt.analyze_two_orderings(A, n <= kNesdisTrialMaxDofs, impl_->ordering);
+  } else {
+    impl_->llt.default_orderings();
+    impl_->llt.analyzePattern(A);
+    impl_->ordering = "CHOLMOD's choice";
+  }
+  if (impl_->llt.info() != Eigen::Success) {
+    impl_->analysed = false;
+    return false;
+  }
+  impl_->analysed = true;
+  impl_->lu_analysed = false;
+  impl_->rows = n;
+  impl_->nnz = A.nonZeros();
+  return true;
+}
+
+void SparseFactor::analyze(const SparseMatrix& K, const FactorOptions& options) {
+  options.validate();
+  const Eigen::Index n = K.rows();
+  if (n == 0 || n <= options.dense_max_dofs) return;
+  if (!K.isCompressed()) throw Error("SparseFactor::analyze: the matrix must be compressed");
+  // A DOF without any stiffness (an empty column): factorize stops before its analysis.
+  for (Eigen::Index j = 0; j < n; ++j)
+    if (K.outerIndexPtr()[j] == K.outerIndexPtr()[j + 1]) return;
+  // The lower triangle's pattern, K's values unread (an assembly may be writing them meanwhile).
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  std::vector<int> first(static_cast<std::size_t>(n));
+  Eigen::Index total = 0;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    first[j] = static_cast<int>(std::lower_bound(inner + outer[j], inner + outer[j + 1], static_cast<int>(j)) - inner);
+    total += outer[j + 1] - first[j];
+  }
+  SparseMatrix A(n, n);
+  A.resizeNonZeros(total);
+  int* a_outer = A.outerIndexPtr();
+  a_outer[0] = 0;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    a_outer[j + 1] = a_outer[j] + (outer[j + 1] - first[j]);
+    std::copy(inner + first[j], inner + outer[j + 1], A.innerIndexPtr() + a_outer[j]);
+  }
+  std::fill(A.valuePtr(), A.valuePtr() + total, 1.0);  // read by no ordering or analysis
+  analyse(A);
 }
 
 std::string SparseFactor::ordering() const { return impl_->ordering; }

@@ -60,6 +60,13 @@ class SparseFactor {
 
   // Factorises K; the symbolic analysis is reused while the sparsity pattern is unchanged.
   FactorStatus factorize(const SparseMatrix& K, const FactorOptions& options = {});
+  // The symbolic analysis (ordering included) of K's pattern alone, ahead of factorize, which
+  // reuses it for a matrix of that pattern: for a caller that knows the pattern before the values
+  // (solvers/linear_static.cpp orders it while the element matrices are computed and assembled).
+  // K's values are not read, so another thread may write them meanwhile; K must be compressed.
+  // Nothing for a matrix factorize would factorise dense. Not at the same time as another call on
+  // this object.
+  void analyze(const SparseMatrix& K, const FactorOptions& options = {});
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   // The same written over `x` (distinct from b), with `work` as scratch: no allocation on the dense
   // path once both have the size (CHOLMOD's and UMFPACK's solves allocate their own).
@@ -80,6 +87,9 @@ class SparseFactor {
 
  private:
   struct Impl;
+  // The analysis of `lower` (the lower triangle CHOLMOD reads) unless the last one is of its
+  // pattern; false when CHOLMOD could not make one (too large).
+  bool analyse(const SparseMatrix& lower);
   std::unique_ptr<Impl> impl_;
   Eigen::VectorXd s_;
   bool cholesky_ok_ = false;

@@ -55,6 +55,32 @@ std::array<int, 12> LinearStructure::element_dofs(const DofMap& map, int element
   return d;
 }
 
+AssemblyBlocks LinearStructure::assembly_blocks(const Model& model, const DofMap& map) {
+  AssemblyBlocks blocks;
+  blocks.start.reserve(model.elements.size() + model.joints.size() + 1);
+  blocks.raw.reserve(12 * model.elements.size());
+  // As assemble_into: the beams in element order (rebuild makes one for each beam element), then
+  // the joints with stiffness.
+  std::array<int, 12> d{};
+  for (const auto& el : model.elements) {
+    if (el.type != MemberType::Beam) continue;
+    for (int k = 0; k < 6; ++k) {
+      d[k] = map.raw_node(el.nodes[0], k);
+      d[6 + k] = map.raw_node(el.nodes[1], k);
+    }
+    blocks.add(d);
+  }
+  std::vector<int> many;
+  for (std::size_t j = 0; j < model.joints.size(); ++j) {
+    const auto& jt = model.joints[j];
+    if (!jt.has_stiffness()) continue;
+    many.resize(static_cast<std::size_t>(jt.coordinates()));
+    for (int q = 0; q < jt.coordinates(); ++q) many[q] = map.raw_joint(static_cast<int>(j), q);
+    blocks.add(many);
+  }
+  return blocks;
+}
+
 std::size_t LinearStructure::assembly_entries() const {
   std::size_t entries = 0;  // 12 x 12 per beam, nq x nq per joint with stiffness
   for (const auto& b : beams_) entries += b ? 144 : 0;

@@ -17,12 +17,16 @@ BeamSection beam_section(const Model& m, const Element& e);
 
 class LinearStructure {
  public:
+  LinearStructure() = default;  // nothing built: rebuild before use
   explicit LinearStructure(const Model& model) { rebuild(model); }
   // Builds `model`'s elements over this structure's: the same as a new LinearStructure's, in the
   // storage of the last build (a sweep whose geometry changes every case). On a throw the structure
   // is unusable until the next rebuild succeeds.
   void rebuild(const Model& model);
 
+  // The raw DOFs of the `add` calls `assemble` makes for `model` over `map`, in their order, known
+  // before any element matrix is (SystemAssembler::plan, planned_pattern).
+  static AssemblyBlocks assembly_blocks(const Model& model, const DofMap& map);
   // Assembles the elastic stiffness (beams and joint springs) into `assembler`.
   void assemble(const DofMap& map, SystemAssembler& assembler) const;
   // The same into a dense K_ff (small models: the dense path of the stiffness condensation).
