@@ -95,27 +95,18 @@ void SystemAssembler::add(std::span<const int> raw, const Eigen::Ref<const Eigen
       for (SparseRowMatrix::InnerIterator it(Tp, raw[a]); it; ++it) terms_p_.emplace_back(static_cast<int>(it.col()), it.value());
     start_p_[a + 1] = static_cast<int>(terms_p_.size());
   }
-  if (planned_) {
+  if (planned_) {  // K_ff's values straight into the plan; K_fp's triplets below
     add_planned(n, K);
     if (terms_p_.empty()) return;
-    for (int a = 0; a < n; ++a)
-      for (int ia = start_f_[a]; ia < start_f_[a + 1]; ++ia) {
-        const auto [i, ci] = terms_f_[ia];
-        for (int b = 0; b < n; ++b) {
-          const double kab = ci * K(a, b);
-          for (int jb = start_p_[b]; jb < start_p_[b + 1]; ++jb)
-            put(tfp_, pos_fp_, kfp_, Kfp_, i, terms_p_[jb].first, kab * terms_p_[jb].second);
-        }
-      }
-    return;
   }
   for (int a = 0; a < n; ++a)
     for (int ia = start_f_[a]; ia < start_f_[a + 1]; ++ia) {
       const auto [i, ci] = terms_f_[ia];
       for (int b = 0; b < n; ++b) {
         const double kab = ci * K(a, b);
-        for (int jb = start_f_[b]; jb < start_f_[b + 1]; ++jb)
-          put(tff_, pos_ff_, kff_, Kff_, i, terms_f_[jb].first, kab * terms_f_[jb].second);
+        if (!planned_)
+          for (int jb = start_f_[b]; jb < start_f_[b + 1]; ++jb)
+            put(tff_, pos_ff_, kff_, Kff_, i, terms_f_[jb].first, kab * terms_f_[jb].second);
         for (int jb = start_p_[b]; jb < start_p_[b + 1]; ++jb)
           put(tfp_, pos_fp_, kfp_, Kfp_, i, terms_p_[jb].first, kab * terms_p_[jb].second);
       }
