@@ -61,7 +61,6 @@ class SystemAssembler {
   // the pass will add (in any order). The first pass then writes K_ff's values into it instead of
   // collecting triplets (K_fp, small, still comes from triplets). Adding outside the plan throws.
   void plan(SparseMatrix pattern);
-  bool planned() const { return planned_; }
 
   const SparseMatrix& K_ff() const { return Kff_; }   // free x free
   const SparseMatrix& K_fp() const { return Kfp_; }   // free x prescribed
