@@ -1,5 +1,5 @@
 #pragma once
-// ParallelTasks hooks (io/parallel_tasks.hpp) for tests of what io formats in parallel: the
+// ParallelTasks hooks (core/parallel_tasks.hpp) for tests of what runs in parallel: the
 // contract at its most concurrent, and in an order no implementation uses.
 #include <cstddef>
 #include <exception>
