@@ -114,6 +114,8 @@ Compressed compress(const SparseMatrix& lower, cholmod_common& c) {
   return k;
 }
 
+// The orderings of the compressed graph's vertices (new -> old); empty when CHOLMOD could not make
+// one.
 std::vector<int> nesdis_of(const Compressed& k, cholmod_common& c) {
   const std::size_t groups = k.first.size() - 1;
   // cholmod_nested_dissection reads its parameters from method[current].
@@ -123,7 +125,7 @@ std::vector<int> nesdis_of(const Compressed& k, cholmod_common& c) {
   const bool ok = cholmod_nested_dissection(k.graph, nullptr, 0, group_perm.data(), cparent.data(), cmember.data(), &c) >= 0;
   c.current = saved_current;
   c.status = CHOLMOD_OK;  // a failed ordering is not the caller's error: it orders without it
-  return ok ? expand(group_perm, k.first) : std::vector<int>{};
+  return ok ? group_perm : std::vector<int>{};
 }
 
 std::vector<int> metis_of(const Compressed& k, cholmod_common& c) {
@@ -131,23 +133,83 @@ std::vector<int> metis_of(const Compressed& k, cholmod_common& c) {
   // No postordering here: the analysis postorders whatever ordering it is given.
   const bool ok = cholmod_metis(k.graph, nullptr, 0, 0, group_perm.data(), &c) != 0;
   c.status = CHOLMOD_OK;
-  return ok ? expand(group_perm, k.first) : std::vector<int>{};
+  return ok ? group_perm : std::vector<int>{};
 }
 
 }  // namespace
 
+double factor_nonzeros(const cholmod_sparse& graph, const std::vector<int>& first, const std::vector<int>& group_perm) {
+  const int n = static_cast<int>(graph.ncol);
+  const int* gp = static_cast<const int*>(graph.p);
+  const int* gi = static_cast<const int*>(graph.i);
+  std::vector<int> position(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) position[group_perm[k]] = k;
+  // Each vertex's earlier neighbours in the new order (the strictly upper part of its column of
+  // the permuted graph), CSC by counting.
+  std::vector<int> start(static_cast<std::size_t>(n) + 1, 0), earlier(static_cast<std::size_t>(gp[n]));
+  for (int j = 0; j < n; ++j)
+    for (int q = gp[j]; q < gp[j + 1]; ++q) ++start[std::max(position[j], position[gi[q]]) + 1];
+  for (int k = 0; k < n; ++k) start[k + 1] += start[k];
+  std::vector<int> next(start.begin(), start.end() - 1);
+  for (int j = 0; j < n; ++j)
+    for (int q = gp[j]; q < gp[j + 1]; ++q) {
+      const int a = position[j], b = position[gi[q]];
+      earlier[next[std::max(a, b)]++] = std::min(a, b);
+    }
+  auto width = [&](int k) { return static_cast<double>(first[group_perm[k] + 1] - first[group_perm[k]]); };
+  // The elimination tree (Liu's algorithm with path compression through `ancestor`), then each row
+  // subtree walked from the row's earlier neighbours up to the row: every vertex met has the row in
+  // its column of the factor, and gains the row's width (`mark` stops a second visit).
+  std::vector<int> parent(static_cast<std::size_t>(n), -1), ancestor(static_cast<std::size_t>(n), -1);
+  for (int i = 0; i < n; ++i)
+    for (int q = start[i]; q < start[i + 1]; ++q)
+      for (int r = earlier[q]; r != i;) {
+        const int up = ancestor[r];
+        ancestor[r] = i;
+        if (up == -1) {
+          parent[r] = i;
+          break;
+        }
+        r = up;
+      }
+  std::vector<double> below(static_cast<std::size_t>(n), 0.0);  // the width of a vertex's column of the factor
+  std::vector<int> mark(static_cast<std::size_t>(n), -1);
+  for (int i = 0; i < n; ++i) {
+    mark[i] = i;
+    for (int q = start[i]; q < start[i + 1]; ++q)
+      for (int v = earlier[q]; mark[v] != i; v = parent[v]) {
+        below[v] += width(i);
+        mark[v] = i;
+      }
+  }
+  double lnz = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double w = width(k);
+    lnz += w * (w + 1.0) / 2.0 + w * below[k];
+  }
+  return lnz;
+}
+
 std::vector<int> nested_dissection_by_supervariables(const SparseMatrix& lower, cholmod_common& c) {
   Compressed k = compress(lower, c);
   if (!k.graph) return {};
-  std::vector<int> perm = nesdis_of(k, c);
+  const std::vector<int> group_perm = nesdis_of(k, c);
   cholmod_free_sparse(&k.graph, &c);
-  return perm;
+  return group_perm.empty() ? std::vector<int>{} : expand(group_perm, k.first);
 }
 
 SupervariableOrderings orderings_by_supervariables(const SparseMatrix& lower, cholmod_common& c) {
   Compressed k = compress(lower, c);
   if (!k.graph) return {};
-  SupervariableOrderings o{nesdis_of(k, c), metis_of(k, c)};
+  SupervariableOrderings o;
+  if (const std::vector<int> g = nesdis_of(k, c); !g.empty()) {
+    o.lnz_nesdis = factor_nonzeros(*k.graph, k.first, g);
+    o.nesdis = expand(g, k.first);
+  }
+  if (const std::vector<int> g = metis_of(k, c); !g.empty()) {
+    o.lnz_metis = factor_nonzeros(*k.graph, k.first, g);
+    o.metis = expand(g, k.first);
+  }
   cholmod_free_sparse(&k.graph, &c);
   return o;
 }

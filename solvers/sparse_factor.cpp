@@ -45,39 +45,33 @@ struct SparseFactor::Impl {
       c.postorder = 1;
     }
     // From kOrderedMinDofs to kNesdisTrialMaxDofs: two orderings of the compressed graph, NESDIS
-    // and METIS (solvers/fill_ordering.hpp), each analysed by CHOLMOD as the given permutation
-    // (cholmod_analyze_p), and the analysis whose factor has fewer nonzeros kept (the rule CHOLMOD
-    // applies between its own trials; NESDIS on a tie); CHOLMOD's METIS on the whole graph above
-    // kNesdisTrialMaxDofs or when neither ordering could be made. Eigen's analyzePattern, with the
-    // permutations passed.
+    // and METIS (solvers/fill_ordering.hpp), and the one whose factor has fewer nonzeros (the rule
+    // CHOLMOD applies between its own trials; NESDIS on a tie; counted on the compressed graph,
+    // factor_nonzeros) analysed by CHOLMOD as the given permutation (cholmod_analyze_p); CHOLMOD's
+    // METIS on the whole graph above kNesdisTrialMaxDofs or when neither ordering could be made.
+    // Eigen's analyzePattern, with the permutation passed.
     void analyze_two_orderings(const SparseMatrix& A, bool try_supervariables, std::string& summary) {
       cholmod_common& c = this->cholmod();
       const SupervariableOrderings orders = try_supervariables ? orderings_by_supervariables(A, c) : SupervariableOrderings{};
       if (m_cholmodFactor) cholmod_free_factor(&m_cholmodFactor, &c);
       cholmod_sparse a = Eigen::viewAsCholmod(A.selfadjointView<Eigen::Lower>());
       c.postorder = 1;
-      auto analyse = [&](const std::vector<int>& perm, double& lnz) -> cholmod_factor* {
+      auto analyse = [&](const std::vector<int>& perm) -> cholmod_factor* {
         c.nmethods = 1;
         c.method[0].ordering = perm.empty() ? CHOLMOD_METIS : CHOLMOD_GIVEN;
-        cholmod_factor* L = cholmod_analyze_p(&a, perm.empty() ? nullptr : const_cast<int*>(perm.data()), nullptr, 0, &c);
-        lnz = L ? c.lnz : 0.0;
-        return L;
+        return cholmod_analyze_p(&a, perm.empty() ? nullptr : const_cast<int*>(perm.data()), nullptr, 0, &c);
       };
-      double lnz_nesdis = 0.0, lnz_metis = 0.0;
-      cholmod_factor* by_nesdis = orders.nesdis.empty() ? nullptr : analyse(orders.nesdis, lnz_nesdis);
-      cholmod_factor* by_metis = orders.metis.empty() ? nullptr : analyse(orders.metis, lnz_metis);
-      if (by_nesdis && by_metis) {
-        const bool nesdis = lnz_nesdis <= lnz_metis;
-        cholmod_free_factor(nesdis ? &by_metis : &by_nesdis, &c);
-        m_cholmodFactor = nesdis ? by_nesdis : by_metis;
+      const bool has_nesdis = !orders.nesdis.empty(), has_metis = !orders.metis.empty();
+      if (has_nesdis && has_metis) {
+        const bool nesdis = orders.lnz_nesdis <= orders.lnz_metis;
+        m_cholmodFactor = analyse(nesdis ? orders.nesdis : orders.metis);
         summary = fmt::format("{} (nnz(L): NESDIS of supervariables {:.3g}, METIS of supervariables {:.3g})",
-                              nesdis ? "NESDIS" : "METIS", lnz_nesdis, lnz_metis);
-      } else if (by_nesdis || by_metis) {
-        m_cholmodFactor = by_nesdis ? by_nesdis : by_metis;
-        summary = by_nesdis ? "NESDIS of supervariables" : "METIS of supervariables";
+                              nesdis ? "NESDIS" : "METIS", orders.lnz_nesdis, orders.lnz_metis);
+      } else if (has_nesdis || has_metis) {
+        m_cholmodFactor = analyse(has_nesdis ? orders.nesdis : orders.metis);
+        summary = has_nesdis ? "NESDIS of supervariables" : "METIS of supervariables";
       } else {
-        double lnz = 0.0;
-        m_cholmodFactor = analyse({}, lnz);  // CHOLMOD's METIS on the whole graph
+        m_cholmodFactor = analyse({});  // CHOLMOD's METIS on the whole graph
         summary = "METIS";
       }
       this->m_isInitialized = true;

@@ -2,6 +2,7 @@
 // SparseFactor from kOrderedMinDofs up.
 #include <gtest/gtest.h>
 
+#include <Eigen/CholmodSupport>
 #include <algorithm>
 #include <numeric>
 #include <string>
@@ -99,6 +100,40 @@ TEST(FillOrdering, NestedDissectionIsAPermutationKeepingEachNodesDofsTogetherAnd
   expect_permutation_keeping_runs(both.nesdis, static_cast<std::size_t>(A.cols()), released);
   expect_permutation_keeping_runs(both.metis, static_cast<std::size_t>(A.cols()), released);
   EXPECT_EQ(both.nesdis, perm);  // the same NESDIS from the same compressed graph
+}
+
+// CHOLMOD's count of the factor's nonzeros (Common->lnz) for the analysis of `perm` given.
+double cholmod_lnz(const SparseMatrix& lower_triangle, std::vector<int> perm, cholmod_common& c) {
+  cholmod_sparse a = Eigen::viewAsCholmod(lower_triangle.selfadjointView<Eigen::Lower>());
+  c.nmethods = 1;
+  c.method[0].ordering = CHOLMOD_GIVEN;
+  cholmod_factor* L = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &c);
+  EXPECT_NE(L, nullptr);
+  const double lnz = c.lnz;
+  cholmod_free_factor(&L, &c);
+  return lnz;
+}
+
+TEST(FillOrdering, TheFactorsNonzerosCountedOnTheCompressedGraphAreCholmodsCount) {
+  // The count decides between the candidates without CHOLMOD's analysis of each: it must be
+  // CHOLMOD's own (Common->lnz), exactly, for either ordering, with runs of six columns, a run of
+  // five beside a lone released DOF, and on a matrix whose runs are all single columns (the grid
+  // Laplacian itself, where the count is that of the ordinary symbolic factorisation).
+  cholmod_common c;
+  cholmod_start(&c);
+  for (const SparseMatrix& K : {node_grid(7), node_grid(9, 200), test::grid_laplacian(12)}) {
+    const SparseMatrix A = lower(K);
+    const SupervariableOrderings both = orderings_by_supervariables(A, c);
+    ASSERT_FALSE(both.nesdis.empty());
+    ASSERT_FALSE(both.metis.empty());
+    EXPECT_EQ(both.lnz_nesdis, cholmod_lnz(A, both.nesdis, c)) << K.rows() << " DOFs";
+    EXPECT_EQ(both.lnz_metis, cholmod_lnz(A, both.metis, c)) << K.rows() << " DOFs";
+    // And not a count that any ordering would give: the natural order fills far more.
+    std::vector<int> natural(static_cast<std::size_t>(A.cols()));
+    std::iota(natural.begin(), natural.end(), 0);
+    EXPECT_GT(cholmod_lnz(A, natural, c), 1.2 * std::max(both.lnz_nesdis, both.lnz_metis)) << K.rows() << " DOFs";
+  }
+  cholmod_finish(&c);
 }
 
 TEST(FillOrdering, SparseFactorFromTheThresholdSolvesAndNamesTheOrderingItKept) {
