@@ -89,6 +89,21 @@ void set_member(ojson& v, const Model& model, const LinearStaticResult& r, std::
   o.finish();
 }
 
+// Whether every number set_member writes for member `mi` is finite, answered from what they are
+// made of without writing them: its elements' end forces (its end and section forces are those
+// with signs changed, its segments' are those) and its stations.
+bool member_finite(const Model& model, const LinearStaticResult& r, std::size_t mi, int interior_stations,
+                   std::vector<Station>& stations, std::vector<double>& positions) {
+  const auto& mem = model.members[mi];
+  for (const int e : mem.elements)
+    if (!r.end_forces[e].allFinite()) return false;
+  if (mem.type != MemberType::Beam) return true;
+  member_stations(model, static_cast<int>(mi), r.end_forces, r.element_loads, interior_stations, stations, positions);
+  for (const auto& st : stations)
+    if (!std::isfinite(st.x) || !st.forces.allFinite()) return false;
+  return true;
+}
+
 // One node's output, written over `v`: its displacement, and its reaction where it is supported.
 void set_node(ojson& v, const LinearStaticResult& r, std::size_t n) {
   ObjectFiller o(v, 2);
@@ -97,56 +112,58 @@ void set_node(ojson& v, const LinearStaticResult& r, std::size_t n) {
   o.finish();
 }
 
-// The nodes' and the members' objects, made member by member while results.json is written
-// (io/deferred_results.hpp) from `r`, which the parts share. Whether their numbers are all finite
-// is answered from what they are made of: a node's displacement and reaction; a member's elements'
-// end forces (its end and section forces are those with signs changed, its segments' are those)
-// and its stations.
-void defer_nodes(DeferredParts& deferred, ojson& slot, const Model& model, std::shared_ptr<const LinearStaticResult> r) {
-  DeferredMembers part;
-  part.size = model.nodes.size();
-  part.make = [&model, r](std::size_t first, std::size_t end, const MemberSink& emit) {
-    ojson v;
-    for (std::size_t n = first; n < end; ++n) {
-      set_node(v, *r, n);
-      emit(model.nodes[n].id, v);
-    }
-  };
-  part.all_finite = [r] {
-    for (std::size_t n = 0; n < r->supported.size(); ++n)
-      if (r->supported[n] && !r->reactions[n].allFinite()) return false;
-    return r->u.head(static_cast<Eigen::Index>(6 * r->supported.size())).allFinite();
-  };
-  deferred.defer(slot, std::move(part));
+// Whether every number set_node writes for node `n` is finite.
+bool node_finite(const LinearStaticResult& r, std::size_t n) {
+  return r.u.segment(static_cast<Eigen::Index>(6 * n), 6).allFinite() && (!r.supported[n] || r.reactions[n].allFinite());
 }
-void defer_members(DeferredParts& deferred, ojson& slot, const Model& model, std::shared_ptr<const LinearStaticResult> r,
-                   int interior_stations) {
+
+// A deferred object (io/deferred_results.hpp) of `count` members, made one by one while
+// results.json is written: member i is keyed `key(i)`, written over a reused value by
+// `set(v, i, scratch)`, and its numbers are all finite when `finite(i, scratch)`. Each range (and
+// the check) has its own `Scratch`, on its stack: ranges may be made at once on several threads.
+template <class Scratch, class Key, class Set, class Finite>
+void defer_each(DeferredParts& deferred, ojson& slot, std::size_t count, Key key, Set set, Finite finite) {
   DeferredMembers part;
-  part.size = model.members.size();
-  part.make = [&model, r, interior_stations](std::size_t first, std::size_t end, const MemberSink& emit) {
+  part.size = count;
+  part.make = [key, set](std::size_t first, std::size_t end, const MemberSink& emit) {
     ojson v;
-    std::vector<Station> stations;
-    std::vector<double> positions;
-    for (std::size_t m = first; m < end; ++m) {
-      set_member(v, model, *r, m, interior_stations, stations, positions);
-      emit(model.members[m].id, v);
+    Scratch scratch;
+    for (std::size_t i = first; i < end; ++i) {
+      set(v, i, scratch);
+      emit(key(i), v);
     }
   };
-  part.all_finite = [&model, r, interior_stations] {
-    std::vector<Station> stations;
-    std::vector<double> positions;
-    for (std::size_t m = 0; m < model.members.size(); ++m) {
-      const auto& mem = model.members[m];
-      for (const int e : mem.elements)
-        if (!r->end_forces[e].allFinite()) return false;
-      if (mem.type != MemberType::Beam) continue;
-      member_stations(model, static_cast<int>(m), r->end_forces, r->element_loads, interior_stations, stations, positions);
-      for (const auto& s : stations)
-        if (!std::isfinite(s.x) || !s.forces.allFinite()) return false;
-    }
+  part.all_finite = [count, finite] {
+    Scratch scratch;
+    for (std::size_t i = 0; i < count; ++i)
+      if (!finite(i, scratch)) return false;
     return true;
   };
   deferred.defer(slot, std::move(part));
+}
+
+// The nodes' and the members' objects, deferred: made from `r`, which the parts share.
+struct NoScratch {};
+struct StationScratch {
+  std::vector<Station> stations;
+  std::vector<double> positions;
+};
+void defer_nodes(DeferredParts& deferred, ojson& slot, const Model& model, std::shared_ptr<const LinearStaticResult> r) {
+  defer_each<NoScratch>(
+      deferred, slot, model.nodes.size(), [&model](std::size_t n) -> const std::string& { return model.nodes[n].id; },
+      [r](ojson& v, std::size_t n, NoScratch&) { set_node(v, *r, n); },
+      [r](std::size_t n, NoScratch&) { return node_finite(*r, n); });
+}
+void defer_members(DeferredParts& deferred, ojson& slot, const Model& model, std::shared_ptr<const LinearStaticResult> r,
+                   int interior_stations) {
+  defer_each<StationScratch>(
+      deferred, slot, model.members.size(), [&model](std::size_t m) -> const std::string& { return model.members[m].id; },
+      [&model, r, interior_stations](ojson& v, std::size_t m, StationScratch& s) {
+        set_member(v, model, *r, m, interior_stations, s.stations, s.positions);
+      },
+      [&model, r, interior_stations](std::size_t m, StationScratch& s) {
+        return member_finite(model, *r, m, interior_stations, s.stations, s.positions);
+      });
 }
 
 // Interior stations per member (the spec's "stations"), default 10.
