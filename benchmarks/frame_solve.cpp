@@ -36,6 +36,7 @@
 // Usage: bench_frame_solve [--sizes 1000,10000,100000,1000000] [--stories S] [--repeat R]
 //                          [--max-gflop G] [--max-simplicial-gflop G] [--mem-margin-gb M]
 //                          [--library-path-max-s T] [--ordering default|amd|metis|nesdis|metis+nesdis]
+//                          [--settle-s S]  (pause before each of the two compared timings, default 3)
 // Output: Markdown tables on stdout, progress on stderr.
 #include <fmt/format.h>
 #include <sys/resource.h>
@@ -52,6 +53,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -160,7 +162,20 @@ struct Options {
   double library_path_max_s = 90.0;     // run SparseFactor too when the numeric stage took less
   std::string ordering = "default";     // staged CHOLMOD's ordering: default (its trials), amd, metis, nesdis
   std::string nrelax, zrelax;           // CHOLMOD's supernodal amalgamation (three values each; empty: its defaults)
+  double settle_s = 3.0;                // pause before the staged numeric factorisation and before the pipeline
 };
+
+// The pause before each of the two timings compared in "The whole linear static analysis against
+// the numeric factorisation" (the staged numeric factorisation, then solve_linear_static), so that
+// both start from the same state of the machine, the state a fresh `beamfea run` meets:
+// - OpenBLAS's workers asleep: after a threaded factorisation they spin (sched_yield) for a while
+//   before they sleep, and on two cores they took the core of the pipeline's second task;
+// - the memory freed before it handed back to the host where the kernel reports free pages
+//   (page_reporting, about 2 s after it is freed): each timing then faults its factor in from
+//   memory as cold as a new process gets. Before (session 13) only the pipeline waited, a second.
+void settle(const Options& o) {
+  if (o.settle_s > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(o.settle_s));
+}
 
 // CHOLMOD's relaxed supernodal amalgamation (cholmod_common nrelax[3], zrelax[3]): columns are
 // merged into a supernode while the supernode has fewer than nrelax[k] columns or the fraction of
@@ -301,6 +316,7 @@ int run_single(long target, const Options& o) {
     } else if (fl / 1e9 > o.max_gflop) {
       put("skip", fmt::format("{:.0f}-GFlop-over-limit-{:.0f}", fl / 1e9, o.max_gflop));
     } else {
+      settle(o);
       t0 = Stopwatch();
       llt.factorize(A);
       stage("numeric", t0);
@@ -328,7 +344,10 @@ int run_single(long target, const Options& o) {
   // The library path: SparseFactor (analysis + scaling + factorisation + rcond), whose
   // solution replaces the staged one; skipped where the numeric factorisation is long.
   if (num_or(out, "t_numeric") <= o.library_path_max_s) {
-    SparseFactor factor;
+    // Freed before the pipeline runs: held on (0.73 GB at 97,344 DOFs), it made the pipeline 6.0-7.4
+    // s against 4.8-5.0 s freed, in a process fuller than `beamfea run` ever is (session 14).
+    auto factor_owner = std::make_unique<SparseFactor>();
+    SparseFactor& factor = *factor_owner;
     t0 = Stopwatch();
     const FactorStatus fs = factor.factorize(K);
     stage("lib_factor", t0);
@@ -340,15 +359,14 @@ int run_single(long target, const Options& o) {
     const Eigen::VectorXd ul = factor.solve(f);
     put("lib_vs_staged", (ul - uf).norm() / uf.norm());
     uf = ul;
+    factor_owner.reset();
     // The whole library analysis as `beamfea run` calls it (DofMap, elements, assembly, scaling,
-    // analysis, factorisation, solve, reactions, end forces), against the numeric stage above.
-    // With the program's threads: the element matrices beside the ordering of the pattern. After
-    // a threaded factorisation OpenBLAS's workers spin (sched_yield) for a while before they sleep,
-    // and on two cores they would take the core of the pipeline's second task; at the start of
-    // `beamfea run` they are asleep. So the pipeline starts once they are asleep again.
+    // analysis, factorisation, solve, reactions, end forces), against the numeric stage above,
+    // both after the same pause (settle). With the program's threads: the element matrices beside
+    // the ordering of the pattern.
     LinearStaticOptions lso;
     lso.parallel = app::thread_tasks();
-    std::this_thread::sleep_for(std::chrono::seconds(1));
+    settle(o);
     t0 = Stopwatch();
     const LinearStaticResult lin = solve_linear_static(model, lso);
     stage("linear_static", t0);
@@ -424,7 +442,8 @@ Record run_child(const char* self, long size, const Options& o, long& maxrss_kb,
                                 "--max-gflop", fmt::format("{}", o.max_gflop), "--max-simplicial-gflop",
                                 fmt::format("{}", o.max_simplicial_gflop), "--mem-margin-gb",
                                 fmt::format("{}", o.mem_margin_gb), "--library-path-max-s",
-                                fmt::format("{}", o.library_path_max_s), "--ordering", o.ordering};
+                                fmt::format("{}", o.library_path_max_s), "--ordering", o.ordering,
+                                "--settle-s", fmt::format("{}", o.settle_s)};
   if (!o.nrelax.empty()) args.insert(args.end(), {"--nrelax", o.nrelax});
   if (!o.zrelax.empty()) args.insert(args.end(), {"--zrelax", o.zrelax});
   int fd[2];
@@ -611,6 +630,7 @@ int main(int argc, char** argv) {
     else if (a == "--max-simplicial-gflop") o.max_simplicial_gflop = std::atof(next().c_str());
     else if (a == "--mem-margin-gb") o.mem_margin_gb = std::atof(next().c_str());
     else if (a == "--library-path-max-s") o.library_path_max_s = std::atof(next().c_str());
+    else if (a == "--settle-s") o.settle_s = std::atof(next().c_str());
     else if (a == "--ordering") {
       o.ordering = next();
       if (o.ordering != "default" && o.ordering != "amd" && o.ordering != "metis" && o.ordering != "nesdis" &&
@@ -624,7 +644,7 @@ int main(int argc, char** argv) {
     else {
       fmt::print(stderr,
                  "usage: {} [--nrelax a,b,c] [--zrelax x,y,z] [--sizes N1,N2,...] [--stories S] [--repeat R] [--max-gflop G] "
-                 "[--max-simplicial-gflop G] [--mem-margin-gb M] [--library-path-max-s T] [--ordering O] [--single N]\n",
+                 "[--max-simplicial-gflop G] [--mem-margin-gb M] [--library-path-max-s T] [--ordering O] [--settle-s S] [--single N]\n",
                  argv[0]);
       return a == "--help" || a == "-h" ? 0 : 2;
     }
