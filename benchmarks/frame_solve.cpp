@@ -53,7 +53,6 @@
 #include <cstring>
 #include <fstream>
 #include <map>
-#include <memory>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -344,22 +343,23 @@ int run_single(long target, const Options& o) {
   // The library path: SparseFactor (analysis + scaling + factorisation + rcond), whose
   // solution replaces the staged one; skipped where the numeric factorisation is long.
   if (num_or(out, "t_numeric") <= o.library_path_max_s) {
-    // Freed before the pipeline runs: held on (0.73 GB at 97,344 DOFs), it made the pipeline 6.0-7.4
-    // s against 4.8-5.0 s freed, in a process fuller than `beamfea run` ever is (session 14).
-    auto factor_owner = std::make_unique<SparseFactor>();
-    SparseFactor& factor = *factor_owner;
-    t0 = Stopwatch();
-    const FactorStatus fs = factor.factorize(K);
-    stage("lib_factor", t0);
-    put("lib_status", to_string(fs));
-    std::string ordering = factor.ordering();  // the record is words: spaces travel as '_'
-    std::replace(ordering.begin(), ordering.end(), ' ', '_');
-    put("lib_ordering", ordering);
-    put("rcond", factor.rcond());
-    const Eigen::VectorXd ul = factor.solve(f);
-    put("lib_vs_staged", (ul - uf).norm() / uf.norm());
-    uf = ul;
-    factor_owner.reset();
+    {
+      // Its own scope, so that its factor is freed before the pipeline runs: held on (0.73 GB at
+      // 97,344 DOFs), it made the pipeline 6.0-7.4 s against 4.8-5.0 s freed, in a process fuller
+      // than `beamfea run` ever is (session 14).
+      SparseFactor factor;
+      t0 = Stopwatch();
+      const FactorStatus fs = factor.factorize(K);
+      stage("lib_factor", t0);
+      put("lib_status", to_string(fs));
+      std::string ordering = factor.ordering();  // the record is words: spaces travel as '_'
+      std::replace(ordering.begin(), ordering.end(), ' ', '_');
+      put("lib_ordering", ordering);
+      put("rcond", factor.rcond());
+      const Eigen::VectorXd ul = factor.solve(f);
+      put("lib_vs_staged", (ul - uf).norm() / uf.norm());
+      uf = ul;
+    }
     // The whole library analysis as `beamfea run` calls it (DofMap, elements, assembly, scaling,
     // analysis, factorisation, solve, reactions, end forces), against the numeric stage above,
     // both after the same pause (settle). With the program's threads: the element matrices beside
