@@ -5,6 +5,8 @@
 #include <Eigen/UmfPackSupport>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <iterator>
 #include <optional>
 #include <type_traits>
@@ -160,6 +162,17 @@ bool condense_rows(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::Ma
   return condense_dense(K, A, Kz, {}, &w) || saddle_point_lu(SparseMatrix(K.sparseView()), A, Kz);
 }
 
+// K_z by static condensation onto picked columns (solvers/dense_condensation.hpp), a small sparse
+// K through its dense copy; false where it declines.
+bool condense_onto(const SparseMatrix& K, std::span<const int> cols, std::span<const double> a, Eigen::MatrixXd& Kz,
+                   DenseCondensationWorkspace&) {
+  return condense_onto_columns(K, cols, a, Kz);
+}
+bool condense_onto(const Eigen::MatrixXd& K, std::span<const int> cols, std::span<const double> a, Eigen::MatrixXd& Kz,
+                   DenseCondensationWorkspace& w) {
+  return condense_onto_columns(K, cols, a, Kz, {}, &w);
+}
+
 // The arrays of one node condensation. A thread keeps one set for models of up to kDenseMaxDofs
 // free DOFs (a sweep's cases then allocate none of them: the SVD keeps its storage while the sizes
 // stay); larger models use a set of their own, freed on return.
@@ -169,7 +182,25 @@ struct NodeCondensationScratch {
   Eigen::JacobiSVD<Eigen::MatrixXd> svd;
   DenseCondensationWorkspace dense;
   std::vector<Vec6> free_dirs;
+  std::array<int, 6> columns;         // picked_columns'
+  std::array<double, 6> coefficients;
 };
+
+// Whether each of the node's rows T_n has one term (its DOF is a free DOF of its own, times a
+// coefficient): then `columns` names those free DOFs and `coefficients` their S_k T_n(k, c_k).
+bool picked_columns(const Eigen::MatrixXd& Tn, const Vec6& S, std::array<int, 6>& columns,
+                    std::array<double, 6>& coefficients) {
+  if (Tn.rows() != 6) return false;
+  columns.fill(-1);
+  for (Eigen::Index j = 0; j < Tn.cols(); ++j)
+    for (int k = 0; k < 6; ++k) {
+      if (Tn(k, j) == 0.0) continue;
+      if (columns[k] >= 0) return false;
+      columns[k] = static_cast<int>(j);
+      coefficients[k] = S[k] * Tn(k, j);
+    }
+  return std::all_of(columns.begin(), columns.end(), [](int c) { return c >= 0; });
+}
 // The thread's set for n free DOFs up to kDenseMaxDofs, else `local`.
 NodeCondensationScratch& scratch_for(Eigen::Index n, NodeCondensationScratch& local) {
   thread_local NodeCondensationScratch s;
@@ -187,6 +218,27 @@ CondensedStiffness node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn
   CondensedStiffness out;
   node_compliance_of(K, Tn, col_scale, L, options, scratch_for(Tn.cols(), local), out);
   return out;
+}
+
+// Whether the scaled rows Ts (6 x n) of a node reach every direction, decided without an SVD
+// where the rows are orthogonal because no two share a column (a node whose six DOFs are free DOFs
+// of their own, or scaled ones: no constraint mixes them): the singular values are then the rows'
+// norms, and the node moves in every direction when the least of them passes the motion test of
+// node_compliance_of. False (the SVD decides) when two rows share a column or a row is too short.
+bool moves_in_every_direction(const Eigen::MatrixXd& Ts, double motion_tolerance) {
+  if (Ts.rows() != 6) return false;
+  Vec6 norm2 = Vec6::Zero();
+  for (Eigen::Index j = 0; j < Ts.cols(); ++j) {
+    int rows = 0;
+    for (int k = 0; k < 6; ++k) {
+      const double t = Ts(k, j);
+      if (t == 0.0) continue;
+      if (++rows > 1) return false;
+      norm2[k] += t * t;
+    }
+  }
+  const double smax = std::sqrt(norm2.maxCoeff()), smin = std::sqrt(norm2.minCoeff());
+  return smin > motion_tolerance * std::max(smax, 1.0);
 }
 
 // `out` as a default CondensedStiffness, its vectors and strings keeping their storage.
@@ -227,31 +279,47 @@ void node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen:
   Eigen::MatrixXd& Ts = w.Ts;
   if (Tn.cols() > 0) Ts = S.asDiagonal() * Tn * col_scale.asDiagonal();
   else Ts.setZero(6, 1);
-  Eigen::JacobiSVD<Eigen::MatrixXd>& svd = w.svd;
-  svd.compute(Ts, Eigen::ComputeFullU);
-  const Eigen::VectorXd& sv = svd.singularValues();
-  const double smax = sv.size() ? sv[0] : 0.0;
-  int r = 0;
-  // Relative to the largest, and to 1: the scaled rows of a node that moves at all are O(1) (a
-  // translation, or a rotation times a lever arm over L), those of a held node rounding noise.
-  while (r < sv.size() && sv[r] > options.motion_tolerance * std::max(smax, 1.0)) ++r;
-  const Eigen::MatrixXd& U = svd.matrixU();  // 6 x 6
-  for (int k = r; k < 6; ++k) out.rigid_directions.push_back(reproducible_direction(S.cwiseInverse().asDiagonal() * U.col(k)));
-  if (r == 0) {  // held in every direction: nothing to condense
-    analyse_rank(out.K, L, options.rank_tolerance, out);
-    out.null_space.clear();
-    out.ok = true;
-    return;
-  }
   // At most six rows: fixed-capacity matrices (no heap, products by coefficients rather than GEMM).
   using Rows6 = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
   using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
-  const Rows6 Ur = U.leftCols(r);
-  Eigen::MatrixXd& A = w.A;
-  A.resize(r, Tn.cols());
-  A.noalias() = (Ur.transpose() * S.asDiagonal()).lazyProduct(Tn);
+  Rows6 Ur;
+  int r = 0;
+  // Relative to the largest, and to 1: the scaled rows of a node that moves at all are O(1) (a
+  // translation, or a rotation times a lever arm over L), those of a held node rounding noise.
+  const bool whole = moves_in_every_direction(Ts, options.motion_tolerance);
+  if (whole) {
+    // Every direction: the range is R^6 and any orthonormal basis of it serves; the identity
+    // leaves K_c = S K_z S and the compliance S^-1 K_z^-1 S^-1 without rotations.
+    r = 6;
+  } else {
+    Eigen::JacobiSVD<Eigen::MatrixXd>& svd = w.svd;
+    svd.compute(Ts, Eigen::ComputeFullU);
+    const Eigen::VectorXd& sv = svd.singularValues();
+    const double smax = sv.size() ? sv[0] : 0.0;
+    while (r < sv.size() && sv[r] > options.motion_tolerance * std::max(smax, 1.0)) ++r;
+    const Eigen::MatrixXd& U = svd.matrixU();  // 6 x 6
+    for (int k = r; k < 6; ++k) out.rigid_directions.push_back(reproducible_direction(S.cwiseInverse().asDiagonal() * U.col(k)));
+    if (r == 0) {  // held in every direction: nothing to condense
+      analyse_rank(out.K, L, options.rank_tolerance, out);
+      out.null_space.clear();
+      out.ok = true;
+      return;
+    }
+    Ur = U.leftCols(r);
+  }
   Eigen::MatrixXd& Kz = w.Kz;
-  if (!condense_rows(K, A, Kz, w.dense)) return;
+  // A node whose six DOFs are free DOFs of their own (rows of one term each): K_z by static
+  // condensation onto them (a small model's dense K). Otherwise, or where that declines, the
+  // rows A = U_r^T S T_n condensed by the Schur complement onto them or the saddle point.
+  const bool condensed = whole && picked_columns(Tn, S, w.columns, w.coefficients) &&
+                         condense_onto(K, w.columns, w.coefficients, Kz, w.dense);
+  if (!condensed) {
+    Eigen::MatrixXd& A = w.A;
+    A.resize(r, Tn.cols());
+    if (whole) A.noalias() = S.asDiagonal() * Tn;
+    else A.noalias() = (Ur.transpose() * S.asDiagonal()).lazyProduct(Tn);
+    if (!condense_rows(K, A, Kz, w.dense)) return;
+  }
   // Free directions of the node: the null space of K_z.
   const Small Kzs = Kz;
   Eigen::SelfAdjointEigenSolver<Small> es(Kzs);
@@ -262,14 +330,18 @@ void node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen:
     if (big > 0.0 && std::abs(ev) > options.rank_tolerance * big) {
       inv[i] = 1.0 / ev;
     } else {
-      out.null_space.push_back(reproducible_direction(S.cwiseInverse().asDiagonal() * Ur * es.eigenvectors().col(i)));
+      const Vec6 v = whole ? Vec6(es.eigenvectors().col(i)) : Vec6(Ur * es.eigenvectors().col(i));
+      out.null_space.push_back(reproducible_direction(S.cwiseInverse().asDiagonal() * v));
     }
   }
   const Small Cz = es.eigenvectors() * inv.asDiagonal() * es.eigenvectors().transpose();
   const Mat6 Sinv = S.cwiseInverse().asDiagonal();
-  out.compliance = Sinv * Ur * Cz * Ur.transpose() * Sinv;
+  if (whole) out.compliance = Sinv * Cz * Sinv;
+  else out.compliance = Sinv * Ur * Cz * Ur.transpose() * Sinv;
   out.compliance = 0.5 * (out.compliance + out.compliance.transpose()).eval();
-  if (r == 6) {
+  if (whole) {
+    out.K = S.asDiagonal() * Kzs * S.asDiagonal();  // K_c itself
+  } else if (r == 6) {
     out.K = S.asDiagonal() * Ur * Kzs * Ur.transpose() * S.asDiagonal();  // K_c itself
   } else {
     // Restricted node: the pseudo-inverse of the compliance in the components [ux .. rz] (as the

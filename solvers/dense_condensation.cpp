@@ -1,16 +1,21 @@
 #include "solvers/dense_condensation.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 
 namespace beamfea {
 
 bool cholesky_in_place(Eigen::MatrixXd& A, std::vector<int>& last) {
+  return cholesky_in_place(A, last, static_cast<int>(A.rows()));
+}
+
+bool cholesky_in_place(Eigen::MatrixXd& A, std::vector<int>& last, int columns) {
   const int n = static_cast<int>(A.rows());
   last.assign(n, 0);
   double* a = A.data();
   const Eigen::Index ld = A.rows();
-  for (int k = 0; k < n; ++k) {
+  for (int k = 0; k < columns; ++k) {
     double* ak = a + ld * k;
     const double d = ak[k];
     if (!(d > 0.0) || !std::isfinite(d)) return false;
@@ -27,8 +32,9 @@ bool cholesky_in_place(Eigen::MatrixXd& A, std::vector<int>& last) {
     for (int j = k + 1; j <= lk; ++j) {
       const double ljk = ak[j];
       if (ljk == 0.0) continue;
-      double* aj = a + ld * j;
-      for (int i = j; i <= lk; ++i) aj[i] -= ljk * ak[i];
+      double* __restrict aj = a + ld * j;
+      const double* __restrict akk = ak;
+      for (int i = j; i <= lk; ++i) aj[i] -= ljk * akk[i];
     }
   }
   return true;
@@ -96,6 +102,80 @@ bool condense_dense(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::M
   // own mirror; no temporary).
   for (Eigen::Index j = 0; j < r; ++j)
     for (Eigen::Index i = j + 1; i < r; ++i) Kz(i, j) = Kz(j, i) = 0.5 * (Kz(i, j) + Kz(j, i));
+  return Kz.allFinite();
+}
+
+bool condense_onto_columns(const Eigen::MatrixXd& K, std::span<const int> cols, std::span<const double> a,
+                           Eigen::MatrixXd& Kz, const FactorOptions& options, DenseCondensationWorkspace* workspace) {
+  const Eigen::Index n = K.rows();
+  const Eigen::Index r = static_cast<Eigen::Index>(cols.size());
+  if (n == 0 || n > options.dense_max_dofs || K.cols() != n || r == 0 || r > n ||
+      static_cast<Eigen::Index>(a.size()) != r)
+    return false;
+  DenseCondensationWorkspace local;
+  DenseCondensationWorkspace& w = workspace ? *workspace : local;
+  const Eigen::Index m = n - r;  // the condensed DOFs, first in the new order
+  // The new order: the other DOFs as they come, then the picked ones (`order` maps new to old).
+  std::vector<int>& order = w.order;
+  order.assign(n, 0);
+  {
+    std::vector<int>& picked = w.last;  // scratch here; cholesky_in_place sets it afresh below
+    picked.assign(n, -1);
+    for (Eigen::Index k = 0; k < r; ++k) {
+      const int c = cols[k];
+      if (c < 0 || c >= n || picked[c] >= 0 || !(a[k] != 0.0) || !std::isfinite(a[k])) return false;
+      picked[c] = static_cast<int>(k);
+    }
+    Eigen::Index next = 0;
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (picked[j] < 0) order[next++] = static_cast<int>(j);
+    for (Eigen::Index k = 0; k < r; ++k) order[m + k] = cols[k];
+  }
+  // Jacobi scaling of the condensed block as in condense_dense (the condition estimate then does
+  // not depend on units); a picked DOF is scaled too where its diagonal is positive (it is not a
+  // pivot: a mechanism may leave it zero).
+  w.s.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double d = K(order[i], order[i]);
+    if (i < m && !(d > 0.0)) return false;
+    w.s[i] = d > 0.0 ? 1.0 / std::sqrt(d) : 1.0;
+  }
+  // The lower triangle of the reordered, scaled matrix (K's lower triangle read).
+  w.L.resize(n, n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const int oj = order[j];
+    for (Eigen::Index i = j; i < n; ++i) {
+      const int oi = order[i];
+      w.L(i, j) = (oi >= oj ? K(oi, oj) : K(oj, oi)) * w.s[i] * w.s[j];
+    }
+  }
+  // The first m columns of the factor; their right-looking updates leave the Schur complement
+  // K_22 - K_21 K_11^-1 K_12 (scaled) in the trailing r x r block.
+  if (!cholesky_in_place(w.L, w.last, static_cast<int>(m))) return false;
+  // K itself positive definite and well-conditioned, as condense_dense asks (the trailing block's
+  // own factor completes K's: the same reciprocal condition estimate over both diagonals); a
+  // mechanism or an ill-posed condensation is left to condense_dense and the saddle point.
+  {
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> T;
+    if (r > 6) return false;
+    T = w.L.bottomRightCorner(r, r).template triangularView<Eigen::Lower>();
+    Eigen::LLT<decltype(T), Eigen::Lower> llt(T);
+    if (llt.info() != Eigen::Success) return false;
+    const auto dt = llt.matrixLLT().diagonal().cwiseAbs();
+    double lo = dt.minCoeff(), hi = dt.maxCoeff();
+    if (m > 0) {
+      const auto d = w.L.diagonal().head(m).cwiseAbs();
+      lo = std::min(lo, d.minCoeff());
+      hi = std::max(hi, d.maxCoeff());
+    }
+    if (!(hi > 0.0) || (lo / hi) * (lo / hi) < options.singular_rcond) return false;
+  }
+  // K_z = D^-1 S_2^-1 (trailing block) S_2^-1 D^-1 with D = diag(a), S_2 the picked DOFs' scales;
+  // symmetric by construction (the lower triangle mirrored).
+  Kz.resize(r, r);
+  for (Eigen::Index l = 0; l < r; ++l)
+    for (Eigen::Index k = l; k < r; ++k)
+      Kz(k, l) = Kz(l, k) = w.L(m + k, m + l) / (w.s[m + k] * a[k]) / (w.s[m + l] * a[l]);
   return Kz.allFinite();
 }
 

@@ -10,6 +10,7 @@
 // "Small models").
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <span>
 #include <vector>
 
 #include "solvers/sparse_factor.hpp"
@@ -21,6 +22,9 @@ namespace beamfea {
 // is not zero. False when a pivot is not positive (or not finite): the matrix is not positive
 // definite, A is left part-way.
 bool cholesky_in_place(Eigen::MatrixXd& A, std::vector<int>& last);
+// The first `columns` columns of that factor only: the trailing block then holds the Schur
+// complement A_22 - A_21 A_11^-1 A_12 of the leading columns' block (lower triangle).
+bool cholesky_in_place(Eigen::MatrixXd& A, std::vector<int>& last, int columns);
 
 // x = (L L^T)^-1 x for the factor of cholesky_in_place (forward and back substitution within each
 // column's extent).
@@ -36,6 +40,7 @@ struct DenseCondensationWorkspace {
   Eigen::VectorXd s;
   std::vector<int> last;
   Eigen::LLT<Eigen::MatrixXd> llt;  // of C
+  std::vector<int> order;           // condense_onto_columns' DOF order
 };
 
 // As condense_dense (solvers/sparse_factor.hpp) for a dense K (n x n, lower triangle read): Kz =
@@ -43,5 +48,17 @@ struct DenseCondensationWorkspace {
 // either factor's reciprocal condition estimate is below options.singular_rcond.
 bool condense_dense(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz,
                     const FactorOptions& options = {}, DenseCondensationWorkspace* workspace = nullptr);
+
+// The same for rows A = diag(a) E that pick columns `cols` of K (distinct; a node whose DOFs are
+// free DOFs of their own), by static condensation: the picked DOFs ordered last, a Cholesky factor
+// of the other DOFs' block K_11 alone, and K_z = D^-1 (K_22 - K_21 K_11^-1 K_12) D^-1, D = diag(a)
+// (Guyan 1965; A K^-1 A^T = D (K^-1)_22 D and (K^-1)_22 is the inverse of that Schur complement).
+// No inverse of the compliance is formed. At most six picked columns. False when K is larger
+// than options.dense_max_dofs, not positive definite, or its factor's reciprocal condition
+// estimate is below options.singular_rcond (a mechanism, an ill-posed condensation: the caller
+// falls back to condense_dense and the saddle point, as before).
+bool condense_onto_columns(const Eigen::MatrixXd& K, std::span<const int> cols, std::span<const double> a,
+                           Eigen::MatrixXd& Kz, const FactorOptions& options = {},
+                           DenseCondensationWorkspace* workspace = nullptr);
 
 }  // namespace beamfea

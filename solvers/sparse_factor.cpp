@@ -306,4 +306,11 @@ bool condense_dense(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::Matr
   return condense_dense(Eigen::MatrixXd(K), A, Kz, options);  // solvers/dense_condensation.cpp
 }
 
+bool condense_onto_columns(const SparseMatrix& K, std::span<const int> cols, std::span<const double> a,
+                           Eigen::MatrixXd& Kz, const FactorOptions& options) {
+  const Eigen::Index n = K.rows();
+  if (n == 0 || n > options.dense_max_dofs || K.cols() != n) return false;
+  return condense_onto_columns(Eigen::MatrixXd(K), cols, a, Kz, options);  // solvers/dense_condensation.cpp
+}
+
 }  // namespace beamfea

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <memory>
+#include <span>
 #include <vector>
 #include <string>
 
@@ -138,5 +139,10 @@ SparseMatrix scaled_lower(const SparseMatrix& K, const Eigen::VectorXd& s);
 // below `singular_rcond` (a mechanism held only by the constraint rows, an ill-posed condensation).
 bool condense_dense(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz,
                     const FactorOptions& options = {});
+// The static condensation onto picked columns of solvers/dense_condensation.hpp for a small
+// sparse K, through its own dense copy (the same arithmetic as the dense K's): false when K is
+// larger than options.dense_max_dofs, or as there.
+bool condense_onto_columns(const SparseMatrix& K, std::span<const int> cols, std::span<const double> a,
+                           Eigen::MatrixXd& Kz, const FactorOptions& options = {});
 
 }  // namespace beamfea
