@@ -161,6 +161,82 @@ TEST(DenseFactor, SchurCondensationAgreesWithTheSaddlePointLu) {
   EXPECT_GE(compared, 12);
 }
 
+// Static condensation onto a node's own free DOFs (condense_onto_columns, the stiffness analysis'
+// path for a node no constraint mixes): K_z = D^-1 (K_22 - K_21 K_11^-1 K_12) D^-1 by the
+// factor of K_11 alone equals the compliance route (A K^-1 A^T)^-1 with A = D E, within the
+// forward error bound of the conditioning (two algorithms: their roundings differ).
+TEST(DenseFactor, StaticCondensationOntoANodesOwnDofsAgreesWithTheSchurComplementOfItsRows) {
+  int compared = 0;
+  for (const auto& f : suite_models()) {
+    const Assembled a = assemble(f);
+    const int n = static_cast<int>(a.K.rows());
+    if (n == 0 || n > kMaxDofs) continue;
+    const int node = static_cast<int>(a.model.nodes.size()) - 1;
+    std::vector<int> cols;
+    std::vector<double> coef;
+    Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(6, n);
+    for (int k = 0; k < 6; ++k) {
+      int terms = 0;
+      for (SparseRowMatrix::InnerIterator it(a.map->T_free(), a.map->raw_node(node, k)); it; ++it) {
+        if (it.value() == 0.0) continue;
+        // A scale per row, as the node condensation's S gives rotations (L): D is not the identity.
+        const double d = k < 3 ? 1.0 : 0.25;
+        rows(k, it.col()) += d * it.value();
+        cols.push_back(static_cast<int>(it.col()));
+        coef.push_back(d * it.value());
+        ++terms;
+      }
+      if (terms != 1) cols.clear();
+      if (terms != 1) break;
+    }
+    if (cols.size() != 6) continue;  // a held or constrained DOF: not this path
+    FactorOptions o;
+    o.dense_max_dofs = n;
+    Eigen::MatrixXd Kz, ref;
+    const bool picked = condense_onto_columns(Eigen::MatrixXd(a.K), cols, coef, Kz, o);
+    if (!condense_dense(a.K, rows, ref, o)) {
+      EXPECT_FALSE(picked) << f << ": a mechanism or an ill-posed condensation stays with the saddle point";
+      continue;
+    }
+    ASSERT_TRUE(picked) << f;
+    SparseFactor fk;
+    fk.factorize(a.K);
+    EXPECT_LE(rel_diff(Kz, ref), forward_bound(a.K, fk.scaling())) << f << " (" << n << " DOFs)";
+    Eigen::MatrixXd Kz_sparse;  // the sparse K's own dense copy: the same arithmetic
+    ASSERT_TRUE(condense_onto_columns(a.K, cols, coef, Kz_sparse, o)) << f;
+    EXPECT_LE(rel_diff(Kz_sparse, Kz), 1e-14) << f;
+    ++compared;
+  }
+  EXPECT_GE(compared, 8);
+}
+
+TEST(DenseFactor, StaticCondensationByHandAndItsRefusals) {
+  // K = [2 -1; -1 2], DOF 1 kept: K_22 - K_21 K_11^-1 K_12 = 2 - 1/2 = 3/2; with the row scaled by
+  // a = 2, K_z = (3/2) / 4.
+  Eigen::MatrixXd K(2, 2);
+  K << 2.0, -1.0, -1.0, 2.0;
+  Eigen::MatrixXd Kz;
+  const std::vector<int> one{1};
+  ASSERT_TRUE(condense_onto_columns(K, one, std::vector<double>{1.0}, Kz));
+  EXPECT_NEAR(Kz(0, 0), 1.5, 1e-15);
+  ASSERT_TRUE(condense_onto_columns(K, one, std::vector<double>{2.0}, Kz));
+  EXPECT_NEAR(Kz(0, 0), 0.375, 1e-15);
+  // Both DOFs kept: nothing condensed, K_z = K.
+  ASSERT_TRUE(condense_onto_columns(K, std::vector<int>{0, 1}, std::vector<double>{1.0, 1.0}, Kz));
+  EXPECT_NEAR((Kz - K).norm(), 0.0, 1e-15);
+  // A mechanism (K singular, K_11 positive): left to the saddle point, as condense_dense leaves it.
+  Eigen::MatrixXd M(2, 2);
+  M << 1.0, -1.0, -1.0, 1.0;
+  EXPECT_FALSE(condense_onto_columns(M, one, std::vector<double>{1.0}, Kz));
+  // Indefinite, a column picked twice, a zero coefficient, a column out of range.
+  Eigen::MatrixXd I(2, 2);
+  I << 1.0, 2.0, 2.0, 1.0;
+  EXPECT_FALSE(condense_onto_columns(I, one, std::vector<double>{1.0}, Kz));
+  EXPECT_FALSE(condense_onto_columns(K, std::vector<int>{1, 1}, std::vector<double>{1.0, 1.0}, Kz));
+  EXPECT_FALSE(condense_onto_columns(K, one, std::vector<double>{0.0}, Kz));
+  EXPECT_FALSE(condense_onto_columns(K, std::vector<int>{2}, std::vector<double>{1.0}, Kz));
+}
+
 TEST(DenseFactor, RefusesWhatItCannotDoAndLeavesItToTheSparsePath) {
   SparseMatrix K(2, 2);
   K.insert(0, 0) = 1.0;
