@@ -140,13 +140,19 @@ bool condense_onto_columns(const Eigen::MatrixXd& K, std::span<const int> cols, 
     if (i < m && !(d > 0.0)) return false;
     w.s[i] = d > 0.0 ? 1.0 / std::sqrt(d) : 1.0;
   }
-  // The lower triangle of the reordered, scaled matrix (K's lower triangle read).
+  // The lower triangle of the reordered, scaled matrix (K's lower triangle read). The order is
+  // increasing over the condensed DOFs, so there row i >= j is old row order[i] >= order[j].
   w.L.resize(n, n);
   for (Eigen::Index j = 0; j < n; ++j) {
     const int oj = order[j];
-    for (Eigen::Index i = j; i < n; ++i) {
+    const double* kj = K.col(oj).data();
+    double* lj = w.L.col(j).data();
+    const double sj = w.s[j];
+    Eigen::Index i = j;
+    for (; i < m; ++i) lj[i] = kj[order[i]] * w.s[i] * sj;
+    for (; i < n; ++i) {
       const int oi = order[i];
-      w.L(i, j) = (oi >= oj ? K(oi, oj) : K(oj, oi)) * w.s[i] * w.s[j];
+      lj[i] = (oi >= oj ? kj[oi] : K(oj, oi)) * w.s[i] * sj;
     }
   }
   // The first m columns of the factor; their right-looking updates leave the Schur complement
