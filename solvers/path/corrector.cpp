@@ -19,13 +19,12 @@ double scaled_norm(const Eigen::VectorXd& F, const Eigen::VectorXd& fscale) {
 ChordOutcome chord_correct(const PathEquilibrium& P, const Converged& start, const StepSpec& s, Eigen::VectorXd& u,
                            double tolerance) {
   ChordOutcome out;
-  const LuFactor* lu = P.tangent_factor(start);
-  if (!lu) {
+  const int m = P.tangent_factor_rows(start);
+  if (m < 0) {
     out.why = "no factor of the start state's tangent";
     return out;
   }
   const int n = P.unknowns(s);
-  const int m = static_cast<int>(lu->rows());
   // The factor is of the step's own system (load control; imposed motion, whose tangent system holds
   // the controlled DOF), or of its leading block (the extra unknown is the load factor): bordered.
   const bool bordered = m == n - 1 && P.extra_is_lambda(s);

@@ -1,5 +1,6 @@
 #include "solvers/path/equilibrium.hpp"
 
+#include <Eigen/CholmodSupport>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -267,7 +268,7 @@ bool PathEquilibrium::solve(KinsolSolver& kin, const Converged& start, const Ste
     out.extra_mu = (s.kind == StepKind::Control && !has_loads) ? uu[nf + nc] : 0.0;
   };
   long chord_its = 0;
-  if (chord && tangent_factor(start)) {
+  if (chord && tangent_factor_rows(start) >= 0) {
     Eigen::VectorXd uc = u;
     const ChordOutcome co = chord_correct(*this, start, s, uc, kin.options().function_tolerance);
     chord_its = co.iterations;
@@ -350,6 +351,48 @@ const NonlinearStructure::Evaluation& PathEquilibrium::evaluation_at(const Conve
   return cache_.ev;
 }
 
+struct PathEquilibrium::SymmetricFactor {
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt;
+  PatternMemory pattern;
+  SparseMatrix S;  // the symmetric part's lower triangle (storage kept between states)
+  long symbolic = 0, numeric = 0;
+  SymmetricFactor() { llt.cholmod().print = 0; }  // an indefinite matrix is an outcome here
+  // S = sym(J) when J is symmetric to kSymmetricTangentSkew; false otherwise (S not set).
+  bool take_symmetric_part(const SparseMatrix& J) {
+    const SparseMatrix Jt = J.transpose();
+    double big = 0.0, skew = 0.0;
+    for (int j = 0; j < J.outerSize(); ++j) {
+      SparseMatrix::InnerIterator a(J, j), b(Jt, j);
+      // Same pattern both ways (an assembled tangent's is symmetric); otherwise not taken.
+      for (; a && b; ++a, ++b) {
+        if (a.row() != b.row()) return false;
+        big = std::max(big, std::abs(a.value()));
+        skew = std::max(skew, std::abs(a.value() - b.value()));
+      }
+      if (a || b) return false;
+    }
+    if (!(big > 0.0) || !(skew <= kSymmetricTangentSkew * big)) return false;
+    S = SparseMatrix(0.5 * (J + Jt)).triangularView<Eigen::Lower>();
+    S.makeCompressed();
+    return true;
+  }
+  bool factorize() {
+    if (!pattern.same_or_remember(S)) {
+      llt.analyzePattern(S);
+      ++symbolic;
+      if (llt.info() != Eigen::Success) {
+        pattern.forget();
+        return false;
+      }
+    }
+    llt.factorize(S);
+    ++numeric;
+    return llt.info() == Eigen::Success;
+  }
+};
+
+PathEquilibrium::~PathEquilibrium() = default;
+
 const Eigen::VectorXd& PathEquilibrium::tangent(const Converged& c) const {
   const NonlinearStructure::Evaluation& ev = evaluation_at(c);
   if (cache_.has_tangent) return cache_.t;
@@ -363,7 +406,18 @@ const Eigen::VectorXd& PathEquilibrium::tangent(const Converged& c) const {
     rhs[nf + nc] = 1.0;
   }
   cache_.t.resize(0);
-  if (predictor_lu_.factorize(cache_.J)) {
+  cache_.cholesky = false;
+  // The symmetric tangent's LL^T where it applies (see tangent_is_cholesky), else the LU.
+  if (nf > kSymmetricTangentMinDofs && nc == 0 && cache_.J.rows() == nf) {
+    if (!symmetric_) symmetric_ = std::make_unique<SymmetricFactor>();
+    cache_.J.makeCompressed();
+    if (symmetric_->take_symmetric_part(cache_.J) && symmetric_->factorize()) {
+      cache_.t = symmetric_->llt.solve(rhs);
+      cache_.cholesky = cache_.t.allFinite();
+      if (!cache_.cholesky) cache_.t.resize(0);
+    }
+  }
+  if (!cache_.cholesky && predictor_lu_.factorize(cache_.J)) {
     cache_.t = predictor_lu_.solver().solve(rhs);
     if (!cache_.t.allFinite()) cache_.t.resize(0);
   }
@@ -371,12 +425,28 @@ const Eigen::VectorXd& PathEquilibrium::tangent(const Converged& c) const {
   return cache_.t;
 }
 
-const LuFactor* PathEquilibrium::tangent_factor(const Converged& c) const {
-  if (!cache_.valid || !cache_.has_tangent || !cache_.t.size() || !same_state(cache_.key, c)) return nullptr;
-  return &predictor_lu_;
+int PathEquilibrium::tangent_factor_rows(const Converged& c) const {
+  if (!cache_.valid || !cache_.has_tangent || !cache_.t.size() || !same_state(cache_.key, c)) return -1;
+  return static_cast<int>(cache_.J.rows());
+}
+
+bool PathEquilibrium::tangent_is_cholesky(const Converged& c) const {
+  return tangent_factor_rows(c) >= 0 && cache_.cholesky;
+}
+
+void PathEquilibrium::solve_with_symmetric_tangent(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  x = symmetric_->llt.solve(b);
+}
+
+long PathEquilibrium::tangent_factorizations() const {
+  return predictor_lu_.factorizations() + (symmetric_ ? symmetric_->numeric : 0);
+}
+long PathEquilibrium::tangent_symbolic_analyses() const {
+  return predictor_lu_.symbolic_analyses() + (symmetric_ ? symmetric_->symbolic : 0);
 }
 
 Eigen::VectorXd PathEquilibrium::solve_with_tangent_factor(const Eigen::VectorXd& b) const {
+  if (cache_.cholesky) return symmetric_->llt.solve(b);
   auto& lu = predictor_lu_.solver();
   const double irstep = lu.umfpackControl()(UMFPACK_IRSTEP);
   lu.umfpackControl()(UMFPACK_IRSTEP) = 0;

@@ -26,6 +26,7 @@
 // element), constraint rows by L (translations: a displacement error relative to the model size),
 // the arc row by ds.
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -65,12 +66,23 @@ struct Converged {
   bool by_chord = false;      // found by the chord corrector (no factorisation of its own)
 };
 
+// Free coordinates above which a symmetric tangent is factorised by LL^T (PathEquilibrium::
+// tangent_is_cholesky): the stability analysis' own size for its LL^T (kStabilityDenseLimit,
+// solvers/path/stability.hpp); below it UMFPACK's LU and a dense eigen-solve cost little.
+inline constexpr int kSymmetricTangentMinDofs = 400;
+// Largest |J - J^T| / max |J| of a tangent factorised as symmetric: rounding, and the residual's
+// imbalance of internal moments at a converged state (far below this), not an applied moment's skew part.
+inline constexpr double kSymmetricTangentSkew = 1e-9;
+
 class PathEquilibrium {
  public:
   // The controlled DOF is taken from the options under displacement control. Throws ModelError when
   // the controlled DOF is supported, or when the model has no loads and the control is not a
   // displacement.
   PathEquilibrium(const Model& model, const PathOptions& o);
+  ~PathEquilibrium();
+  PathEquilibrium(const PathEquilibrium&) = delete;
+  PathEquilibrium& operator=(const PathEquilibrium&) = delete;
 
   int unknowns(const StepSpec& s) const { return nf + nc + (s.kind == StepKind::Load ? 0 : 1); }
   bool extra_is_lambda(const StepSpec& s) const {
@@ -108,15 +120,29 @@ class PathEquilibrium {
   // or per unit control (imposed motion). Empty when the tangent is singular. Factorised once per
   // state (kept with evaluation_at's).
   const Eigen::VectorXd& tangent(const Converged& c) const;
-  // The LU of the tangent system at c when c is the state kept and its tangent was computed (by
-  // tangent(c)) and factorised successfully; null otherwise. No computation.
-  const LuFactor* tangent_factor(const Converged& c) const;
-  // x = A^-1 b with that factor, b of its size, without UMFPACK's iterative refinement: each chord
-  // iteration is itself a refinement step against the true residual (solvers/path/corrector.hpp).
+  // The size of the factorised tangent system at c when c is the state kept and its tangent was
+  // computed (by tangent(c)) and factorised successfully; -1 otherwise. No computation.
+  int tangent_factor_rows(const Converged& c) const;
+  // x = A^-1 b with that factor, b of its size: the LU without UMFPACK's iterative refinement (each
+  // chord iteration is itself a refinement step against the true residual,
+  // solvers/path/corrector.hpp), or the symmetric tangent's LL^T (below).
   Eigen::VectorXd solve_with_tangent_factor(const Eigen::VectorXd& b) const;
-  // Numeric LU factorisations of converged states' tangent systems so far (the predictor's factor).
-  long tangent_factorizations() const { return predictor_lu_.factorizations(); }
-  long tangent_symbolic_analyses() const { return predictor_lu_.symbolic_analyses(); }
+  // The symmetric tangent. Above kSymmetricTangentMinDofs free coordinates, where the tangent system
+  // is the tangent over the free coordinates alone (no slave constraints or closures, no imposed
+  // motion's row) and symmetric to rounding at the state (forces alone: elements/corotational_beam.hpp,
+  // "Symmetry"), its symmetric part is factorised by CHOLMOD's supernodal LL^T instead of UMFPACK's LU.
+  // That one factor then serves the tangent direction, the chord iterations and the stability
+  // analysis (its success proves the state stable; Lanczos on its inverse gives the lowest
+  // eigenvalue): one factorisation per converged state (issue 15). Where the LL^T fails (past a
+  // critical point) or the tangent is not symmetric, the LU as before.
+  bool tangent_is_cholesky(const Converged& c) const;
+  // x = S^-1 b with that LL^T (when tangent_is_cholesky(c) for the kept state), b over the free
+  // coordinates.
+  void solve_with_symmetric_tangent(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  // Numeric factorisations of converged states' tangent systems so far (the predictor's factor:
+  // LU or LL^T), and symbolic analyses.
+  long tangent_factorizations() const;
+  long tangent_symbolic_analyses() const;
   // Steps solved by the chord corrector, and those where it gave up (full Newton then), so far.
   long chord_steps() const { return chord_steps_; }
   long chord_fallbacks() const { return chord_fallbacks_; }
@@ -177,6 +203,8 @@ class PathEquilibrium {
   void jacobian_from(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, const Eval& e,
                      const SparseMatrix& tangent, SparseMatrix& J) const;
   mutable LuFactor predictor_lu_;   // tangent predictor: symbolic analysis kept along the path
+  struct SymmetricFactor;           // CHOLMOD's supernodal LL^T of the symmetric tangent
+  mutable std::unique_ptr<SymmetricFactor> symmetric_;
   // The last converged state evaluated (see evaluation_at), its evaluation and tangent direction.
   struct StateCache {
     bool valid = false, has_tangent = false;
@@ -184,6 +212,7 @@ class PathEquilibrium {
     NonlinearStructure::Evaluation ev;
     Eigen::VectorXd t;
     SparseMatrix J;  // workspace of the tangent system (its storage kept between states)
+    bool cholesky = false;  // t and the factor are the symmetric tangent's LL^T's
   };
   mutable StateCache cache_;
   mutable long chord_steps_ = 0, chord_fallbacks_ = 0;

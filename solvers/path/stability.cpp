@@ -115,13 +115,21 @@ StabilityAnalyzer::~StabilityAnalyzer() = default;
 
 StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_control, bool want_mode) {
   StabilityAnalysis out = constrained_tangent(eq_, c, with_control);
-  const SparseMatrix S = SparseMatrix(0.5 * (out.K + SparseMatrix(out.K.transpose())));
-  const int n = static_cast<int>(S.rows());
+  const int n = static_cast<int>(out.K.rows());
   if (n == 0) return out;
+  const bool large = n > dense_limit_;
+  // No constraint row (Z = I): the matrix is the symmetric part of the tangent system itself, which
+  // PathEquilibrium factorises by LL^T where it can (tangent_is_cholesky): that factor, shared with
+  // the next predictor and the chord iterations, decides the inertia and gives the lowest
+  // eigenvalue; no factorisation here.
+  const bool unconstrained = out.Z.rows() == out.Z.cols() && n == eq_.nf;
+  if (large && unconstrained && !last_indefinite_ && n > kSymmetricTangentMinDofs) eq_.tangent(c);
+  const bool shared = large && unconstrained && eq_.tangent_is_cholesky(c);
+  SparseMatrix S;
+  if (!shared || want_mode) S = SparseMatrix(0.5 * (out.K + SparseMatrix(out.K.transpose())));
   // Inertia (Sylvester's law): positive definite when the LL^T succeeds, otherwise the number of
   // negative pivots of the LDL^T.
-  const bool large = n > dense_limit_;
-  const bool cholesky = large && !last_indefinite_ && llt_->factorize(S);
+  const bool cholesky = shared || (large && !last_indefinite_ && llt_->factorize(S));
   if (cholesky) {
     out.info.negative = 0;
   } else if (inertia_ldlt_.factorize(S)) {
@@ -131,11 +139,12 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_contr
   }
   last_indefinite_ = out.info.negative != 0;
   // Lowest eigenvalue of the Jacobi-scaled matrix.
-  const Eigen::VectorXd d = S.diagonal().cwiseAbs();
+  const Eigen::VectorXd d = out.K.diagonal().cwiseAbs();  // S's diagonal
   const Eigen::VectorXd sc = (d.array() > 0.0).select(d.cwiseSqrt().cwiseInverse(), Eigen::VectorXd::Ones(n));
   // The lowest eigenvalue from the factorisation just made, no shifted one (see lowest_from_factor).
   // The dense solve up to dense_limit_, the critical mode, and what that fails to settle, as before.
-  if (large && out.info.negative >= 0 && !want_mode && lowest_from_factor(sc, cholesky, out.info)) return out;
+  if (large && out.info.negative >= 0 && !want_mode && lowest_from_factor(sc, cholesky, shared, out.info)) return out;
+  if (S.rows() != n) S = SparseMatrix(0.5 * (out.K + SparseMatrix(out.K.transpose())));
   const SparseMatrix A = SparseMatrix(sc.asDiagonal() * S * sc.asDiagonal());
   const auto gershgorin_shift = [&] {  // below the Gershgorin lower bound of the spectrum
     double g = 0.0;
@@ -195,7 +204,7 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_contr
 // inertia's factorisation gives, for the negative count plus one of them. When the negative ones
 // found are as many as the inertia counts (Sylvester), they are all of A's negative eigenvalues and
 // the least found is the lowest; a stable state needs only the one nearest zero, its lowest.
-bool StabilityAnalyzer::lowest_from_factor(const Eigen::VectorXd& sc, bool cholesky, StabilityInfo& info) {
+bool StabilityAnalyzer::lowest_from_factor(const Eigen::VectorXd& sc, bool cholesky, bool shared, StabilityInfo& info) {
   const auto& ldlt = inertia_ldlt_.solver();
   if (!cholesky && !(ldlt.vectorD().array() != 0.0).all()) return false;  // a zero pivot: singular
   const Eigen::Index n = sc.size();
@@ -204,8 +213,10 @@ bool StabilityAnalyzer::lowest_from_factor(const Eigen::VectorXd& sc, bool chole
   work_.resize(n);
   const InverseOp inverse = [&](const double* x, double* y) {
     work_ = inv_sc.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(x, n));
-    const Eigen::VectorXd z = cholesky ? Eigen::VectorXd(llt_->llt.solve(work_)) : Eigen::VectorXd(ldlt.solve(work_));
-    Eigen::Map<Eigen::VectorXd>(y, n) = inv_sc.cwiseProduct(z);
+    if (shared) eq_.solve_with_symmetric_tangent(work_, z_);
+    else if (cholesky) z_ = llt_->llt.solve(work_);
+    else z_ = ldlt.solve(work_);
+    Eigen::Map<Eigen::VectorXd>(y, n) = inv_sc.cwiseProduct(z_);
   };
   const int want = info.negative == 0 ? 1 : info.negative + 1;
   try {

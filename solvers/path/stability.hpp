@@ -72,7 +72,8 @@ class StabilityAnalyzer {
   // The lowest eigenpair of a positive definite state from the factorisation that decided its
   // inertia (false when the Lanczos iterations did not converge: the caller falls back to a shifted
   // solve).
-  bool lowest_from_factor(const Eigen::VectorXd& sc, bool cholesky, StabilityInfo& info);
+  // shared: the factor is the path tangent's LL^T (PathEquilibrium::tangent_is_cholesky).
+  bool lowest_from_factor(const Eigen::VectorXd& sc, bool cholesky, bool shared, StabilityInfo& info);
   const int dense_limit_;
   struct Cholesky;                  // CHOLMOD's supernodal LL^T, symbolic analysis kept
   std::unique_ptr<Cholesky> llt_;
@@ -80,7 +81,7 @@ class StabilityAnalyzer {
   LdltFactor inertia_ldlt_;         // inertia count: symbolic analysis kept along the path
   double last_min_ = 0.0;           // the last lowest eigenvalue found (the next shift's guess)
   Eigen::VectorXd last_vector_;     // its eigenvector (scaled coordinates): the next Lanczos start
-  Eigen::VectorXd work_;            // workspace of the inverse operator
+  Eigen::VectorXd work_, z_;        // workspaces of the inverse operator
 };
 
 }  // namespace beamfea
