@@ -71,6 +71,16 @@ Assembled assemble(const fs::path& file) {
   return a;
 }
 
+// The rows of T_free of the last node's six DOFs (the end effector of the chains): 6 x n.
+Eigen::MatrixXd last_node_rows(const Assembled& a) {
+  const int node = static_cast<int>(a.model.nodes.size()) - 1;
+  Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(6, a.K.rows());
+  for (int k = 0; k < 6; ++k)
+    for (SparseRowMatrix::InnerIterator it(a.map->T_free(), a.map->raw_node(node, k)); it; ++it)
+      rows(k, it.col()) += it.value();
+  return rows;
+}
+
 double rel_diff(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return (a - b).cwiseAbs().maxCoeff() / std::max(b.cwiseAbs().maxCoeff(), 1e-300);
 }
@@ -123,12 +133,7 @@ TEST(DenseFactor, SchurCondensationAgreesWithTheSaddlePointLu) {
     const Assembled a = assemble(f);
     const int n = static_cast<int>(a.K.rows());
     if (n == 0 || n > kMaxDofs) continue;
-    // Rows of the last node's six DOFs (the end effector of the chains), if it is free.
-    const int node = static_cast<int>(a.model.nodes.size()) - 1;
-    Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(6, n);
-    for (int k = 0; k < 6; ++k)
-      for (SparseRowMatrix::InnerIterator it(a.map->T_free(), a.map->raw_node(node, k)); it; ++it)
-        rows(k, it.col()) += it.value();
+    const Eigen::MatrixXd rows = last_node_rows(a);  // if the node is free
     if ((rows.rowwise().norm().array() == 0.0).any()) continue;
     FactorOptions o;
     o.dense_max_dofs = n;
@@ -171,25 +176,19 @@ TEST(DenseFactor, StaticCondensationOntoANodesOwnDofsAgreesWithTheSchurComplemen
     const Assembled a = assemble(f);
     const int n = static_cast<int>(a.K.rows());
     if (n == 0 || n > kMaxDofs) continue;
-    const int node = static_cast<int>(a.model.nodes.size()) - 1;
+    // A scale per row, as the node condensation's S gives rotations (L): D is not the identity.
+    Eigen::MatrixXd rows = last_node_rows(a);
+    rows.bottomRows(3) *= 0.25;
     std::vector<int> cols;
     std::vector<double> coef;
-    Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(6, n);
     for (int k = 0; k < 6; ++k) {
-      int terms = 0;
-      for (SparseRowMatrix::InnerIterator it(a.map->T_free(), a.map->raw_node(node, k)); it; ++it) {
-        if (it.value() == 0.0) continue;
-        // A scale per row, as the node condensation's S gives rotations (L): D is not the identity.
-        const double d = k < 3 ? 1.0 : 0.25;
-        rows(k, it.col()) += d * it.value();
-        cols.push_back(static_cast<int>(it.col()));
-        coef.push_back(d * it.value());
-        ++terms;
-      }
-      if (terms != 1) cols.clear();
-      if (terms != 1) break;
+      Eigen::Index c = 0;
+      if ((rows.row(k).array() != 0.0).count() != 1) break;  // a held or constrained DOF: not this path
+      rows.row(k).cwiseAbs().maxCoeff(&c);
+      cols.push_back(static_cast<int>(c));
+      coef.push_back(rows(k, c));
     }
-    if (cols.size() != 6) continue;  // a held or constrained DOF: not this path
+    if (cols.size() != 6) continue;
     FactorOptions o;
     o.dense_max_dofs = n;
     Eigen::MatrixXd Kz, ref;
