@@ -1,7 +1,8 @@
 #pragma once
 // A sparse factorisation whose symbolic analysis is kept while the sparsity pattern does not change
-// (KINSOL's Newton LU, the path's tangent LU and its inertia LDL^T refactor the same pattern at
+// (KINSOL's Newton LU, the path's tangent LU or LL^T and its inertia LDL^T refactor the same pattern at
 // every iteration or step), with counts of the symbolic analyses and numeric factorisations.
+#include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
 #include <Eigen/UmfPackSupport>
 
@@ -26,6 +27,10 @@ class PatternFactor {
     if (!pattern_.same_or_remember(A_)) {
       solver_.analyzePattern(A_);
       ++symbolic_;
+      if (solver_.info() != Eigen::Success) {  // no factorisation on a failed analysis
+        pattern_.forget();
+        return false;
+      }
     }
     solver_.factorize(A_);
     ++numeric_;
@@ -50,5 +55,11 @@ class PatternFactor {
 };
 using LdltFactor = PatternFactor<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>>;
 using LuFactor = PatternFactor<Eigen::UmfPackLU<SparseMatrix>>;
+// CHOLMOD's supernodal LL^T of a lower triangle, silent: an indefinite matrix is an outcome for its
+// callers (the path's symmetric tangent, the stability analysis' proof of positive definiteness).
+class LltFactor : public PatternFactor<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>> {
+ public:
+  LltFactor() { solver().cholmod().print = 0; }
+};
 
 }  // namespace beamfea

@@ -1,6 +1,5 @@
 #include "solvers/path/equilibrium.hpp"
 
-#include <Eigen/CholmodSupport>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -351,47 +350,27 @@ const NonlinearStructure::Evaluation& PathEquilibrium::evaluation_at(const Conve
   return cache_.ev;
 }
 
-struct PathEquilibrium::SymmetricFactor {
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt;
-  PatternMemory pattern;
-  SparseMatrix S;  // the symmetric part's lower triangle (storage kept between states)
-  long symbolic = 0, numeric = 0;
-  SymmetricFactor() { llt.cholmod().print = 0; }  // an indefinite matrix is an outcome here
-  // S = sym(J) when J is symmetric to kSymmetricTangentSkew; false otherwise (S not set).
-  bool take_symmetric_part(const SparseMatrix& J) {
-    const SparseMatrix Jt = J.transpose();
-    double big = 0.0, skew = 0.0;
-    for (int j = 0; j < J.outerSize(); ++j) {
-      SparseMatrix::InnerIterator a(J, j), b(Jt, j);
-      // Same pattern both ways (an assembled tangent's is symmetric); otherwise not taken.
-      for (; a && b; ++a, ++b) {
-        if (a.row() != b.row()) return false;
-        big = std::max(big, std::abs(a.value()));
-        skew = std::max(skew, std::abs(a.value() - b.value()));
-      }
-      if (a || b) return false;
+namespace {
+// S = the lower triangle of sym(J) when J is symmetric to kSymmetricTangentSkew (and its pattern is);
+// false otherwise (S not set).
+bool symmetric_part(const SparseMatrix& J, SparseMatrix& S) {
+  const SparseMatrix Jt = J.transpose();
+  double big = 0.0, skew = 0.0;
+  for (int j = 0; j < J.outerSize(); ++j) {
+    SparseMatrix::InnerIterator a(J, j), b(Jt, j);
+    // Same pattern both ways (an assembled tangent's is symmetric); otherwise not taken.
+    for (; a && b; ++a, ++b) {
+      if (a.row() != b.row()) return false;
+      big = std::max(big, std::abs(a.value()));
+      skew = std::max(skew, std::abs(a.value() - b.value()));
     }
-    if (!(big > 0.0) || !(skew <= kSymmetricTangentSkew * big)) return false;
-    S = SparseMatrix(0.5 * (J + Jt)).triangularView<Eigen::Lower>();
-    S.makeCompressed();
-    return true;
+    if (a || b) return false;
   }
-  bool factorize() {
-    if (!pattern.same_or_remember(S)) {
-      llt.analyzePattern(S);
-      ++symbolic;
-      if (llt.info() != Eigen::Success) {
-        pattern.forget();
-        return false;
-      }
-    }
-    llt.factorize(S);
-    ++numeric;
-    return llt.info() == Eigen::Success;
-  }
-};
-
-PathEquilibrium::~PathEquilibrium() = default;
+  if (!(big > 0.0) || !(skew <= kSymmetricTangentSkew * big)) return false;
+  S = SparseMatrix(0.5 * (J + Jt)).triangularView<Eigen::Lower>();
+  return true;
+}
+}  // namespace
 
 const Eigen::VectorXd& PathEquilibrium::tangent(const Converged& c) const {
   const NonlinearStructure::Evaluation& ev = evaluation_at(c);
@@ -409,10 +388,9 @@ const Eigen::VectorXd& PathEquilibrium::tangent(const Converged& c) const {
   cache_.cholesky = false;
   // The symmetric tangent's LL^T where it applies (see tangent_is_cholesky), else the LU.
   if (nf > kSymmetricTangentMinDofs && nc == 0 && cache_.J.rows() == nf) {
-    if (!symmetric_) symmetric_ = std::make_unique<SymmetricFactor>();
     cache_.J.makeCompressed();
-    if (symmetric_->take_symmetric_part(cache_.J) && symmetric_->factorize()) {
-      cache_.t = symmetric_->llt.solve(rhs);
+    if (symmetric_part(cache_.J, symmetric_llt_.matrix()) && symmetric_llt_.factorize()) {
+      cache_.t = symmetric_llt_.solver().solve(rhs);
       cache_.cholesky = cache_.t.allFinite();
       if (!cache_.cholesky) cache_.t.resize(0);
     }
@@ -435,18 +413,11 @@ bool PathEquilibrium::tangent_is_cholesky(const Converged& c) const {
 }
 
 void PathEquilibrium::solve_with_symmetric_tangent(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
-  x = symmetric_->llt.solve(b);
-}
-
-long PathEquilibrium::tangent_factorizations() const {
-  return predictor_lu_.factorizations() + (symmetric_ ? symmetric_->numeric : 0);
-}
-long PathEquilibrium::tangent_symbolic_analyses() const {
-  return predictor_lu_.symbolic_analyses() + (symmetric_ ? symmetric_->symbolic : 0);
+  x = symmetric_llt_.solver().solve(b);
 }
 
 Eigen::VectorXd PathEquilibrium::solve_with_tangent_factor(const Eigen::VectorXd& b) const {
-  if (cache_.cholesky) return symmetric_->llt.solve(b);
+  if (cache_.cholesky) return symmetric_llt_.solver().solve(b);
   auto& lu = predictor_lu_.solver();
   const double irstep = lu.umfpackControl()(UMFPACK_IRSTEP);
   lu.umfpackControl()(UMFPACK_IRSTEP) = 0;

@@ -26,7 +26,6 @@
 // element), constraint rows by L (translations: a displacement error relative to the model size),
 // the arc row by ds.
 #include <Eigen/Core>
-#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -80,9 +79,6 @@ class PathEquilibrium {
   // the controlled DOF is supported, or when the model has no loads and the control is not a
   // displacement.
   PathEquilibrium(const Model& model, const PathOptions& o);
-  ~PathEquilibrium();
-  PathEquilibrium(const PathEquilibrium&) = delete;
-  PathEquilibrium& operator=(const PathEquilibrium&) = delete;
 
   int unknowns(const StepSpec& s) const { return nf + nc + (s.kind == StepKind::Load ? 0 : 1); }
   bool extra_is_lambda(const StepSpec& s) const {
@@ -141,8 +137,10 @@ class PathEquilibrium {
   void solve_with_symmetric_tangent(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   // Numeric factorisations of converged states' tangent systems so far (the predictor's factor:
   // LU or LL^T), and symbolic analyses.
-  long tangent_factorizations() const;
-  long tangent_symbolic_analyses() const;
+  long tangent_factorizations() const { return predictor_lu_.factorizations() + symmetric_llt_.factorizations(); }
+  long tangent_symbolic_analyses() const {
+    return predictor_lu_.symbolic_analyses() + symmetric_llt_.symbolic_analyses();
+  }
   // Steps solved by the chord corrector, and those where it gave up (full Newton then), so far.
   long chord_steps() const { return chord_steps_; }
   long chord_fallbacks() const { return chord_fallbacks_; }
@@ -203,8 +201,7 @@ class PathEquilibrium {
   void jacobian_from(const Converged& start, const StepSpec& s, const Eigen::VectorXd& u, const Eval& e,
                      const SparseMatrix& tangent, SparseMatrix& J) const;
   mutable LuFactor predictor_lu_;   // tangent predictor: symbolic analysis kept along the path
-  struct SymmetricFactor;           // CHOLMOD's supernodal LL^T of the symmetric tangent
-  mutable std::unique_ptr<SymmetricFactor> symmetric_;
+  mutable LltFactor symmetric_llt_; // the symmetric tangent's (tangent_is_cholesky), its matrix() S
   // The last converged state evaluated (see evaluation_at), its evaluation and tangent direction.
   struct StateCache {
     bool valid = false, has_tangent = false;

@@ -91,27 +91,8 @@ StabilityAnalysis constrained_tangent(const PathEquilibrium& P, const Converged&
   return out;
 }
 
-struct StabilityAnalyzer::Cholesky {
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt;
-  PatternMemory pattern;
-  Cholesky() { llt.cholmod().print = 0; }  // an indefinite matrix is an outcome here
-  // True when S (compressed) is positive definite.
-  bool factorize(const SparseMatrix& S) {
-    if (!pattern.same_or_remember(S)) {
-      llt.analyzePattern(S);
-      if (llt.info() != Eigen::Success) {
-        pattern.forget();
-        return false;
-      }
-    }
-    llt.factorize(S);
-    return llt.info() == Eigen::Success;
-  }
-};
-
 StabilityAnalyzer::StabilityAnalyzer(const PathEquilibrium& eq, int dense_limit)
-    : eq_(eq), dense_limit_(dense_limit), llt_(std::make_unique<Cholesky>()) {}
-StabilityAnalyzer::~StabilityAnalyzer() = default;
+    : eq_(eq), dense_limit_(dense_limit) {}
 
 StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_control, bool want_mode) {
   StabilityAnalysis out = constrained_tangent(eq_, c, with_control);
@@ -125,14 +106,18 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_contr
   const bool unconstrained = out.Z.rows() == out.Z.cols() && n == eq_.nf;
   if (large && unconstrained && !last_indefinite_ && n > kSymmetricTangentMinDofs) eq_.tangent(c);
   const bool shared = large && unconstrained && eq_.tangent_is_cholesky(c);
+  // The symmetrised matrix, made only where something here factorises or reads it.
   SparseMatrix S;
-  if (!shared || want_mode) S = SparseMatrix(0.5 * (out.K + SparseMatrix(out.K.transpose())));
+  const auto symmetrised = [&]() -> const SparseMatrix& {
+    if (S.rows() != n) S = SparseMatrix(0.5 * (out.K + SparseMatrix(out.K.transpose())));
+    return S;
+  };
   // Inertia (Sylvester's law): positive definite when the LL^T succeeds, otherwise the number of
   // negative pivots of the LDL^T.
-  const bool cholesky = shared || (large && !last_indefinite_ && llt_->factorize(S));
+  const bool cholesky = shared || (large && !last_indefinite_ && llt_.factorize(symmetrised()));
   if (cholesky) {
     out.info.negative = 0;
-  } else if (inertia_ldlt_.factorize(S)) {
+  } else if (inertia_ldlt_.factorize(symmetrised())) {
     out.info.negative = static_cast<int>((inertia_ldlt_.solver().vectorD().array() < 0.0).count());
   } else {
     out.info.negative = -1;
@@ -144,8 +129,7 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_contr
   // The lowest eigenvalue from the factorisation just made, no shifted one (see lowest_from_factor).
   // The dense solve up to dense_limit_, the critical mode, and what that fails to settle, as before.
   if (large && out.info.negative >= 0 && !want_mode && lowest_from_factor(sc, cholesky, shared, out.info)) return out;
-  if (S.rows() != n) S = SparseMatrix(0.5 * (out.K + SparseMatrix(out.K.transpose())));
-  const SparseMatrix A = SparseMatrix(sc.asDiagonal() * S * sc.asDiagonal());
+  const SparseMatrix A = SparseMatrix(sc.asDiagonal() * symmetrised() * sc.asDiagonal());
   const auto gershgorin_shift = [&] {  // below the Gershgorin lower bound of the spectrum
     double g = 0.0;
     for (int j = 0; j < A.outerSize(); ++j) {
@@ -214,7 +198,7 @@ bool StabilityAnalyzer::lowest_from_factor(const Eigen::VectorXd& sc, bool chole
   const InverseOp inverse = [&](const double* x, double* y) {
     work_ = inv_sc.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(x, n));
     if (shared) eq_.solve_with_symmetric_tangent(work_, z_);
-    else if (cholesky) z_ = llt_->llt.solve(work_);
+    else if (cholesky) z_ = llt_.solver().solve(work_);
     else z_ = ldlt.solve(work_);
     Eigen::Map<Eigen::VectorXd>(y, n) = inv_sc.cwiseProduct(z_);
   };

@@ -17,7 +17,6 @@
 // supports, closed loops or the controlled DOF, gets its compliance (zero where it cannot move),
 // rigid directions and free directions.
 #include <Eigen/Core>
-#include <memory>
 #include <optional>
 
 #include "solvers/condensed_stiffness.hpp"
@@ -58,7 +57,6 @@ class StabilityAnalyzer {
   // dense_limit: the size up to which the inertia is an LDL^T and the lowest eigenvalue dense;
   // above it, CHOLMOD's supernodal LL^T first (tests lower it to compare both on small models).
   explicit StabilityAnalyzer(const PathEquilibrium& eq, int dense_limit = kStabilityDenseLimit);
-  ~StabilityAnalyzer();
   StabilityAnalyzer(const StabilityAnalyzer&) = delete;
   StabilityAnalyzer& operator=(const StabilityAnalyzer&) = delete;
   // with_control: the controlled DOF is held too (displacement control). want_mode: the critical
@@ -75,8 +73,7 @@ class StabilityAnalyzer {
   // shared: the factor is the path tangent's LL^T (PathEquilibrium::tangent_is_cholesky).
   bool lowest_from_factor(const Eigen::VectorXd& sc, bool cholesky, bool shared, StabilityInfo& info);
   const int dense_limit_;
-  struct Cholesky;                  // CHOLMOD's supernodal LL^T, symbolic analysis kept
-  std::unique_ptr<Cholesky> llt_;
+  LltFactor llt_;                   // CHOLMOD's supernodal LL^T, symbolic analysis kept
   bool last_indefinite_ = false;    // the last state had a negative eigenvalue: LDL^T directly
   LdltFactor inertia_ldlt_;         // inertia count: symbolic analysis kept along the path
   double last_min_ = 0.0;           // the last lowest eigenvalue found (the next shift's guess)
