@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 
 namespace beamfea::json_in {
 
@@ -63,31 +64,62 @@ std::string nearest_key(std::string_view key, std::initializer_list<std::string_
   return "";
 }
 
+namespace {
+
+// Keys the user may add anywhere: notes.
+bool is_free_key(const std::string& k) {
+  return (!k.empty() && k[0] == '_') || (k.size() == 7 && k[0] == 'c' && k == "comment");
+}
+
+// Lengths and first characters are compared before the bytes: every key of every object of a
+// model passes here, and most known keys differ from it in one of those (a small model's read
+// spent 5 % of its time in these comparisons).
+bool is_known_key(std::string_view k, std::initializer_list<std::string_view> known) {
+  for (std::string_view n : known) {
+    if (n.size() != k.size()) continue;
+    std::size_t i = 0;  // the keys are a few characters: a loop, not a call of memcmp
+    while (i < k.size() && n[i] == k[i]) ++i;
+    if (i == k.size()) return true;
+  }
+  return false;
+}
+
+[[noreturn]] void unknown_key(const std::string& k, const Pointer& pointer, std::initializer_list<std::string_view> known) {
+  std::string message = "unknown key '" + k + "'";
+  const std::string near = nearest_key(k, known);
+  if (!near.empty()) message += " (did you mean '" + near + "'?)";
+  else {
+    message += " (known keys:";
+    for (std::string_view n : known) message.append(" ").append(n);
+    message += "; keys starting with '_' and \"comment\" are free)";
+  }
+  throw InputError(child(pointer, k), message);
+}
+
+}  // namespace
+
 void expect_keys(const json& obj, const Pointer& pointer, std::initializer_list<std::string_view> known) {
   if (!obj.is_object()) return;
-  // Lengths and first characters are compared before the bytes: every key of every object of a
-  // model passes here, and most known keys differ from it in one of those (a small model's read
-  // spent 5 % of its time in these comparisons).
-  auto is_known = [&](std::string_view k) {
-    for (std::string_view n : known)
-      if (n.size() == k.size() && (k.empty() || n[0] == k[0]) && n == k) return true;
-    return false;
-  };
   // The object's map itself: items() makes a proxy (with a string for array indices) per key.
+  for (const auto& [k, v] : obj.get_ref<const json::object_t&>())
+    if (!is_free_key(k) && !is_known_key(k, known)) unknown_key(k, pointer, known);
+}
+
+Fields::Fields(const json& obj, const Pointer& pointer, std::initializer_list<std::string_view> known)
+    : obj_(obj), pointer_(pointer) {
+  if (known.size() > kMaxKnown) throw std::logic_error("json_in::Fields: more known keys than kMaxKnown");
+  if (!obj.is_object()) return;
   for (const auto& [k, v] : obj.get_ref<const json::object_t&>()) {
-    if (!k.empty() && k[0] == '_') continue;
-    if (k == "comment") continue;
-    if (is_known(k)) continue;
-    std::string message = "unknown key '" + k + "'";
-    const std::string near = nearest_key(k, known);
-    if (!near.empty()) message += " (did you mean '" + near + "'?)";
-    else {
-      message += " (known keys:";
-      for (std::string_view n : known) message.append(" ").append(n);
-      message += "; keys starting with '_' and \"comment\" are free)";
-    }
-    throw InputError(child(pointer, k), message);
+    if (is_free_key(k)) continue;
+    if (!is_known_key(k, known)) unknown_key(k, pointer, known);
+    keys_[n_] = k;  // the keys are distinct known keys: at most known.size() of them
+    values_[n_++] = &v;
   }
+}
+
+void Fields::missing(std::string_view key, const What& what) const {
+  json_in::require(obj_, pointer_, key, what);  // throws: not an object, or no `key`
+  throw std::logic_error("json_in::Fields: '" + std::string(key) + "' read but not among the known keys");
 }
 
 const json& require(const json& obj, const Pointer& pointer, std::string_view key, const What& what) {

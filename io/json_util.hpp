@@ -23,8 +23,6 @@ using json = nlohmann::json;
 // the `known` list at the call site: one line. Does nothing when `obj` is not an object (the
 // caller's type check reports that).
 void expect_keys(const json& obj, const Pointer& pointer, std::initializer_list<std::string_view> known);
-// The known key nearest to `key` by edit distance, or "" when none is close enough to suggest.
-std::string nearest_key(std::string_view key, std::initializer_list<std::string_view> known);
 
 // The entity named in a message ("element 'e1' material"), up to three parts joined only when a
 // message is built: a reader names every field it reads and almost never needs the name. The parts
@@ -44,6 +42,43 @@ class What {
  private:
   std::string_view a_, b_, c_;
 };
+
+// An object's known fields, found in one pass over its keys (a reader that checks the keys and
+// then looks up each field it reads searches the object's map once per field):
+//   const Fields f(o, p, {"id", "xyz"});       // expect_keys(o, p, {...}): an unknown key throws
+//   id_into(node.id, f.require("id", "node"), child(p, "id"), "node");
+//   if (const json* v = f.get("orientation")) ...
+// A Fields views `obj`, `pointer` (not a temporary) and the keys of `obj`: it lives while they do.
+// Not an object: no fields (require() then throws "expected an object", as json_in::require does).
+class Fields {
+ public:
+  static constexpr std::size_t kMaxKnown = 32;
+  Fields(const json& obj, const Pointer& pointer, std::initializer_list<std::string_view> known);
+  Fields(const json&, Pointer&&, std::initializer_list<std::string_view>) = delete;
+  // The value of `key` (one of the known keys), or null when the object lacks it.
+  const json* get(std::string_view key) const {
+    for (std::size_t i = 0; i < n_; ++i)
+      if (keys_[i].size() == key.size() && keys_[i] == key) return values_[i];
+    return nullptr;
+  }
+  // The value of `key`; missing: the InputError of json_in::require.
+  const json& require(std::string_view key, const What& what) const {
+    if (const json* v = get(key)) return *v;
+    missing(key, what);
+  }
+
+ private:
+  [[noreturn]] void missing(std::string_view key, const What& what) const;
+  const json& obj_;
+  const Pointer& pointer_;
+  std::string_view keys_[kMaxKnown];
+  const json* values_[kMaxKnown];
+  std::size_t n_ = 0;
+};
+
+// The known key nearest to `key` by edit distance, or "" when none is close enough to suggest.
+std::string nearest_key(std::string_view key, std::initializer_list<std::string_view> known);
+
 
 // Largest magnitude of an input number: squares and products of a few such values (lengths
 // squared, E I / L^3, ...) stay far inside double range (1.8e308). docs/input-format.md.

@@ -17,11 +17,11 @@ void read_supports(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/supports", i);
     const auto& o = object(arr[i], p, "support");
-    expect_keys(o, p, {"node", "fix"});
+    const Fields f(o, p, {"node", "fix"});
     Support sup;
-    sup.node = node_ref(m, require(o, p, "node", "support"), child(p, "node"));
+    sup.node = node_ref(m, f.require("node", "support"), child(p, "node"));
     const What what("support at node '", m.nodes[sup.node].id, "'");  // a string only in a message
-    const auto& fix = require(o, p, "fix", what);
+    const auto& fix = f.require("fix", what);
     if (fix.is_string() && fix.get_ref<const std::string&>() == "all") {
       sup.fixed.fill(true);
     } else {

@@ -31,7 +31,7 @@ JointType joint_type(const std::string& type, const json_in::Pointer& p, const s
   throw InputError(p, what + ": unknown type '" + type + "' (expected revolute, universal, spherical, virtual_spring)");
 }
 
-void read_axes(Joint& j, const json& o, const json_in::Pointer& p, const std::string& what, const std::string& type) {
+void read_axes(Joint& j, const Fields& f, const json_in::Pointer& p, const std::string& what, const std::string& type) {
   const int nc = joint_coordinate_count(j.type);
   // Axes: one per rotation coordinate; a virtual spring gives its frame (x, y, z), used for its
   // three translations and its three rotations alike.
@@ -39,7 +39,7 @@ void read_axes(Joint& j, const json& o, const json_in::Pointer& p, const std::st
   // Read into j.axes (a recycled joint's storage reused).
   j.axes.clear();
   j.axes.reserve(j.type == JointType::VirtualSpring ? 2 * naxes : naxes);
-  if (const json* axes_value = field(o, "axes")) {
+  if (const json* axes_value = f.get("axes")) {
     const auto& axes = array(*axes_value, child(p, "axes"), What(what, " axes"));
     if (static_cast<int>(axes.size()) != naxes)
       throw InputError(child(p, "axes"), what + ": a " + type + " joint needs " + std::to_string(naxes) + " axes");
@@ -102,30 +102,30 @@ void read_stiffness(Joint& j, const json& st, const json_in::Pointer& sp, const 
 
 // "stiffness_from_beam": the tip stiffness of a cantilever (elements/beam.hpp), in the joint
 // frame (x along the link).
-void read_stiffness_from_beam(Joint& j, const ReadState& s, const json& o, const json_in::Pointer& p, const std::string& what) {
+void read_stiffness_from_beam(Joint& j, const ReadState& s, const Fields& f, const json_in::Pointer& p, const std::string& what) {
   const Model& m = s.model;
   if (j.type != JointType::VirtualSpring)
     throw InputError(child(p, "stiffness_from_beam"), what + ": stiffness_from_beam needs a virtual_spring joint");
-  if (field(o, "stiffness"))
+  if (f.get("stiffness"))
     throw InputError(child(p, "stiffness_from_beam"), what + ": give \"stiffness\" or \"stiffness_from_beam\", not both");
   const json_in::Pointer bp = child(p, "stiffness_from_beam");
-  const auto& b = object(o["stiffness_from_beam"], bp, What(what, " stiffness_from_beam"));
-  expect_keys(b, bp, {"material", "section", "length", "theory"});
-  const std::string mid = json_in::id(require(b, bp, "material", what), child(bp, "material"), What(what, " material"));
-  const std::string sid = json_in::id(require(b, bp, "section", what), child(bp, "section"), What(what, " section"));
+  const auto& b = object(*f.get("stiffness_from_beam"), bp, What(what, " stiffness_from_beam"));
+  const Fields fb(b, bp, {"material", "section", "length", "theory"});
+  const std::string mid = json_in::id(fb.require("material", what), child(bp, "material"), What(what, " material"));
+  const std::string sid = json_in::id(fb.require("section", what), child(bp, "section"), What(what, " section"));
   const int mi = m.find_material(mid);
   const int si = m.find_section(sid);
   if (mi < 0) throw InputError(child(bp, "material"), what + ": unknown material '" + mid + "'");
   if (si < 0) throw InputError(child(bp, "section"), what + ": unknown section '" + sid + "'");
-  const double L = positive(require(b, bp, "length", what), child(bp, "length"), What(what, " length"));
+  const double L = positive(fb.require("length", what), child(bp, "length"), What(what, " length"));
   const auto& mat = m.materials[mi];
   const auto& sec = m.sections[si];
   BeamSection bs{mat.E, mat.G, sec.A, sec.Iy, sec.Iz, sec.J};
-  if (b.contains("theory")) {
+  if (const json* theory = fb.get("theory")) {
     // A shear-deformable link: the Timoshenko cantilever's tip stiffness (its compliance adds
     // k L/(G A) to the transverse terms).
     const json_in::Pointer tp = child(bp, "theory");
-    if (beam_theory(string(b["theory"], tp, What(what, " theory")), tp, what) == BeamTheory::Timoshenko) {
+    if (beam_theory(string(*theory, tp, What(what, " theory")), tp, what) == BeamTheory::Timoshenko) {
       if (!(sec.ky > 0.0 && sec.kz > 0.0))
         throw InputError(tp, what + ": a Timoshenko beam needs the shear factors of section '" + sec.id +
                                  "' (give \"k\" or \"ky\" and \"kz\", or a \"shape\")");
@@ -146,24 +146,24 @@ void read_joints(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/joints", i);
     const auto& o = object(arr[i], p, "joint");
-    expect_keys(o, p, {"id", "type", "nodes", "axes", "stiffness", "stiffness_from_beam"});
+    const Fields f(o, p, {"id", "type", "nodes", "axes", "stiffness", "stiffness_from_beam"});
     Joint j = s.item(&Model::joints, i);
-    id_into(j.id, require(o, p, "id", "joint"), child(p, "id"), "joint");
+    id_into(j.id, f.require("id", "joint"), child(p, "id"), "joint");
     check_unique(m.find_joint(j.id), "joint", "/joints", j.id, i);  // joint i is at position i
     const std::string what = "joint '" + j.id + "'";
-    const std::string type = string(require(o, p, "type", what), child(p, "type"), what);
+    const std::string type = string(f.require("type", what), child(p, "type"), what);
     j.type = joint_type(type, child(p, "type"), what);
-    const auto& nodes = require(o, p, "nodes", what);
+    const auto& nodes = f.require("nodes", what);
     if (!nodes.is_array() || nodes.size() != 2) throw InputError(child(p, "nodes"), what + ": expected two node ids");
     for (int k = 0; k < 2; ++k) j.nodes[k] = node_ref(m, nodes[k], child(child(p, "nodes"), k));
     if (j.nodes[0] == j.nodes[1]) throw InputError(child(p, "nodes"), what + ": joins a node to itself");
     if ((m.nodes[j.nodes[0]].x - m.nodes[j.nodes[1]].x).norm() > kCoincident * s.length_scale)
       throw InputError(child(p, "nodes"), what + ": nodes '" + m.nodes[j.nodes[0]].id + "' and '" +
                                               m.nodes[j.nodes[1]].id + "' do not coincide");
-    read_axes(j, o, p, what, type);
+    read_axes(j, f, p, what, type);
     j.stiffness.assign(joint_coordinate_count(j.type), 0.0);
-    if (const json* stiffness = field(o, "stiffness")) read_stiffness(j, *stiffness, child(p, "stiffness"), what);
-    if (field(o, "stiffness_from_beam")) read_stiffness_from_beam(j, s, o, p, what);
+    if (const json* stiffness = f.get("stiffness")) read_stiffness(j, *stiffness, child(p, "stiffness"), what);
+    if (f.get("stiffness_from_beam")) read_stiffness_from_beam(j, s, f, p, what);
     m.add_joint(std::move(j));
   }
 }

@@ -37,16 +37,16 @@ void read_members(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/elements", i);
     const auto& o = object(arr[i], p, "element");
-    expect_keys(o, p, {"id", "type", "nodes", "material", "section", "orientation", "divisions", "theory"});
+    const Fields f(o, p, {"id", "type", "nodes", "material", "section", "orientation", "divisions", "theory"});
     Member mem = s.item(&Model::members, i);
-    id_into(mem.id, require(o, p, "id", "element"), child(p, "id"), "element");
+    id_into(mem.id, f.require("id", "element"), child(p, "id"), "element");
     check_unique(m.find_member(mem.id), "element", "/elements", mem.id, i);  // member i is element i
     const std::string& what = s.what.assign("element '").append(mem.id).append("'");
-    const std::string type = string(require(o, p, "type", what), child(p, "type"), what);
+    const std::string type = string(f.require("type", what), child(p, "type"), what);
     if (type == "beam") mem.type = MemberType::Beam;
     else if (type == "rigid") mem.type = MemberType::Rigid;
     else throw InputError(child(p, "type"), what + ": unknown type '" + type + "' (expected beam or rigid)");
-    const auto& nodes = require(o, p, "nodes", what);
+    const auto& nodes = f.require("nodes", what);
     if (!nodes.is_array() || nodes.size() != 2) throw InputError(child(p, "nodes"), what + ": expected two node ids");
     for (int k = 0; k < 2; ++k) mem.nodes[k] = node_ref(m, nodes[k], child(child(p, "nodes"), k));
     const Vec3 x1 = m.nodes[mem.nodes[0]].x, x2 = m.nodes[mem.nodes[1]].x;
@@ -55,14 +55,14 @@ void read_members(ReadState& s) {
       throw InputError(child(p, "nodes"), what + ": zero length (nodes '" + m.nodes[mem.nodes[0]].id + "' and '" +
                                               m.nodes[mem.nodes[1]].id + "' coincide)");
     if (mem.type == MemberType::Beam) {
-      const std::string mid = json_in::id(require(o, p, "material", what), child(p, "material"), What(what, " material"));
+      const std::string mid = json_in::id(f.require("material", what), child(p, "material"), What(what, " material"));
       mem.material = m.find_material(mid);
       if (mem.material < 0) throw InputError(child(p, "material"), what + ": unknown material '" + mid + "'");
-      const std::string sid = json_in::id(require(o, p, "section", what), child(p, "section"), What(what, " section"));
+      const std::string sid = json_in::id(f.require("section", what), child(p, "section"), What(what, " section"));
       mem.section = m.find_section(sid);
       if (mem.section < 0) throw InputError(child(p, "section"), what + ": unknown section '" + sid + "'");
       const Vec3 ex = (x2 - x1) / L;
-      if (const json* orientation = field(o, "orientation")) {
+      if (const json* orientation = f.get("orientation")) {
         mem.orientation = vec3(*orientation, child(p, "orientation"), What(what, " orientation"));
         if (mem.orientation.norm() == 0.0 || mem.orientation.normalized().cross(ex).norm() < kParallelOrientation)
           throw InputError(child(p, "orientation"), what + ": orientation is zero or parallel to the member");
@@ -70,9 +70,9 @@ void read_members(ReadState& s) {
         // Default: global Z in the local x-z plane; for a vertical member, global X.
         mem.orientation = std::abs(ex.z()) > 1.0 - kParallelOrientation ? Vec3(1, 0, 0) : Vec3(0, 0, 1);
       }
-      if (const json* divisions = field(o, "divisions"))
+      if (const json* divisions = f.get("divisions"))
         mem.divisions = integer_in(*divisions, child(p, "divisions"), What(what, " divisions"), 1, kMaxDivisions);
-      if (const json* theory = field(o, "theory")) {
+      if (const json* theory = f.get("theory")) {
         const json_in::Pointer tp = child(p, "theory");
         mem.theory = beam_theory(string(*theory, tp, What(what, " theory")), tp, what);
         const Section& sec = m.sections[mem.section];
@@ -81,10 +81,10 @@ void read_members(ReadState& s) {
                                    "' (give \"k\" or \"ky\" and \"kz\", or a \"shape\")");
       }
     } else {
-      if (o.contains("divisions") && o["divisions"] != 1)
+      if (const json* divisions = f.get("divisions"); divisions && *divisions != 1)
         throw InputError(child(p, "divisions"), what + ": a rigid link cannot be divided");
       for (const char* key : {"material", "section", "orientation", "theory"})
-        if (o.contains(key)) throw InputError(child(p, key), what + ": a rigid link has no " + std::string(key));
+        if (f.get(key)) throw InputError(child(p, key), what + ": a rigid link has no " + std::string(key));
     }
     if (const std::string taken = taken_internal_node_id(m, mem); !taken.empty())
       throw InputError(child(p, "id"), what + ": internal node id '" + taken + "' is taken");

@@ -17,12 +17,12 @@ void read_nodes(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/nodes", i);
     const auto& n = object(arr[i], p, "node");
-    expect_keys(n, p, {"id", "xyz"});
+    const Fields f(n, p, {"id", "xyz"});
     Node node = s.item(&Model::nodes, i);
-    id_into(node.id, require(n, p, "id", "node"), child(p, "id"), "node");
+    id_into(node.id, f.require("id", "node"), child(p, "id"), "node");
     // The user's nodes come first: node i is at position i of the model's nodes.
     check_unique(m.find_node(node.id), "node", "/nodes", node.id, i);
-    node.x = vec3(require(n, p, "xyz", What("node '", node.id, "'")), child(p, "xyz"), What("node '", node.id, "' xyz"));
+    node.x = vec3(f.require("xyz", What("node '", node.id, "'")), child(p, "xyz"), What("node '", node.id, "' xyz"));
     m.add_node(std::move(node));
   }
 }
@@ -33,15 +33,15 @@ void read_materials(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/materials", i);
     const auto& o = object(arr[i], p, "material");
-    expect_keys(o, p, {"id", "E", "G", "nu", "density"});
+    const Fields f(o, p, {"id", "E", "G", "nu", "density"});
     Material mat = s.item(&Model::materials, i);
-    id_into(mat.id, require(o, p, "id", "material"), child(p, "id"), "material");
+    id_into(mat.id, f.require("id", "material"), child(p, "id"), "material");
     check_unique(m.find_material(mat.id), "material", "/materials", mat.id, i);
     const std::string& what = s.what.assign("material '").append(mat.id).append("'");
-    mat.E = positive(require(o, p, "E", what), child(p, "E"), What(what, " E"));
-    if (const json* G = field(o, "G")) {
+    mat.E = positive(f.require("E", what), child(p, "E"), What(what, " E"));
+    if (const json* G = f.get("G")) {
       mat.G = positive(*G, child(p, "G"), What(what, " G"));
-    } else if (const json* nu_value = field(o, "nu")) {
+    } else if (const json* nu_value = f.get("nu")) {
       const double nu = number(*nu_value, child(p, "nu"), What(what, " nu"));
       if (!(nu > -1.0 && nu < 0.5)) throw InputError(child(p, "nu"), what + ": nu must lie in (-1, 0.5)");
       mat.G = mat.E / (2.0 * (1.0 + nu));
@@ -56,23 +56,23 @@ void read_materials(ReadState& s) {
 namespace {
 
 // Reads the section's properties into `sec` (its id already set); `what` holds its name in messages.
-void read_section(const json& o, const json_in::Pointer& p, Section& sec, const std::string& what) {
-  const json* shape_value = field(o, "shape");
+void read_section(const Fields& f, const json_in::Pointer& p, Section& sec, const std::string& what) {
+  const json* shape_value = f.get("shape");
   if (shape_value) {
     const std::string shape = string(*shape_value, child(p, "shape"), what);
     SectionProperties sp;
     if (shape == "rectangle") {
-      const double b = positive(require(o, p, "b", what), child(p, "b"), What(what, " b"));
-      const double h = positive(require(o, p, "h", what), child(p, "h"), What(what, " h"));
+      const double b = positive(f.require("b", what), child(p, "b"), What(what, " b"));
+      const double h = positive(f.require("h", what), child(p, "h"), What(what, " h"));
       sp = rectangle_section(b, h);
     } else if (shape == "circle") {
       double r;
-      if (const json* d = field(o, "d")) r = 0.5 * positive(*d, child(p, "d"), What(what, " d"));
-      else r = positive(require(o, p, "r", what), child(p, "r"), What(what, " r"));
+      if (const json* d = f.get("d")) r = 0.5 * positive(*d, child(p, "d"), What(what, " d"));
+      else r = positive(f.require("r", what), child(p, "r"), What(what, " r"));
       sp = circle_section(r);
     } else if (shape == "tube") {
-      const double d = positive(require(o, p, "d", what), child(p, "d"), What(what, " d"));
-      const double t = positive(require(o, p, "t", what), child(p, "t"), What(what, " t"));
+      const double d = positive(f.require("d", what), child(p, "d"), What(what, " d"));
+      const double t = positive(f.require("t", what), child(p, "t"), What(what, " t"));
       if (!(t < 0.5 * d)) throw InputError(child(p, "t"), what + ": wall thickness must be below the radius");
       sp = tube_section(d, t);
     } else {
@@ -87,7 +87,7 @@ void read_section(const json& o, const json_in::Pointer& p, Section& sec, const 
   }
   // Explicit properties override the shape's.
   auto prop = [&](const char* key, double& out, bool required) {
-    if (const json* v = field(o, key)) out = positive(*v, child(p, key), What(what, " ", key));
+    if (const json* v = f.get(key)) out = positive(*v, child(p, key), What(what, " ", key));
     else if (required && !shape_value)
       throw InputError(child(p, key), what + ": missing field '" + std::string(key) + "'");
   };
@@ -95,7 +95,7 @@ void read_section(const json& o, const json_in::Pointer& p, Section& sec, const 
   prop("Iy", sec.Iy, true);
   prop("Iz", sec.Iz, true);
   prop("J", sec.J, true);
-  if (const json* k = field(o, "k")) sec.ky = sec.kz = positive(*k, child(p, "k"), What(what, " k"));
+  if (const json* k = f.get("k")) sec.ky = sec.kz = positive(*k, child(p, "k"), What(what, " k"));
   prop("ky", sec.ky, false);
   prop("kz", sec.kz, false);
 }
@@ -108,11 +108,11 @@ void read_sections(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/sections", i);
     const auto& o = object(arr[i], p, "section");
-    expect_keys(o, p, {"id", "shape", "b", "h", "d", "r", "t", "A", "Iy", "Iz", "J", "k", "ky", "kz"});
+    const Fields f(o, p, {"id", "shape", "b", "h", "d", "r", "t", "A", "Iy", "Iz", "J", "k", "ky", "kz"});
     Section sec = s.item(&Model::sections, i);
-    id_into(sec.id, require(o, p, "id", "section"), child(p, "id"), "section");
+    id_into(sec.id, f.require("id", "section"), child(p, "id"), "section");
     check_unique(m.find_section(sec.id), "section", "/sections", sec.id, i);
-    read_section(o, p, sec, s.what.assign("section '").append(sec.id).append("'"));
+    read_section(f, p, sec, s.what.assign("section '").append(sec.id).append("'"));
     m.add_section(std::move(sec));
   }
 }
