@@ -23,6 +23,8 @@ using json = nlohmann::json;
 // the `known` list at the call site: one line. Does nothing when `obj` is not an object (the
 // caller's type check reports that).
 void expect_keys(const json& obj, const Pointer& pointer, std::initializer_list<std::string_view> known);
+// The known key nearest to `key` by edit distance, or "" when none is close enough to suggest.
+std::string nearest_key(std::string_view key, std::initializer_list<std::string_view> known);
 
 // The entity named in a message ("element 'e1' material"), up to three parts joined only when a
 // message is built: a reader names every field it reads and almost never needs the name. The parts
@@ -75,10 +77,6 @@ class Fields {
   const json* values_[kMaxKnown];
   std::size_t n_ = 0;
 };
-
-// The known key nearest to `key` by edit distance, or "" when none is close enough to suggest.
-std::string nearest_key(std::string_view key, std::initializer_list<std::string_view> known);
-
 
 // Largest magnitude of an input number: squares and products of a few such values (lengths
 // squared, E I / L^3, ...) stay far inside double range (1.8e308). docs/input-format.md.
