@@ -354,11 +354,20 @@ void node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen:
     out.K = ec.eigenvectors() * ci.asDiagonal() * ec.eigenvectors().transpose();
   }
   out.K = 0.5 * (out.K + out.K.transpose()).eval();
-  // analyse_rank replaces the null space: the free directions found above are put back (swapped
-  // through the scratch, so that neither list allocates once it has its size).
-  w.free_dirs.swap(out.null_space);
-  analyse_rank(out.K, L, options.rank_tolerance, out);  // rank and scaled eigenvalues of the matrix
-  out.null_space.swap(w.free_dirs);
+  if (whole) {
+    // The length-scaled K_c that analyse_rank decomposes, S^-1 K_c S^-1, is K_z itself (to the
+    // rounding of multiplying by L and dividing by it): its rank and eigenvalues are those above.
+    out.eigenvalues = es.eigenvalues();
+    out.rank = 0;
+    for (int i = 0; i < 6; ++i)
+      if (big > 0.0 && std::abs(es.eigenvalues()[i]) > options.rank_tolerance * big) ++out.rank;
+  } else {
+    // analyse_rank replaces the null space: the free directions found above are put back (swapped
+    // through the scratch, so that neither list allocates once it has its size).
+    w.free_dirs.swap(out.null_space);
+    analyse_rank(out.K, L, options.rank_tolerance, out);  // rank and scaled eigenvalues of the matrix
+    out.null_space.swap(w.free_dirs);
+  }
   out.ok = true;
 }
 

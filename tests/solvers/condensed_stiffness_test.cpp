@@ -2,6 +2,7 @@
 // passive joints, equality of a virtual-spring joint and the beam it stands for.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <cstring>
 #include <functional>
 #include <thread>
@@ -39,6 +40,42 @@ TEST(CondensedStiffness, CantileverTipIsTheInverseOfItsAnalyticCompliance) {
   EXPECT_EQ(k.rank, 6);
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j) EXPECT_NEAR(k.K(i, j), K(i, j), 1e-8 * K.cwiseAbs().maxCoeff()) << i << "," << j;
+}
+
+// `eigenvalues` and `rank` (results.json's scaled_eigenvalues and rank) are those of the
+// length-scaled matrix diag(1,1,1,1/L,1/L,1/L) K_c diag(...) (condensed_stiffness.hpp), L the
+// model's length scale, computed here from K_c on its own: for a node whose DOFs are its own (the
+// cantilever's tip: K_c by static condensation, the rank from K_z's own eigenvalues) and for nodes
+// reached through joints (the SVD path, analyse_rank).
+TEST(CondensedStiffness, TheScaledEigenvaluesAndRankAreThoseOfTheLengthScaledMatrix) {
+  json sph = test::cantilever(L, E, G, A, Iy, Iz, J, 2);
+  sph["nodes"].push_back({{"id", "P"}, {"xyz", {L, 0, 0}}});
+  sph["joints"] = {{{"id", "S"}, {"type", "spherical"}, {"nodes", {"B", "P"}}}};
+  json slanted = test::cantilever(L, E, G, A, Iy, Iz, J, 3);
+  slanted["nodes"][1]["xyz"] = {L, 0.4 * L, 0.2 * L};  // every block of K_c coupled
+  json sprung = sph;  // a revolute joint with a spring: rank 6 through a joint
+  sprung["joints"] = {{{"id", "R"}, {"type", "revolute"}, {"nodes", {"B", "P"}}, {"axes", {{0, 0.6, 0.8}}}, {"stiffness", {250.0}}}};
+  const std::vector<std::pair<json, std::string>> cases = {{test::cantilever(L, E, G, A, Iy, Iz, J, 5), "B"},
+                                                           {slanted, "B"}, {sph, "P"}, {sprung, "P"}};
+  for (const auto& [doc, node] : cases) {
+    SCOPED_TRACE(node + " of " + doc.dump().substr(0, 120));
+    const Model m = test::model_from(doc);
+    const auto k = linear_node_stiffness(m, m.find_node(node));
+    ASSERT_TRUE(k.ok) << k.message;
+    const double Ls = m.length_scale();
+    Vec6 s;
+    s << 1, 1, 1, 1 / Ls, 1 / Ls, 1 / Ls;
+    const Mat6 Ks = s.asDiagonal() * k.K * s.asDiagonal();
+    Eigen::SelfAdjointEigenSolver<Mat6> es(0.5 * (Ks + Ks.transpose()));
+    const double big = es.eigenvalues().cwiseAbs().maxCoeff();
+    ASSERT_GT(big, 0.0);
+    int rank = 0;
+    for (int i = 0; i < 6; ++i) {
+      EXPECT_NEAR(k.eigenvalues[i], es.eigenvalues()[i], 1e-12 * big) << i;
+      rank += std::abs(es.eigenvalues()[i]) > 1e-9 * big ? 1 : 0;
+    }
+    EXPECT_EQ(k.rank, rank);
+  }
 }
 
 TEST(CondensedStiffness, ChainEndingInASphericalJointHasRankThree) {
