@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <Eigen/UmfPackSupport>
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -397,10 +398,13 @@ void condense_to_node_of(const Model& model, const DofMap& map, const Matrix& K,
     out.message = "holding node '" + model.nodes[node].id + "' still leaves a mechanism; " + describe_mechanism(out.modes);
     return;
   }
-  // Formatted into the message's own storage (empty here: node_compliance_of cleared it), which a
-  // caller writing case after case over one CondensedStiffness keeps.
-  fmt::format_to(std::back_inserter(out.message), "stiffness of node '{}': rank {}, {} rigid directions, {} free directions",
+  // Formatted on the stack by a format compiled with the program (no parse at run time, no
+  // push_back per character), then copied into the message's own storage, which a caller writing
+  // case after case over one CondensedStiffness keeps.
+  fmt::memory_buffer text;
+  fmt::format_to(std::back_inserter(text), FMT_COMPILE("stiffness of node '{}': rank {}, {} rigid directions, {} free directions"),
                  model.nodes[node].id, out.rank, out.rigid_directions.size(), out.null_space.size());
+  out.message.assign(text.data(), text.size());
 }
 
 template <class Matrix>
