@@ -97,25 +97,32 @@ bool is_known_key(std::string_view k, std::initializer_list<std::string_view> kn
   throw InputError(child(pointer, k), message);
 }
 
+// The key policy over an object's keys: on_known(key, value) for each known key, in the object's
+// order; the first unknown key throws. Nothing when `obj` is not an object. The object's map is
+// walked itself: items() makes a proxy (with a string for array indices) per key.
+template <class F>
+void walk_keys(const json& obj, const Pointer& pointer, std::initializer_list<std::string_view> known, F&& on_known) {
+  if (!obj.is_object()) return;
+  for (const auto& [k, v] : obj.get_ref<const json::object_t&>()) {
+    if (is_free_key(k)) continue;
+    if (!is_known_key(k, known)) unknown_key(k, pointer, known);
+    on_known(k, v);
+  }
+}
+
 }  // namespace
 
 void expect_keys(const json& obj, const Pointer& pointer, std::initializer_list<std::string_view> known) {
-  if (!obj.is_object()) return;
-  // The object's map itself: items() makes a proxy (with a string for array indices) per key.
-  for (const auto& [k, v] : obj.get_ref<const json::object_t&>())
-    if (!is_free_key(k) && !is_known_key(k, known)) unknown_key(k, pointer, known);
+  walk_keys(obj, pointer, known, [](const std::string&, const json&) {});
 }
 
 Fields::Fields(const json& obj, const Pointer& pointer, std::initializer_list<std::string_view> known)
     : obj_(obj), pointer_(pointer) {
   if (known.size() > kMaxKnown) throw std::logic_error("json_in::Fields: more known keys than kMaxKnown");
-  if (!obj.is_object()) return;
-  for (const auto& [k, v] : obj.get_ref<const json::object_t&>()) {
-    if (is_free_key(k)) continue;
-    if (!is_known_key(k, known)) unknown_key(k, pointer, known);
+  walk_keys(obj, pointer, known, [&](const std::string& k, const json& v) {
     keys_[n_] = k;  // the keys are distinct known keys: at most known.size() of them
     values_[n_++] = &v;
-  }
+  });
 }
 
 void Fields::missing(std::string_view key, const What& what) const {

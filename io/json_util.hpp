@@ -60,7 +60,7 @@ class Fields {
   // The value of `key` (one of the known keys), or null when the object lacks it.
   const json* get(std::string_view key) const {
     for (std::size_t i = 0; i < n_; ++i)
-      if (keys_[i].size() == key.size() && keys_[i] == key) return values_[i];
+      if (keys_[i] == key) return values_[i];
     return nullptr;
   }
   // The value of `key`; missing: the InputError of json_in::require.

@@ -202,8 +202,7 @@ void read_loads_and_cases(const json& doc, Model& m) {
   });
 }
 
-double read_density(const json& o, const json_in::Pointer& p, const std::string& what) {
-  const json* density = field(o, "density");
+double read_density(const json* density, const json_in::Pointer& p, const std::string& what) {
   if (!density) return 0.0;
   const double rho = number(*density, child(p, "density"), What(what, " density"));
   if (!(rho >= 0.0)) throw InputError(child(p, "density"), what + ": density must not be negative");

@@ -17,8 +17,9 @@ LoadSet read_load_list(const Model& m, const nlohmann::json& list, const json_in
 // (members, nodes and joints must be read already).
 void read_loads_and_cases(const nlohmann::json& doc, Model& m);
 
-// A material's "density" (absent: 0; negative: InputError).
-double read_density(const nlohmann::json& material, const json_in::Pointer& pointer, const std::string& what);
+// A material's "density", given its value in the material object (null when absent: 0; negative:
+// InputError at pointer/density).
+double read_density(const nlohmann::json* density, const json_in::Pointer& pointer, const std::string& what);
 
 // Checks an analysis's "load_case" (a case or a combination of the model, or "default": the
 // top-level loads and gravity), if present.

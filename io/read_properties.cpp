@@ -48,7 +48,7 @@ void read_materials(ReadState& s) {
     } else {
       throw InputError(child(p, "G"), what + ": missing field 'G' (or 'nu')");
     }
-    mat.density = read_density(o, p, what);
+    mat.density = read_density(f.get("density"), p, what);
     m.add_material(std::move(mat));
   }
 }

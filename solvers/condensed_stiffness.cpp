@@ -357,11 +357,10 @@ void node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen:
   out.K = 0.5 * (out.K + out.K.transpose()).eval();
   if (whole) {
     // The length-scaled K_c that analyse_rank decomposes, S^-1 K_c S^-1, is K_z itself (to the
-    // rounding of multiplying by L and dividing by it): its rank and eigenvalues are those above.
+    // rounding of multiplying by L and dividing by it): its eigenvalues are those above, and its
+    // rank the six less the free directions they gave.
     out.eigenvalues = es.eigenvalues();
-    out.rank = 0;
-    for (int i = 0; i < 6; ++i)
-      if (big > 0.0 && std::abs(es.eigenvalues()[i]) > options.rank_tolerance * big) ++out.rank;
+    out.rank = 6 - static_cast<int>(out.null_space.size());
   } else {
     // analyse_rank replaces the null space: the free directions found above are put back (swapped
     // through the scratch, so that neither list allocates once it has its size).
