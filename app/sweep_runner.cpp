@@ -30,6 +30,10 @@ constexpr std::size_t kProbeLimit = 64;
 // How long the collecting thread waits for rows before it looks at the other ranks and reports
 // progress.
 constexpr auto kCollectPeriod = std::chrono::milliseconds(50);
+// Inline cases (one worker) hand their rows to the table once this many bytes have gathered, if
+// that comes before kCollectPeriod: the rows' buffer stays small and is reused (a buffer of 50 ms
+// of a small model's rows is megabytes, new pages each time it grows).
+constexpr std::size_t kInlineRowBytes = 64 * 1024;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -40,8 +44,17 @@ struct Plan {
   SweepColumns columns;
   std::vector<std::size_t> done;  // in the table already: resumed rows and the probe's rows
   std::size_t probed = 0;         // of which run now by the probe
+  SweepTableCounts probe_counts;  // the probe's rows by status (rank 0's own: not broadcast)
   std::string error;
 };
+
+void count_status(SweepTableCounts& c, SweepCaseResult::Status s) {
+  switch (s) {
+    case SweepCaseResult::Status::Ok: ++c.ok; break;
+    case SweepCaseResult::Status::AnalysisFailed: ++c.analysis_failed; break;
+    case SweepCaseResult::Status::BadInput: ++c.bad_input; break;
+  }
+}
 
 json plan_to_json(const Plan& p) {
   return json{{"columns", p.columns.outputs}, {"done", p.done}, {"probed", p.probed}, {"error", p.error}};
@@ -89,6 +102,7 @@ Plan make_plan(const Sweep& sweep, const SweepOptions& options, const std::files
       std::string text = csv_line(plan.columns.header(sweep));
       for (const auto& [i, r] : probe) {
         text += sweep_row(sweep, i, plan.columns, r);
+        count_status(plan.probe_counts, r.status);
         done[i] = 1;
       }
       plan.probed = probe.size();
@@ -147,6 +161,7 @@ class WorkerPool {
             batch_.rows += one.rows;
             batch_.count += one.count;
             batch_.failed += one.failed;
+            batch_.bad_input += one.bad_input;
           }
           cv_.notify_one();
         }
@@ -164,26 +179,31 @@ class WorkerPool {
 
   struct Batch {
     std::string rows;
-    std::size_t count = 0, failed = 0;
+    std::size_t count = 0, failed = 0;  // failed: not ok
+    std::size_t bad_input = 0;          // of which bad input
     bool all_done = false;  // every worker has ended: this is the last batch
   };
-  // Waits up to `period` for rows (inline: runs cases for up to `period`); returns those finished
-  // so far.
-  Batch take(std::chrono::milliseconds period) {
+  // Waits up to `period` for rows (inline: runs cases for up to `period`, or until kInlineRowBytes
+  // of rows); hands over those finished so far in `into`, whose rows string is cleared and refilled
+  // (its capacity kept, and swapped with the workers' buffer: no allocation per batch).
+  void take(std::chrono::milliseconds period, Batch& into) {
+    into.rows.clear();
+    into.count = into.failed = into.bad_input = 0;
     if (jobs_ == 0) {
-      Batch b;
       const auto t0 = std::chrono::steady_clock::now();
-      while (next_ < pending_.size() && !stop_requested(options_) && std::chrono::steady_clock::now() - t0 < period)
-        run_one(pending_[next_++], b, inline_workspace_, inline_result_);
-      b.all_done = next_ >= pending_.size() || stop_requested(options_);
-      return b;
+      while (next_ < pending_.size() && !stop_requested(options_) && into.rows.size() < kInlineRowBytes &&
+             std::chrono::steady_clock::now() - t0 < period)
+        run_one(pending_[next_++], into, inline_workspace_, inline_result_);
+      into.all_done = next_ >= pending_.size() || stop_requested(options_);
+      return;
     }
     std::unique_lock lock(mutex_);
     cv_.wait_for(lock, period, [&] { return !batch_.rows.empty() || finished_ == jobs_; });
-    Batch b = std::move(batch_);
-    batch_ = Batch{};
-    b.all_done = finished_ == jobs_;
-    return b;
+    into.rows.swap(batch_.rows);
+    std::swap(into.count, batch_.count);
+    std::swap(into.failed, batch_.failed);
+    std::swap(into.bad_input, batch_.bad_input);
+    into.all_done = finished_ == jobs_;
   }
   void join() {
     for (auto& t : threads_)
@@ -197,6 +217,7 @@ class WorkerPool {
     append_sweep_row(into.rows, sweep_, i, columns_, r);
     ++into.count;
     if (r.status != SweepCaseResult::Status::Ok) ++into.failed;
+    if (r.status == SweepCaseResult::Status::BadInput) ++into.bad_input;
   }
 
   const Sweep& sweep_;
@@ -215,12 +236,14 @@ class WorkerPool {
   std::atomic<bool> abort_{false};
 };
 
-// A batch of rows between ranks: "<count> <failed>\n" then the rows.
-std::string encode_batch(const WorkerPool::Batch& b) { return fmt::format("{} {}\n", b.count, b.failed) + b.rows; }
+// A batch of rows between ranks: "<count> <failed> <bad input>\n" then the rows.
+std::string encode_batch(const WorkerPool::Batch& b) {
+  return fmt::format("{} {} {}\n", b.count, b.failed, b.bad_input) + b.rows;
+}
 WorkerPool::Batch decode_batch(const std::string& text) {
   WorkerPool::Batch b;
   const auto nl = text.find('\n');
-  std::sscanf(text.c_str(), "%zu %zu", &b.count, &b.failed);
+  std::sscanf(text.c_str(), "%zu %zu %zu", &b.count, &b.failed, &b.bad_input);
   if (nl != std::string::npos && nl + 1 < text.size()) b.rows = text.substr(nl + 1);
   return b;
 }
@@ -272,11 +295,18 @@ SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepCom
   if (root) appender = std::make_unique<SweepTableAppender>(table);
 
   const int workers = worker_count(options, ranks, pending.size());
-  WorkerPool pool(sweep, options, plan.columns, pending, workers, workers == 1 && ranks == 1, workspace);
+  const bool run_inline = workers == 1 && ranks == 1;
+  // Inline on a new table (no rows resumed), the table is written in case order, one row per case:
+  // the probe's cases first, then the others as they come. Its statuses are then counted here, as
+  // the rows are written, and it needs no sorting pass (finish_sweep_table reads it back whole).
+  const bool table_in_order = root && run_inline && plan.done.size() == plan.probed;
+  SweepTableCounts written = plan.probe_counts;
+  WorkerPool pool(sweep, options, plan.columns, pending, workers, run_inline, workspace);
   const auto t_cases = std::chrono::steady_clock::now();
   int ranks_finished = 0;
+  WorkerPool::Batch mine;
   for (;;) {
-    const WorkerPool::Batch mine = pool.take(kCollectPeriod);
+    pool.take(kCollectPeriod, mine);
     if (!root) {
       if (!mine.rows.empty() || mine.all_done) comm->send(encode_batch(mine), mine.all_done);
       if (mine.all_done) break;
@@ -286,6 +316,9 @@ SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepCom
       if (!b.rows.empty()) appender->append(b.rows);
       progress.done += b.count;
       progress.failed += b.failed;
+      written.ok += b.count - b.failed;
+      written.bad_input += b.bad_input;
+      written.analysis_failed += b.failed - b.bad_input;
     };
     add(mine);
     std::string remote;
@@ -312,7 +345,7 @@ SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepCom
     progress.elapsed_s = seconds_since(t_cases);
     progress.final = true;
     if (options.progress) options.progress(progress);
-    const SweepTableCounts counts = finish_sweep_table(sweep, table);
+    const SweepTableCounts counts = table_in_order ? written : finish_sweep_table(sweep, table);
     summary.ok = counts.ok;
     summary.analysis_failed = counts.analysis_failed;
     summary.bad_input = counts.bad_input;

@@ -43,4 +43,45 @@ inline std::vector<double> paired(const std::vector<std::function<void()>>& fs, 
   return med;
 }
 
+// paired's timing over `rounds` batch rounds, with each function's time divided by that of
+// fs[reference] in the same round: the median, least and largest of those ratios. Rounds follow
+// each other within milliseconds, so a change of the host's speed between them (a neighbour's load,
+// the clock) moves both times of a ratio, where the ratio of two medians mixes rounds.
+struct PairedTimes {
+  std::vector<double> median;                               // seconds per call, median over the rounds
+  std::vector<double> ratio_median, ratio_min, ratio_max;  // / fs[reference], round by round
+};
+inline PairedTimes paired_rounds(const std::vector<std::function<void()>>& fs, double budget,
+                                 std::vector<double> per_call, std::size_t reference, int rounds) {
+  per_call.resize(fs.size(), 1.0);
+  std::vector<long> reps(fs.size(), 1);
+  for (std::size_t i = 0; i < fs.size(); ++i) {
+    fs[i]();  // once before the calibration: first-call costs (caches, lazily built state) excluded
+    const double t0 = thread_cpu_s();
+    fs[i]();
+    reps[i] = std::max<long>(1, static_cast<long>(budget / rounds / std::max(1e-7, thread_cpu_s() - t0)));
+  }
+  std::vector<std::vector<double>> t(fs.size()), ratio(fs.size());
+  for (int b = 0; b < rounds; ++b) {
+    for (std::size_t i = 0; i < fs.size(); ++i) {
+      const double t0 = thread_cpu_s();
+      for (long r = 0; r < reps[i]; ++r) fs[i]();
+      t[i].push_back((thread_cpu_s() - t0) / static_cast<double>(reps[i]) / per_call[i]);
+    }
+    for (std::size_t i = 0; i < fs.size(); ++i) ratio[i].push_back(t[i].back() / t[reference].back());
+  }
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  PairedTimes out;
+  for (std::size_t i = 0; i < fs.size(); ++i) {
+    out.median.push_back(median(t[i]));
+    out.ratio_median.push_back(median(ratio[i]));
+    out.ratio_min.push_back(*std::min_element(ratio[i].begin(), ratio[i].end()));
+    out.ratio_max.push_back(*std::max_element(ratio[i].begin(), ratio[i].end()));
+  }
+  return out;
+}
+
 }  // namespace beamfea::bench

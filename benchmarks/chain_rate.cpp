@@ -9,12 +9,20 @@
 //                              the outputs flattened and formatted as a CSV row
 //   run_sweep --jobs 1         the whole sweep inline (table written to a temporary folder),
 //                              per case
+//   in-process, kept           stage 2 into a kept ModelBuffer and RunReport (what a sweep worker
+//                              keeps from case to case)
+//   sweep case, kept           stage 3 with a kept SweepWorkspace and SweepCaseResult, the row
+//                              appended to a kept line (run_sweep's per-case work, without its
+//                              table and fixed costs)
+// The last column divides each batch's time by the in-process analysis's time of the same batch
+// round and gives the median of those ratios (15 rounds), a paired figure less exposed to the
+// host's changes of speed than the ratio of two medians.
 // Only interfaces that predate the small-model work are used, so that the same source measures
 // an older build (paired before/after ratios: run both binaries alternately).
 //
 // Usage: taskset -c 1 bench_chain_rate [seconds_per_stage] [sweep_cases]
 // Thread CPU time per call (the machine's load makes wall clock meaningless at this scale),
-// median of 5 batches, the stages interleaved batch by batch. OpenBLAS held to one thread.
+// median of 15 rounds, the stages interleaved round by round. OpenBLAS held to one thread.
 // "allocations per call": calls of operator new (this executable replaces it with a counting
 // one) per call of the stage, counted over a separate pass after the timing.
 #include <dlfcn.h>
@@ -95,7 +103,7 @@ int main(int argc, char** argv) {
 
   volatile double sink = 0;
   std::size_t next = 0;
-  const std::vector<std::function<void()>> stages = {[&] { sink = sink + linear_node_stiffness(model, tip).K(0, 0); },
+  std::vector<std::function<void()>> stages = {[&] { sink = sink + linear_node_stiffness(model, tip).K(0, 0); },
        [&] {
          const Model m = load_and_check(doc);
          sink = sink + static_cast<double>(run_document(m, doc, {}).failed);
@@ -111,8 +119,26 @@ int main(int argc, char** argv) {
          o.jobs = 1;
          sink = sink + static_cast<double>(run_sweep(sweep, o).ok);
        }};
-  const std::vector<double> per_call = {1.0, 1.0, 1.0, static_cast<double>(sweep.size())};
-  const auto t = bench::paired(stages, budget, per_call);
+  ModelBuffer kept_model;
+  RunReport kept_report;
+  SweepWorkspace workspace(sweep);
+  SweepCaseResult kept_result;
+  std::string line;
+  std::size_t next_kept = 0;
+  stages.push_back([&] {
+    const Model& m = load_and_check(doc, kept_model);
+    run_document(m, doc, {}, kept_report);
+    sink = sink + static_cast<double>(kept_report.failed);
+  });
+  stages.push_back([&] {
+    const std::size_t i = next_kept++ % sweep.size();
+    run_sweep_case(sweep, i, {}, workspace, kept_result);
+    line.clear();
+    append_sweep_row(line, sweep, i, columns, kept_result);
+    sink = sink + static_cast<double>(line.size());
+  });
+  const std::vector<double> per_call = {1.0, 1.0, 1.0, static_cast<double>(sweep.size()), 1.0, 1.0};
+  const bench::PairedTimes t = bench::paired_rounds(stages, budget, per_call, 1, 15);
   std::vector<double> allocations;
   for (std::size_t i = 0; i < stages.size(); ++i) {
     constexpr int kCalls = 20;
@@ -122,13 +148,15 @@ int main(int argc, char** argv) {
   }
   fs::remove_all(out);
   const char* names[] = {"linear_node_stiffness", "in-process analysis (load_and_check + run_document)",
-                         "sweep case (run_sweep_case + sweep_row)", "run_sweep --jobs 1, per case"};
+                         "sweep case (run_sweep_case + sweep_row)", "run_sweep --jobs 1, per case",
+                         "in-process analysis, kept model and report", "sweep case, kept workspace, result and line"};
   fmt::print(
       "| stage (three-link chain, {} free DOFs, one core) | us per call | calls per second | / in-process | "
-      "allocations per call |\n",
+      "allocations per call | / in-process, paired (min-max) |\n",
       39);
-  fmt::print("|---|---:|---:|---:|---:|\n");
-  for (std::size_t i = 0; i < t.size(); ++i)
-    fmt::print("| {} | {:.1f} | {:.0f} | {:.2f} | {:.0f} |\n", names[i], 1e6 * t[i], 1.0 / t[i], t[i] / t[1],
-               allocations[i]);
+  fmt::print("|---|---:|---:|---:|---:|---|\n");
+  for (std::size_t i = 0; i < t.median.size(); ++i)
+    fmt::print("| {} | {:.1f} | {:.0f} | {:.2f} | {:.0f} | {:.2f} ({:.2f}-{:.2f}) |\n", names[i], 1e6 * t.median[i],
+               1.0 / t.median[i], t.median[i] / t.median[1], allocations[i], t.ratio_median[i], t.ratio_min[i],
+               t.ratio_max[i]);
 }

@@ -12,7 +12,6 @@
 #include <fstream>
 #include <iterator>
 #include <map>
-#include <sstream>
 
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
@@ -59,10 +58,15 @@ void append_formatted(std::string& line, const CompiledFormat& f, double x) {
 void append_number(std::string& line, double x) { append_formatted(line, FMT_COMPILE("{}"), x); }
 
 std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  // One read into a string of the file's size (a stringstream's buffer grows by doubling and its
+  // str() copies it again: three passes over a large table's pages).
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) return {};
+  std::string text(static_cast<std::size_t>(std::max<std::streamoff>(0, in.tellg())), '\0');
+  in.seekg(0);
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(std::max<std::streamsize>(0, in.gcount())));
+  return text;
 }
 
 // Field k of a CSV row (its final line break ignored), as csv_split(row)[k] ("" past the last field),
@@ -419,18 +423,28 @@ SweepTableCounts finish_sweep_table(const Sweep& s, const std::filesystem::path&
   std::sort(rows.begin(), rows.end());
   SweepTableCounts counts;
   const std::size_t status_col = header.size() >= 3 ? header.size() - 3 : 0;
-  std::string text = csv_line(header);
-  text.reserve(old_text.size());
   for (const auto& [i, row] : rows) {
-    text += row;
     const std::string status = csv_field_at(row, status_col);
     if (status == to_string(SweepCaseResult::Status::Ok)) ++counts.ok;
     else if (status == to_string(SweepCaseResult::Status::BadInput)) ++counts.bad_input;
     else ++counts.analysis_failed;
   }
-  // Rows already in order, one per case, under the same header (a fresh `--jobs 1` run): the text
-  // is the file's, and its atomic rewrite (a copy, a sync, a rename) would change nothing.
-  if (text != old_text) write_text_atomic(table, text);
+  // The sorted table: the header as csv_line writes it, then the rows. Where the file is that
+  // already (a fresh `--jobs 1` run: rows in order, one per case, each following the last in the
+  // file's text, nothing after them), its atomic rewrite (a copy, a sync, a rename) would change
+  // nothing, and the text is not built.
+  const std::string head = csv_line(header);
+  bool same = old_text.size() >= head.size() && old_text.compare(0, head.size(), head) == 0;
+  std::size_t at = head.size();  // where the next row must start in the file's text
+  for (std::size_t k = 0; same && k < rows.size(); ++k) {
+    same = rows[k].second.data() == old_text.data() + at;
+    at += rows[k].second.size();
+  }
+  if (same && at == old_text.size()) return counts;
+  std::string text = head;
+  text.reserve(old_text.size());
+  for (const auto& r : rows) text += r.second;
+  write_text_atomic(table, text);
   return counts;
 }
 

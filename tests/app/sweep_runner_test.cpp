@@ -130,19 +130,45 @@ TEST(SweepRunner, FailingCasesAreRowsAndTheSweepGoesOn) {
                   json{{"id", "z"}, {"set", {{"/loads/0/force/1", -2.0}}}}}},
                 {"outputs", {"analyses.lin.nodes.B.displacement[1]"}}};
   const Sweep s = beamfea::read_sweep_file(write_sweep(dir, sweep).string());
-  const auto summary = beamfea::run_sweep(s, quiet_options(dir / "out", 2));
-  EXPECT_EQ(summary.ok, 2u);
-  EXPECT_EQ(summary.analysis_failed, 1u);
-  EXPECT_EQ(summary.bad_input, 1u);
-  EXPECT_EQ(summary.exit_code(), 1);
+  // Two workers: the table sorted and counted after the run (finish_sweep_table). One: the cases
+  // inline, the table written in order and its statuses counted by the runner as it goes.
+  for (const int jobs : {2, 1}) {
+    const auto out = dir / ("out" + std::to_string(jobs));
+    const auto summary = beamfea::run_sweep(s, quiet_options(out, jobs));
+    EXPECT_EQ(summary.ok, 2u) << jobs;
+    EXPECT_EQ(summary.analysis_failed, 1u) << jobs;
+    EXPECT_EQ(summary.bad_input, 1u) << jobs;
+    EXPECT_EQ(summary.exit_code(), 1);
+    const Csv t = read_csv(out / "cases.csv");
+    ASSERT_EQ(t.rows.size(), 4u);
+    const int st = t.col("status"), msg = t.col("message");
+    EXPECT_EQ(t.rows[0][st], "ok");
+    EXPECT_EQ(t.rows[1][st], "analysis failed");
+    EXPECT_FALSE(t.rows[1][msg].empty());
+    EXPECT_EQ(t.rows[2][st], "bad input");
+    EXPECT_NE(t.rows[2][msg].find("/elements/0/section"), std::string::npos) << t.rows[2][msg];
+    EXPECT_EQ(t.rows[3][st], "ok");
+  }
+  EXPECT_EQ(read_csv(dir / "out1" / "cases.csv").without_time(), read_csv(dir / "out2" / "cases.csv").without_time());
+}
+
+// A one-worker sweep whose first cases fail (the probe runs them before one ends ok) counts the
+// probe's rows with the others: the summary is that of the table.
+TEST(SweepRunner, InlineSweepCountsTheProbesFailedCases) {
+  const auto dir = temp_dir("inline_counts");
+  json sweep = {{"grid", {json{{"name", "sec"}, {"pointer", "/elements/0/section"}, {"values", {"nope", "s"}}},
+                          json{{"name", "P"}, {"pointer", "/loads/0/force/1"}, {"values", {-1, -2, -3}}}}},
+                {"outputs", {"analyses.lin.nodes.B.displacement[1]"}}};
+  const Sweep s = beamfea::read_sweep_file(write_sweep(dir, sweep).string());
+  const auto summary = beamfea::run_sweep(s, quiet_options(dir / "out", 1));
+  EXPECT_EQ(summary.ok, 3u);
+  EXPECT_EQ(summary.bad_input, 3u);
+  EXPECT_EQ(summary.analysis_failed, 0u);
   const Csv t = read_csv(dir / "out" / "cases.csv");
-  ASSERT_EQ(t.rows.size(), 4u);
-  const int st = t.col("status"), msg = t.col("message");
-  EXPECT_EQ(t.rows[1][st], "analysis failed");
-  EXPECT_FALSE(t.rows[1][msg].empty());
-  EXPECT_EQ(t.rows[2][st], "bad input");
-  EXPECT_NE(t.rows[2][msg].find("/elements/0/section"), std::string::npos) << t.rows[2][msg];
-  EXPECT_EQ(t.rows[3][st], "ok");
+  ASSERT_EQ(t.rows.size(), 6u);
+  std::size_t bad = 0;
+  for (const auto& row : t.rows) bad += row[t.col("status")] == "bad input";
+  EXPECT_EQ(bad, 3u);
 }
 
 TEST(SweepRunner, ResumeRunsOnlyTheCasesMissingFromTheTable) {
