@@ -50,8 +50,9 @@ struct SweepOptions {
   // Set (from any thread, or a signal handler) to stop handing out cases: the running ones
   // finish and are written, the table is sorted, the summary says interrupted. May be null.
   const std::atomic<bool>* stop = nullptr;
-  // Called on rank 0 only, on the calling thread, every few tens of milliseconds while the cases
-  // run and once with final = true at the end. May be empty.
+  // Called on rank 0 only, on the calling thread, while the cases run (each time rows reach the
+  // table: every few tens of milliseconds at most, more often when a single worker's rows fill
+  // their buffer first) and once with final = true at the end. May be empty.
   std::function<void(const SweepProgress&)> progress;
   void validate() const;
 };
