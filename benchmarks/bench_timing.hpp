@@ -1,13 +1,23 @@
-// Timing helpers of the small-model benchmarks (bench_small_models, bench_chain_rate).
+// Timing helpers of the benchmarks (bench_small_models, bench_chain_rate, bench_path_step,
+// bench_frame_solve).
 #pragma once
 
 #include <time.h>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <vector>
 
 namespace beamfea::bench {
+
+// The median of v (the mean of the two middle values for an even count; NaN for none).
+inline double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
 
 // The calling thread's CPU seconds: on a loaded machine wall clock measures the scheduler.
 inline double thread_cpu_s() {
@@ -70,10 +80,6 @@ inline PairedTimes paired_rounds(const std::vector<std::function<void()>>& fs, d
     }
     for (std::size_t i = 0; i < fs.size(); ++i) ratio[i].push_back(t[i].back() / t[reference].back());
   }
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
   PairedTimes out;
   for (std::size_t i = 0; i < fs.size(); ++i) {
     out.median.push_back(median(t[i]));

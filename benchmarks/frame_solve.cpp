@@ -66,6 +66,7 @@
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
 #include "bench_blas.hpp"
+#include "bench_timing.hpp"
 #include "frame_models.hpp"
 
 namespace {
@@ -546,11 +547,7 @@ int run_all(const char* self, const Options& o) {
     if (!paired.empty()) {
       std::string list;
       for (double x : paired) list += fmt::format("{}{:.2f}", list.empty() ? "" : ", ", x);
-      std::vector<double> sorted = paired;
-      std::sort(sorted.begin(), sorted.end());
-      const std::size_t m = sorted.size();
-      const double median = m % 2 ? sorted[m / 2] : 0.5 * (sorted[m / 2 - 1] + sorted[m / 2]);
-      best["paired"] = fmt::format("{} (median {:.2f})", list, median);
+      best["paired"] = fmt::format("{} (median {:.2f})", list, beamfea::bench::median(paired));
     }
     recs.push_back(best);
   }

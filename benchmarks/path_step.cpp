@@ -46,6 +46,7 @@
 
 #include "app/openblas.hpp"
 #include "bench_blas.hpp"
+#include "bench_timing.hpp"
 #include "solvers/eigen_lowest.hpp"
 #include "solvers/nonlinear_structure.hpp"
 #include "solvers/path_following.hpp"
@@ -109,13 +110,6 @@ double process_cpu() { return cpu_clock(CLOCK_PROCESS_CPUTIME_ID); }
 // bandwidth taken by other processes inflate even the thread's own CPU time).
 double least(const std::vector<double>& v) { return v.empty() ? NAN : *std::min_element(v.begin(), v.end()); }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
 // A path of `steps` arc-length steps: the least thread CPU time of a steady step (between the
 // progress lines of consecutive steps, from the second on), and the median of the paired ratios
 // step / (assembly + LU), `reference` (one assembly and one LU) being measured right after each step
@@ -151,7 +145,7 @@ PathRun time_path(const Model& m, int steps, bool stability, const std::function
     q.push_back(d.back() / refs[i]);
   }
   out.step = least(d);
-  out.ratio = median(q);
+  out.ratio = bench::median(q);
   long its = 0, chord = 0;
   for (const auto& s : r.steps) {
     its += s.iterations;

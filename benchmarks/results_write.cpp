@@ -36,10 +36,6 @@ double process_cpu_s() {
 double wall_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 }  // namespace
 
@@ -102,8 +98,8 @@ int main(int argc, char** argv) {
                                  "write_results_json_file (streamed, threads: now)"};
   for (int k = 0; k < kWriters; ++k)
     fmt::print("| {} | {:.1f} | {:.4f} | {:.4f} | {:.4f} | {:.3f} | {:.3f} | {:.2f} | {:.2f} |\n", names[k],
-               static_cast<double>(bytes[k]) / 1e6, median(cpu[k]), median(pcpu[k]), median(wall[k]),
-               median(pcpu[k]) / analysis_cpu, median(wall[k]) / analysis_wall, median(pcpu[k]) / median(pcpu[0]),
-               median(wall[k]) / median(wall[2]));
+               static_cast<double>(bytes[k]) / 1e6, bench::median(cpu[k]), bench::median(pcpu[k]), bench::median(wall[k]),
+               bench::median(pcpu[k]) / analysis_cpu, bench::median(wall[k]) / analysis_wall, bench::median(pcpu[k]) / bench::median(pcpu[0]),
+               bench::median(wall[k]) / bench::median(wall[2]));
   return 0;
 }
