@@ -73,6 +73,11 @@ BlasCores choose_openblas_core() {
   return out;
 }
 
+void set_blas_threads(int threads) {
+  using Set = void (*)(int);
+  if (const auto set = reinterpret_cast<Set>(openblas_symbol("openblas_set_num_threads"))) set(threads);
+}
+
 void install_openblas_threads_hook() {
   using Set = void (*)(int);
   using Get = int (*)();

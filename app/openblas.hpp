@@ -43,4 +43,8 @@ BlasCores choose_openblas_core();
 // The solvers' BLAS-thread hook (solvers/blas_threads.hpp) on OpenBLAS, when it is the BLAS loaded.
 void install_openblas_threads_hook();
 
+// Sets OpenBLAS's number of threads (nothing when another BLAS is loaded). The one place where the
+// program (a sweep: cases are its unit of parallelism) and the benchmarks set it.
+void set_blas_threads(int threads);
+
 }  // namespace beamfea::app

@@ -25,7 +25,6 @@
 // median of 15 rounds, the stages interleaved round by round. OpenBLAS held to one thread.
 // "allocations per call": calls of operator new (this executable replaces it with a counting
 // one) per call of the stage, counted over a separate pass after the timing.
-#include <dlfcn.h>
 #include <unistd.h>
 #include <fmt/format.h>
 
@@ -40,6 +39,7 @@
 #include <vector>
 
 #include "app/sweep_runner.hpp"
+#include "app/openblas.hpp"
 #include "bench_models.hpp"
 #include "bench_timing.hpp"
 #include "io/model_reader.hpp"
@@ -78,8 +78,7 @@ void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::fre
 #pragma GCC diagnostic pop
 
 int main(int argc, char** argv) {
-  using SetThreads = void (*)(int);
-  if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
+  beamfea::app::set_blas_threads(1);
   const double budget = argc > 1 ? std::atof(argv[1]) : 1.0;
   const std::size_t sweep_cases = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 343;
 

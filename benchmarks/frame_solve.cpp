@@ -58,7 +58,7 @@
 #include <thread>
 #include <vector>
 
-#include "app/parallel_tasks.hpp"
+#include "app/thread_tasks.hpp"
 #include "core/assembly.hpp"
 #include "core/dof_map.hpp"
 #include "core/model.hpp"

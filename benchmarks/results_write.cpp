@@ -8,7 +8,7 @@
 // the same results object into a temporary folder: nlohmann's dump(2) to a string + the atomic
 // write (before), write_results_json to a string + the same write, write_results_json_file
 // (streamed in chunks) on one thread, and the same with the program's threads
-// (app/parallel_tasks.hpp: what `beamfea run` does now); checks that the threaded text is the
+// (app/thread_tasks.hpp: what `beamfea run` does now); checks that the threaded text is the
 // serial one byte for byte; prints the bytes, the times (thread CPU of the calling thread, process
 // CPU and wall, median of the repetitions) and their ratios to the analysis (process CPU and wall).
 #include <fmt/format.h>
@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "bench_blas.hpp"
-#include "app/parallel_tasks.hpp"
+#include "app/thread_tasks.hpp"
 #include "bench_timing.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json_writer.hpp"

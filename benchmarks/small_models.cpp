@@ -8,7 +8,6 @@
 // Prints Markdown tables (docs/performance.md, "Small models"). Every time is the thread's CPU
 // time per call, median of 5 batches of repeated calls, the variants interleaved batch by batch
 // (paired). OpenBLAS is held to one thread.
-#include <dlfcn.h>
 #include <fmt/format.h>
 
 #include <Eigen/UmfPackSupport>
@@ -19,6 +18,7 @@
 #include <vector>
 
 #include "core/assembly.hpp"
+#include "app/openblas.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
 #include "solvers/condensed_stiffness.hpp"
@@ -89,8 +89,7 @@ SparseMatrix stiffness(const Model& model, const DofMap& map) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  using SetThreads = void (*)(int);
-  if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
+  beamfea::app::set_blas_threads(1);
   const double budget = argc > 1 ? std::atof(argv[1]) : 0.5;
 
   fmt::print("### SparseFactor::factorize + solve: dense Cholesky against CHOLMOD\n\n");

@@ -5,7 +5,6 @@
 //
 // Usage: bench_sweep_rate [small_cases] [medium_cases] [max_jobs]
 // Prints a Markdown table (docs/performance.md, "Sweeps").
-#include <dlfcn.h>
 #include <fmt/format.h>
 
 #include <chrono>
@@ -17,6 +16,7 @@
 #include <vector>
 
 #include "app/sweep_runner.hpp"
+#include "app/openblas.hpp"
 #include "io/run.hpp"
 #include "io/sweep.hpp"
 #include "bench_models.hpp"
@@ -109,8 +109,7 @@ Row measure(const std::string& name, int dofs, const json& base, const json& swe
 
 int main(int argc, char** argv) {
   // As in a sweep: one BLAS thread per analysis, so that both columns measure the same thing.
-  using SetThreads = void (*)(int);
-  if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
+  beamfea::app::set_blas_threads(1);
   const std::size_t small_cases = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 20000;
   const std::size_t medium_cases = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 16;
   const int max_jobs = argc > 3 ? std::atoi(argv[3]) : static_cast<int>(std::thread::hardware_concurrency());

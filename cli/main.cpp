@@ -7,7 +7,7 @@
 
 #include <iostream>
 
-#include "app/parallel_tasks.hpp"
+#include "app/thread_tasks.hpp"
 #include "app/program_settings.hpp"
 #include "cli/sweep_command.hpp"
 #include "core/errors.hpp"

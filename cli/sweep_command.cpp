@@ -1,6 +1,5 @@
 #include "cli/sweep_command.hpp"
 
-#include <dlfcn.h>
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -15,6 +14,7 @@
 #include "app/sweep_runner.hpp"
 #include "core/errors.hpp"
 #include "io/sweep.hpp"
+#include "app/openblas.hpp"
 
 #ifdef BEAMFEA_HAVE_MPI
 #include <mpi.h>
@@ -59,8 +59,7 @@ class StopOnSignals {
 // Cases are the unit of parallelism, one per thread: OpenBLAS's own threads would only
 // oversubscribe the cores (and spin in sched_yield between the small factorisations).
 void single_threaded_blas() {
-  using SetThreads = void (*)(int);
-  if (auto f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(1);
+  beamfea::app::set_blas_threads(1);
 }
 
 // Processes of this run on this host, from the launcher (OpenMPI); all of them when it does not say.

@@ -3,7 +3,7 @@
 // (solvers/linear_static.hpp: the element matrices beside the matrix's pattern and ordering) and io
 // (formatting a large results.json in slices: io/json_writer.hpp). Threads are a process-wide
 // matter that belongs to the program, not to the engine: the program (cli/, python/) passes an
-// implementation (app/parallel_tasks.hpp) through the options; without one (empty: a library user,
+// implementation (app/thread_tasks.hpp) through the options; without one (empty: a library user,
 // a sweep's workers, which already run cases on threads) everything runs on the calling thread, in
 // order.
 #include <cstddef>

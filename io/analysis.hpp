@@ -15,7 +15,7 @@
 #include "core/model.hpp"
 #include "io/deferred_results.hpp"
 #include "io/json_pointer.hpp"
-#include "io/parallel_tasks.hpp"
+#include "core/parallel_tasks.hpp"
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/linear_static.hpp"
 #include "solvers/member_loading.hpp"

@@ -22,7 +22,7 @@
 #include <string>
 
 #include "io/deferred_results.hpp"
-#include "io/parallel_tasks.hpp"
+#include "core/parallel_tasks.hpp"
 
 namespace beamfea {
 

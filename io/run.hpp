@@ -11,7 +11,7 @@
 #include "core/model.hpp"
 #include "io/analysis.hpp"
 #include "io/model_reader.hpp"
-#include "io/parallel_tasks.hpp"
+#include "core/parallel_tasks.hpp"
 
 namespace beamfea {
 
@@ -21,7 +21,7 @@ struct RunOptions {
   std::vector<std::string> only;     // run only these analysis ids (empty: all); unknown: InputError
   MessageSink progress;              // progress lines (empty: silent)
   MessageSink warning;               // warnings (empty: dropped)
-  ParallelTasks parallel;            // the program's threads (core/parallel_tasks.hpp; app/parallel_tasks.hpp):
+  ParallelTasks parallel;            // the program's threads (core/parallel_tasks.hpp; app/thread_tasks.hpp):
                                      // a linear analysis's element matrices beside its ordering, a large
                                      // results.json formatted in slices; empty: all on the calling thread
   // false: the caller reads results.json, not RunReport::results (the program). The analyses may

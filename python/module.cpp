@@ -13,12 +13,12 @@
 
 #include "app/huge_pages_policy.hpp"
 #include "app/openblas.hpp"
-#include "app/parallel_tasks.hpp"
+#include "app/thread_tasks.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
 #include "python/convert.hpp"
-#include "python/errors.hpp"
-#include "python/sweep_table.hpp"
+#include "python/python_errors.hpp"
+#include "python/sweep_table_binding.hpp"
 
 namespace py = pybind11;
 using namespace beamfea;
@@ -98,7 +98,7 @@ py::object run(const py::object& model, const std::vector<std::string>& only, co
     if (out) options.out_dir = *out;
     options.write_vtk = vtk;
     options.only = only;
-    // As the program does: a large results.json formatted on all cores (app/parallel_tasks.hpp;
+    // As the program does: a large results.json formatted on all cores (app/thread_tasks.hpp;
     // a small one, as in a ThreadPoolExecutor of many cases, starts no threads).
     if (out) options.parallel = app::thread_tasks();
     report = run_document(m, doc, options);

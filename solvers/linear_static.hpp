@@ -25,7 +25,7 @@ struct LinearStaticOptions {
   double singular_rcond = 1e-13;  // reciprocal condition (Jacobi-scaled) below which K is checked for mechanisms
   double zero_energy_tolerance = 1e-10;  // eigenvalue (Jacobi-scaled) of a zero-energy mode
   // Runs the element matrices beside the ordering and symbolic analysis of K_ff's pattern
-  // (core/parallel_tasks.hpp; the program's: app/parallel_tasks.hpp); empty: one after the other,
+  // (core/parallel_tasks.hpp; the program's: app/thread_tasks.hpp); empty: one after the other,
   // on the calling thread. The result is the same either way.
   ParallelTasks parallel;
   void validate() const;

@@ -1,7 +1,7 @@
-// The program's ParallelTasks (app/parallel_tasks.hpp): every index run exactly once, tasks really
+// The program's ParallelTasks (app/thread_tasks.hpp): every index run exactly once, tasks really
 // at once on the threads asked for, one thread = the calling thread in order, and a task's
 // exception rethrown by the call once every started task has finished.
-#include "app/parallel_tasks.hpp"
+#include "app/thread_tasks.hpp"
 
 #include <gtest/gtest.h>
 

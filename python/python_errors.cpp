@@ -1,4 +1,4 @@
-#include "python/errors.hpp"
+#include "python/python_errors.hpp"
 
 #include <pybind11/pybind11.h>
 

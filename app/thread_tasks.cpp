@@ -1,4 +1,4 @@
-#include "app/parallel_tasks.hpp"
+#include "app/thread_tasks.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -1,4 +1,4 @@
-#include "python/sweep_table.hpp"
+#include "python/sweep_table_binding.hpp"
 
 #include <algorithm>
 #include <atomic>
