@@ -50,7 +50,7 @@ struct Plan {
 
 void count_status(SweepTableCounts& c, SweepCaseResult::Status s) {
   switch (s) {
-    case SweepCaseResult::Status::Ok: ++c.ok; break;
+    case SweepCaseResult::Status::Succeeded: ++c.ok; break;
     case SweepCaseResult::Status::AnalysisFailed: ++c.analysis_failed; break;
     case SweepCaseResult::Status::BadInput: ++c.bad_input; break;
   }
@@ -93,7 +93,7 @@ Plan make_plan(const Sweep& sweep, const SweepOptions& options, const std::files
       for (std::size_t i = 0; i < sweep.size() && probe.size() < kProbeLimit && !stop_requested(options); ++i) {
         if (done[i]) continue;
         run_sweep_case(sweep, i, keep_dir(sweep, options, i), workspace, probe.emplace_back(i, SweepCaseResult()).second);
-        if (probe.back().second.status == SweepCaseResult::Status::Ok) {
+        if (probe.back().second.status == SweepCaseResult::Status::Succeeded) {
           ok = &probe.back().second;
           break;
         }
@@ -216,7 +216,7 @@ class WorkerPool {
     run_sweep_case(sweep_, i, keep_dir(sweep_, options_, i), workspace, r);
     append_sweep_row(into.rows, sweep_, i, columns_, r);
     ++into.count;
-    if (r.status != SweepCaseResult::Status::Ok) ++into.failed;
+    if (r.status != SweepCaseResult::Status::Succeeded) ++into.failed;
     if (r.status == SweepCaseResult::Status::BadInput) ++into.bad_input;
   }
 

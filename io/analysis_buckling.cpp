@@ -37,7 +37,7 @@ AnalysisOutcome run_buckling(const AnalysisContext& ctx) {
   out.result["message"] = r.message;
   out.result["free_dofs"] = r.free_dofs;
   out.message = r.message;
-  if (r.status != BucklingStatus::Ok) {
+  if (r.status != BucklingStatus::Succeeded) {
     if (r.status == BucklingStatus::Mechanism) out.termination = AnalysisTermination::Mechanism;
     else if (r.status != BucklingStatus::NoCompression) out.termination = AnalysisTermination::Failed;
     out.result["load_factors"] = ojson::array();

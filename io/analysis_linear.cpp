@@ -223,14 +223,14 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
   ObjectFiller res(out.result, kLinearStaticResultKeys);
   set_string(res.slot("type"), "linear_static");
   if (!case_id.empty()) set_string(res.slot("load_case"), case_id);
-  set_string(res.slot("status"), r.status == SolveStatus::Converged ? "ok" : to_string(r.status));
+  set_string(res.slot("status"), r.status == SolveStatus::Succeeded ? "ok" : to_string(r.status));
   set_string(res.slot("message"), r.message);
   res.slot("free_dofs") = r.free_dofs;
   res.slot("factorizations") = system->factorizations();
   // Copied into the previous run's message storage when there is one (no allocation in a sweep).
   if (ctx.previous_message) out.message.swap(*ctx.previous_message);
   out.message.assign(r.message);
-  if (r.status != SolveStatus::Converged) {
+  if (r.status != SolveStatus::Succeeded) {
     out.termination = r.status == SolveStatus::Mechanism ? AnalysisTermination::Mechanism : AnalysisTermination::Failed;
     res.slot("mechanism") = mechanism_json(model, r.modes);
     res.finish();

@@ -66,7 +66,7 @@ AnalysisOutcome run_modal(const AnalysisContext& ctx) {
   out.result["mass"] = opt.mass == MassKind::Lumped ? "lumped" : "consistent";
   if (ctx.spec.contains("load_case")) out.result["load_case"] = ctx.spec["load_case"];
   out.message = r.message;
-  if (r.status != ModalStatus::Ok) {
+  if (r.status != ModalStatus::Succeeded) {
     out.termination = r.status == ModalStatus::MasslessMechanism ? AnalysisTermination::Mechanism
                       : r.status == ModalStatus::Failed          ? AnalysisTermination::NotConverged
                                                                  : AnalysisTermination::Failed;

@@ -73,7 +73,7 @@ const ojson* find_path(const ojson& root, const SweepOutput& o) {
 
 const char* to_string(SweepCaseResult::Status s) {
   switch (s) {
-    case SweepCaseResult::Status::Ok: return "ok";
+    case SweepCaseResult::Status::Succeeded: return "ok";
     case SweepCaseResult::Status::AnalysisFailed: return "analysis failed";
     case SweepCaseResult::Status::BadInput: return "bad input";
   }
@@ -121,7 +121,7 @@ namespace {
 void run_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir,
               SweepCaseDocument* documents, ModelBuffer* models, RunReport* reports, SweepCaseResult& r) {
   const auto t0 = std::chrono::steady_clock::now();
-  r.status = SweepCaseResult::Status::Ok;
+  r.status = SweepCaseResult::Status::Succeeded;
   r.message.clear();
   r.outputs.resize(sweep.outputs.size());
   std::size_t done = 0;  // outputs written for this case; those after it still hold the last case's

@@ -119,8 +119,8 @@ Sweep read_sweep_file(const std::string& path);
 
 // The outcome of one case.
 struct SweepCaseResult {
-  enum class Status { Ok, AnalysisFailed, BadInput };
-  Status status = Status::Ok;
+  enum class Status { Succeeded, AnalysisFailed, BadInput };
+  Status status = Status::Succeeded;
   std::string message;
   double wall_time_s = 0.0;
   // Per output, its flattened (column name, cell text) pairs; empty where the path is absent.

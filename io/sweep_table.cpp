@@ -425,7 +425,7 @@ SweepTableCounts finish_sweep_table(const Sweep& s, const std::filesystem::path&
   const std::size_t status_col = header.size() >= 3 ? header.size() - 3 : 0;
   for (const auto& [i, row] : rows) {
     const std::string status = csv_field_at(row, status_col);
-    if (status == to_string(SweepCaseResult::Status::Ok)) ++counts.ok;
+    if (status == to_string(SweepCaseResult::Status::Succeeded)) ++counts.ok;
     else if (status == to_string(SweepCaseResult::Status::BadInput)) ++counts.bad_input;
     else ++counts.analysis_failed;
   }

@@ -100,7 +100,7 @@ py::dict sweep_columns(const Sweep& sweep, int jobs) {
   // Output columns as in DIR/cases.csv (docs/sweep.md): those of the first case that ends ok,
   // or the output's name alone when none does; other cases fill the columns they share.
   const auto first_ok = std::find_if(results.begin(), results.end(),
-                                     [](const SweepCaseResult& r) { return r.status == SweepCaseResult::Status::Ok; });
+                                     [](const SweepCaseResult& r) { return r.status == SweepCaseResult::Status::Succeeded; });
   const SweepColumns columns = beamfea::sweep_columns(sweep, first_ok != results.end() ? &*first_ok : nullptr);
   for (std::size_t o = 0; o < sweep.outputs.size(); ++o) {
     const std::vector<std::string>& names = columns.outputs[o];

@@ -80,7 +80,7 @@ DirectionalStiffness condense_to_directions(const Model& model, const DofMap& ma
                     "' in the requested directions leaves a mechanism, or a direction is not independent of the "
                     "constraints";
       return out;
-    case RawCondensation::Outcome::Ok:
+    case RawCondensation::Outcome::Succeeded:
       break;
   }
   out.K = c.K;
@@ -309,7 +309,7 @@ StructuralStiffness structural_stiffness(const Model& model, const AllocationOpt
   const SparseMatrix& K = assembler.K_ff();
   SparseFactor factor;
   const FactorStatus fs = factor.factorize(K);
-  if (fs != FactorStatus::Ok) {
+  if (fs != FactorStatus::Succeeded) {
     out.modes = zero_energy_modes(m, map, K, 12);
     if (!out.modes.empty()) {
       out.message = "with " + actuator_names(model, o, actuated) + " frozen, " + describe_mechanism(out.modes);

@@ -36,7 +36,7 @@ using SolutionVisitor = std::function<void(const Model&, const DofMap&, const Li
 LoadedSchemeModel solve_loaded(const Model& m, const AllocationOptions& o, const SolutionVisitor& visit = {}) {
   LoadedSchemeModel out;
   const LinearStaticResult lin = solve_linear_static(m);
-  if (lin.status != SolveStatus::Converged) {
+  if (lin.status != SolveStatus::Succeeded) {
     out.message = lin.message;
     out.stiffness_message = "no linear solution of the case";
     return out;

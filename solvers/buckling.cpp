@@ -25,7 +25,7 @@ void BucklingOptions::validate() const {
 
 const char* to_string(BucklingStatus s) {
   switch (s) {
-    case BucklingStatus::Ok: return "ok";
+    case BucklingStatus::Succeeded: return "ok";
     case BucklingStatus::NoCompression: return "no buckling";
     case BucklingStatus::Mechanism: return "mechanism";
     case BucklingStatus::Failed: return "failed";
@@ -53,7 +53,7 @@ BucklingResult solve_buckling(const Model& model, const BucklingOptions& options
   options.validate();
   BucklingResult res;
   const LinearStaticResult lin = solve_linear_static(model);
-  if (lin.status != SolveStatus::Converged) {
+  if (lin.status != SolveStatus::Succeeded) {
     res.status = lin.status == SolveStatus::Mechanism ? BucklingStatus::Mechanism : BucklingStatus::Failed;
     res.message = "buckling: the linear static solution failed: " + lin.message;
     return res;
@@ -149,7 +149,7 @@ BucklingResult solve_buckling(const Model& model, const BucklingOptions& options
     const Eigen::VectorXd raw = map.T_free() * pairs[i].second;
     res.modes.push_back(normalise_mode(model, raw));
   }
-  res.status = BucklingStatus::Ok;
+  res.status = BucklingStatus::Succeeded;
   res.message = fmt::format("buckling: {} free DOFs, lowest load factor {:.6g}", n, res.load_factors[0]);
   return res;
 }

@@ -39,7 +39,7 @@ struct BucklingOptions {
   void validate() const;
 };
 
-enum class BucklingStatus { Ok, NoCompression, Mechanism, Failed };
+enum class BucklingStatus { Succeeded, NoCompression, Mechanism, Failed };
 const char* to_string(BucklingStatus s);
 
 struct BucklingResult {

@@ -82,7 +82,7 @@ RawCondensation condense_to_raw_dofs(const DofMap& map, const SparseMatrix& K, c
     Eigen::MatrixXd Kz;
     if (condense_dense(K, rows, Kz)) {
       out.K = Kz;
-      out.outcome = RawCondensation::Outcome::Ok;
+      out.outcome = RawCondensation::Outcome::Succeeded;
       return out;
     }
   }
@@ -106,7 +106,7 @@ RawCondensation condense_to_raw_dofs(const DofMap& map, const SparseMatrix& K, c
   if (!ok) return out;
   const Eigen::MatrixXd M = X.bottomRows(nd);
   out.K = -0.5 * (M + M.transpose());
-  out.outcome = RawCondensation::Outcome::Ok;
+  out.outcome = RawCondensation::Outcome::Succeeded;
   return out;
 }
 
@@ -462,7 +462,7 @@ void linear_node_stiffness(const Model& model, int node, CondensedStiffness& out
 
 CondensedStiffness loaded_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options) {
   const LinearStaticResult lin = solve_linear_static(model);
-  if (lin.status != SolveStatus::Converged) {
+  if (lin.status != SolveStatus::Succeeded) {
     CondensedStiffness out;
     out.message = "loaded stiffness: the linear static solution of the preload failed: " + lin.message;
     out.modes = lin.modes;

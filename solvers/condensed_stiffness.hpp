@@ -52,7 +52,7 @@ struct CondensedStiffness {
 
 // The saddle-point condensation itself, onto any list of raw DOFs (rows of T_free).
 struct RawCondensation {
-  enum class Outcome { Ok, HeldDof, Mechanism };
+  enum class Outcome { Succeeded, HeldDof, Mechanism };
   Outcome outcome = Outcome::Mechanism;
   Eigen::MatrixXd K;   // raw.size() square, symmetric
   int held = -1;       // Outcome::HeldDof: index into `raw` of a DOF with no free motion at all

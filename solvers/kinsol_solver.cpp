@@ -23,7 +23,7 @@ void KinsolOptions::validate() const {
 
 const char* to_string(KinsolStatus s) {
   switch (s) {
-    case KinsolStatus::Converged: return "converged";
+    case KinsolStatus::Succeeded: return "converged";
     case KinsolStatus::StepTooSmall: return "step too small";
     case KinsolStatus::TooManyIterations: return "too many iterations";
     case KinsolStatus::LinearSolverFailed: return "linear solver failed";
@@ -247,10 +247,10 @@ KinsolSummary KinsolSolver::solve(Eigen::VectorXd& u, const Eigen::VectorXd& fsc
   sum.residual_norm = F.size() ? (F.cwiseProduct(fscale)).cwiseAbs().maxCoeff() : 0.0;
   switch (flag) {
     case KIN_SUCCESS:
-    case KIN_INITIAL_GUESS_OK: sum.status = KinsolStatus::Converged; break;
+    case KIN_INITIAL_GUESS_OK: sum.status = KinsolStatus::Succeeded; break;
     case KIN_STEP_LT_STPTOL:
       // Stalled at round-off just above the tolerance: accept within a factor of 100.
-      sum.status = sum.residual_norm <= 100.0 * options_.function_tolerance ? KinsolStatus::Converged : KinsolStatus::StepTooSmall;
+      sum.status = sum.residual_norm <= 100.0 * options_.function_tolerance ? KinsolStatus::Succeeded : KinsolStatus::StepTooSmall;
       break;
     case KIN_MAXITER_REACHED: sum.status = KinsolStatus::TooManyIterations; break;
     case KIN_LSETUP_FAIL:

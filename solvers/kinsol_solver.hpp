@@ -30,7 +30,7 @@ struct KinsolOptions {
   void validate() const;
 };
 
-enum class KinsolStatus { Converged, StepTooSmall, TooManyIterations, LinearSolverFailed, Failed };
+enum class KinsolStatus { Succeeded, StepTooSmall, TooManyIterations, LinearSolverFailed, Failed };
 const char* to_string(KinsolStatus s);
 
 struct KinsolSummary {

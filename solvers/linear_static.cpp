@@ -14,7 +14,7 @@ namespace beamfea {
 
 const char* to_string(SolveStatus s) {
   switch (s) {
-    case SolveStatus::Converged: return "converged";
+    case SolveStatus::Succeeded: return "converged";
     case SolveStatus::Mechanism: return "mechanism";
     case SolveStatus::Failed: return "failed";
   }
@@ -73,7 +73,7 @@ LinearSystem::LinearSystem(const Model& model, const LinearStaticOptions& option
   const SparseMatrix& K = s.assembler.K_ff();
   LinearStaticResult& res = s.failure;
   res.free_dofs = s.map.free_size();
-  res.status = SolveStatus::Converged;
+  res.status = SolveStatus::Succeeded;
   const FactorStatus fs = s.factor.factorize(K, fo);
   if (fs == FactorStatus::TooLarge) {
     res.status = SolveStatus::Failed;
@@ -81,7 +81,7 @@ LinearSystem::LinearSystem(const Model& model, const LinearStaticOptions& option
                               "(factor over 2^31 entries or out of memory)", s.map.free_size());
     return;
   }
-  if (fs != FactorStatus::Ok) {
+  if (fs != FactorStatus::Succeeded) {
     res.modes = zero_energy_modes(model, s.map, K, 12, options.zero_energy_tolerance);
     if (!res.modes.empty()) {
       res.status = SolveStatus::Mechanism;
@@ -113,7 +113,7 @@ LinearStaticResult LinearSystem::solve(const LoadSet& loads) const {
 
 void LinearSystem::solve(const LoadSet& loads, LinearStaticResult& res, LinearSolveScratch& scratch) const {
   const Impl& s = *impl_;
-  if (s.failure.status != SolveStatus::Converged) {
+  if (s.failure.status != SolveStatus::Succeeded) {
     res = s.failure;
     return;
   }
@@ -151,7 +151,7 @@ void LinearSystem::solve(const LoadSet& loads, LinearStaticResult& res, LinearSo
       res.end_forces[e] += fixed_end_forces(beam->length(), res.element_loads[e]);
   }
   res.modes.clear();
-  res.status = SolveStatus::Converged;
+  res.status = SolveStatus::Succeeded;
   res.message.clear();
   fmt::format_to(std::back_inserter(res.message), "linear static: {} free DOFs, max |u| = {:.6g}", s.map.free_size(),
                  res.u.size() ? res.u.cwiseAbs().maxCoeff() : 0.0);

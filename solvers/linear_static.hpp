@@ -15,7 +15,7 @@
 namespace beamfea {
 
 enum class SolveStatus {
-  Converged,   // a solution was found
+  Succeeded,   // a solution was found
   Mechanism,   // the structure has zero-energy modes (see modes)
   Failed,      // the factorisation failed for another reason
 };

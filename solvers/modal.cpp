@@ -35,7 +35,7 @@ void ModalOptions::validate() const {
 
 const char* to_string(ModalStatus s) {
   switch (s) {
-    case ModalStatus::Ok: return "ok";
+    case ModalStatus::Succeeded: return "ok";
     case ModalStatus::NoMass: return "no mass";
     case ModalStatus::MasslessMechanism: return "massless mechanism";
     case ModalStatus::PreloadFailed: return "preload failed";
@@ -80,7 +80,7 @@ ModalResult solve_modal(const Model& model, const ModalOptions& options) {
   const SparseMatrix& M = ma.K_ff();
   if (options.preload) {
     const LinearStaticResult lin = solve_linear_static(model);
-    if (lin.status != SolveStatus::Converged) {
+    if (lin.status != SolveStatus::Succeeded) {
       res.status = ModalStatus::PreloadFailed;
       res.message = "modal: the linear static solution of the preload failed: " + lin.message;
       return res;
@@ -170,7 +170,7 @@ ModalResult solve_modal(const Model& model, const ModalOptions& options) {
       res.effective_mass(k, d) = res.participation(k, d) * res.participation(k, d);
     }
   }
-  res.status = ModalStatus::Ok;
+  res.status = ModalStatus::Succeeded;
   res.message = fmt::format("modal: {} free DOFs, {} modes{}, lowest {:.6g} Hz{}{}", n, count,
                             options.preload ? " about the loaded state" : "",
                             count > 0 ? res.frequencies[0] : 0.0,

@@ -46,7 +46,7 @@ struct ModalOptions {
 };
 
 enum class ModalStatus {
-  Ok,
+  Succeeded,
   NoMass,           // the model has no mass (no density, no point masses)
   MasslessMechanism,  // K - sigma M singular: a mechanism that moves no mass
   PreloadFailed,    // the linear static solution of the preload failed

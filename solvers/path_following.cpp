@@ -23,7 +23,7 @@ Model imperfect_model(const Model& model, int mode, double amplitude) {
   BucklingOptions bo;
   bo.modes = mode;
   const BucklingResult b = solve_buckling(model, bo);
-  if (b.status != BucklingStatus::Ok || static_cast<int>(b.modes.size()) < mode)
+  if (b.status != BucklingStatus::Succeeded || static_cast<int>(b.modes.size()) < mode)
     throw ModelError(fmt::format("imperfection mode {}", mode),
                      fmt::format("buckling mode {} is not available ({})", mode, b.message));
   Model m = model;
@@ -178,7 +178,7 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
   double slope = disp && o.locate_critical ? P.conjugate_slope(cur) : NAN;
   while (true) {
     if (control.target_reached(cur)) {
-      res.finish(PathTermination::TargetReached);
+      res.finish(PathTermination::Succeeded);
       break;
     }
     if (step >= o.max_steps) {  // an incomplete path

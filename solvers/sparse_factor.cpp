@@ -18,7 +18,7 @@ namespace beamfea {
 
 const char* to_string(FactorStatus s) {
   switch (s) {
-    case FactorStatus::Ok: return "ok";
+    case FactorStatus::Succeeded: return "ok";
     case FactorStatus::NotPositiveDefinite: return "not positive definite";
     case FactorStatus::Singular: return "singular";
     case FactorStatus::TooLarge: return "too large to factorise";
@@ -184,7 +184,7 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
     if (cholesky_in_place(D, impl_->dense_last)) {
       rcond_ = cholesky_rcond(D);
       cholesky_ok_ = dense_ok_ = true;
-      return rcond_ >= options.singular_rcond ? FactorStatus::Ok : FactorStatus::NotPositiveDefinite;
+      return rcond_ >= options.singular_rcond ? FactorStatus::Succeeded : FactorStatus::NotPositiveDefinite;
     }
   }
   // CHOLMOD reads the lower triangle only (Eigen::Lower): the scaled copy is of that half.
@@ -193,13 +193,13 @@ FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions&
   if (n == 0) {
     cholesky_ok_ = true;
     rcond_ = 1.0;
-    return FactorStatus::Ok;
+    return FactorStatus::Succeeded;
   }
   impl_->llt.factorize(A);
   if (impl_->llt.info() == Eigen::Success) {
     rcond_ = impl_->llt.rcond();
     cholesky_ok_ = true;
-    if (rcond_ >= options.singular_rcond && unrestrained_.empty()) return FactorStatus::Ok;
+    if (rcond_ >= options.singular_rcond && unrestrained_.empty()) return FactorStatus::Succeeded;
     return FactorStatus::NotPositiveDefinite;
   }
   if (!options.allow_lu) return FactorStatus::NotPositiveDefinite;

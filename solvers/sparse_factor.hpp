@@ -17,7 +17,7 @@
 namespace beamfea {
 
 enum class FactorStatus {
-  Ok,                  // factorised; solves are meaningful
+  Succeeded,           // factorised; solves are meaningful
   NotPositiveDefinite, // Cholesky failed: singular or indefinite (LU may still have succeeded)
   Singular,            // no factorisation could be made
   TooLarge,            // the symbolic analysis failed: the factor exceeds CHOLMOD's int interface or memory

@@ -292,7 +292,7 @@ bool PathEquilibrium::solve(KinsolSolver& kin, const Converged& start, const Ste
     return false;
   }
   report = sum.report();
-  if (sum.status != KinsolStatus::Converged) return false;
+  if (sum.status != KinsolStatus::Succeeded) return false;
   finish(u);
   out.iterations = sum.iterations;
   out.chord_iterations = chord_its;

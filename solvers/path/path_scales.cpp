@@ -23,7 +23,7 @@ PathScales path_scales(const Model& model, const PathEquilibrium& eq, const Conv
       BucklingOptions bo;
       bo.modes = 1;
       const BucklingResult b = solve_buckling(model, bo);
-      if (b.status == BucklingStatus::Ok && b.load_factors.size() > 0 && b.load_factors[0] > 0.0) {
+      if (b.status == BucklingStatus::Succeeded && b.load_factors.size() > 0 && b.load_factors[0] > 0.0) {
         s.buckling_factor = b.load_factors[0];
       }
     } catch (const Error&) {

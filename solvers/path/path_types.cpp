@@ -32,7 +32,7 @@ const char* to_string(CriticalPointType t) {
 
 bool is_completed(PathTermination t) {
   switch (t) {
-    case PathTermination::TargetReached:
+    case PathTermination::Succeeded:
     case PathTermination::StopLoadFactor:
     case PathTermination::StopBeyond:
     case PathTermination::StopSteps: return true;
@@ -55,7 +55,7 @@ void PathResult::finish(PathTermination t, double value, int count, std::string 
 
 std::string PathResult::brief_report() const {
   switch (termination) {
-    case PathTermination::TargetReached: return "control target reached";
+    case PathTermination::Succeeded: return "control target reached";
     case PathTermination::StopLoadFactor: return fmt::format("stop: load factor {:.6g} reached", termination_value);
     case PathTermination::StopBeyond: return fmt::format("stop: {} beyond {:.6g}", termination_detail, termination_value);
     case PathTermination::StopSteps: return fmt::format("stop: {} steps", termination_count);

@@ -102,7 +102,7 @@ struct CriticalPoint {
 // Why the path stopped. The first four are a completed path (the target or a stop condition was
 // reached); the others are an incomplete one.
 enum class PathTermination {
-  TargetReached,        // load or displacement control reached its target
+  Succeeded,            // load or displacement control reached its target
   StopLoadFactor,       // "stop": {"load_factor"}
   StopBeyond,           // "stop": {"node", "dof", "beyond"}
   StopSteps,            // "stop": {"steps"}

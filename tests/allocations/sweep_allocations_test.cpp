@@ -233,7 +233,7 @@ Passes run_twice(const Sweep& sweep) {
   for (std::size_t i = 0, start = 0; i < sweep.size(); start = ends[i++]) {
     p.warm_rows.push_back(without_wall_time(rows.substr(start, ends[i] - start)));
     const SweepCaseResult fresh = beamfea::run_sweep_case(sweep, i);
-    EXPECT_EQ(fresh.status, SweepCaseResult::Status::Ok) << "case " << i << ": " << fresh.message;
+    EXPECT_EQ(fresh.status, SweepCaseResult::Status::Succeeded) << "case " << i << ": " << fresh.message;
     p.fresh_rows.push_back(without_wall_time(beamfea::sweep_row(sweep, i, columns, fresh)));
   }
   return p;

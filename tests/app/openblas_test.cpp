@@ -63,7 +63,7 @@ TEST(OpenBlasCore, ChosenKernelsFactoriseCorrectly) {
   for (int i = 0; i < n; ++i) x[i] = std::sin(0.37 * i) + 0.1 * (i % 5);
   const Eigen::VectorXd f = K * x;
   beamfea::SparseFactor factor;
-  ASSERT_EQ(factor.factorize(K), beamfea::FactorStatus::Ok);
+  ASSERT_EQ(factor.factorize(K), beamfea::FactorStatus::Succeeded);
   EXPECT_FALSE(factor.dense());
   // K is well conditioned (eigenvalues in [1, 13]): the error is a few ulps of |x|.
   EXPECT_LT((factor.solve(f) - x).norm() / x.norm(), 1e-13);

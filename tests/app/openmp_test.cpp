@@ -66,7 +66,7 @@ TEST(LibraryOpenMp, CholmodStartsNoThreadAfterTheSetting) {
   auto factorise = [&] {
     const int before = thread_count();
     beamfea::SparseFactor factor;
-    ASSERT_EQ(factor.factorize(K), beamfea::FactorStatus::Ok);
+    ASSERT_EQ(factor.factorize(K), beamfea::FactorStatus::Succeeded);
     EXPECT_EQ(thread_count(), before);
     EXPECT_LT((factor.solve(f) - x).norm() / x.norm(), 1e-13);
   };

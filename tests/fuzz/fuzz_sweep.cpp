@@ -29,7 +29,7 @@ using nlohmann::json;
 
 int expected_code(beamfea::SweepCaseResult::Status s) {
   switch (s) {
-    case beamfea::SweepCaseResult::Status::Ok: return 0;
+    case beamfea::SweepCaseResult::Status::Succeeded: return 0;
     case beamfea::SweepCaseResult::Status::AnalysisFailed: return 1;
     case beamfea::SweepCaseResult::Status::BadInput: return 2;
   }
@@ -74,7 +74,7 @@ void check_case(const beamfea::Sweep& s, std::size_t i) {
 
   // Its row in a table whose columns it settles.
   const beamfea::SweepColumns columns =
-      beamfea::sweep_columns(s, r.status == beamfea::SweepCaseResult::Status::Ok ? &r : nullptr);
+      beamfea::sweep_columns(s, r.status == beamfea::SweepCaseResult::Status::Succeeded ? &r : nullptr);
   const auto header = columns.header(s);
   check_line(beamfea::csv_line(header), header, "the header");
   const std::string row = beamfea::sweep_row(s, i, columns, r);

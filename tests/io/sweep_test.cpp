@@ -86,7 +86,7 @@ TEST(SweepCase, OneCaseGivesTheClosedFormsAndItsRow) {
   const Sweep s = beamfea::read_sweep_file(write_sweep(dir, three_cases()).string());
   const double L = 2.0;
   const SweepCaseResult r = beamfea::run_sweep_case(s, 2);
-  ASSERT_EQ(r.status, SweepCaseResult::Status::Ok) << r.message;
+  ASSERT_EQ(r.status, SweepCaseResult::Status::Succeeded) << r.message;
   ASSERT_EQ(r.outputs.size(), 2u);
   ASSERT_EQ(r.outputs[0].size(), 1u);
   EXPECT_EQ(r.outputs[0][0].first, "v");
@@ -351,7 +351,7 @@ TEST(SweepCase, AReusedResultHoldsOnlyItsOwnCase) {
     EXPECT_EQ(reused.message, fresh.message) << "case " << i;
     EXPECT_EQ(reused.outputs, fresh.outputs) << "case " << i;
     switch (fresh.status) {
-      case SweepCaseResult::Status::Ok:
+      case SweepCaseResult::Status::Succeeded:
         ++seen_ok;
         ASSERT_EQ(fresh.outputs.size(), 2u);
         EXPECT_EQ(fresh.outputs[0].size(), 36u);
@@ -412,7 +412,7 @@ TEST(SweepCase, AReusedWorkspaceGivesEachCaseTheFreshResult) {
     EXPECT_EQ(reused.message, fresh.message) << "case " << i;
     EXPECT_EQ(reused.outputs, fresh.outputs) << "case " << i;
     switch (fresh.status) {
-      case SweepCaseResult::Status::Ok: ++seen_ok; break;
+      case SweepCaseResult::Status::Succeeded: ++seen_ok; break;
       case SweepCaseResult::Status::AnalysisFailed: ++seen_failed; break;
       case SweepCaseResult::Status::BadInput: ++seen_bad; break;
     }
@@ -424,7 +424,7 @@ TEST(SweepCase, AReusedWorkspaceGivesEachCaseTheFreshResult) {
   // the model), and is of full rank.
   beamfea::run_sweep_case(s, 1, {}, workspace, reused);
   const SweepCaseResult plain = beamfea::run_sweep_case(s, 0);
-  ASSERT_EQ(reused.status, SweepCaseResult::Status::Ok) << reused.message;
+  ASSERT_EQ(reused.status, SweepCaseResult::Status::Succeeded) << reused.message;
   EXPECT_NE(reused.outputs[0], plain.outputs[0]);
   ASSERT_EQ(reused.outputs[1].size(), 1u);
   EXPECT_EQ(reused.outputs[1][0].second, "6");

@@ -21,7 +21,7 @@ double first_factor(const json& d, int modes = 1) {
   BucklingOptions o;
   o.modes = modes;
   const BucklingResult r = solve_buckling(m, o);
-  EXPECT_EQ(r.status, BucklingStatus::Ok) << r.message;
+  EXPECT_EQ(r.status, BucklingStatus::Succeeded) << r.message;
   return r.load_factors.size() ? r.load_factors[0] : NAN;
 }
 }  // namespace
@@ -60,7 +60,7 @@ TEST(Buckling, PinnedColumnConvergesToEulerLoadWithHigherModes) {
     BucklingOptions o;
     o.modes = 3;
     const BucklingResult r = solve_buckling(m, o);
-    ASSERT_EQ(r.status, BucklingStatus::Ok);
+    ASSERT_EQ(r.status, BucklingStatus::Succeeded);
     ASSERT_EQ(r.load_factors.size(), 3);
     const double err = std::abs(r.load_factors[0] / exact - 1.0);
     std::cout << "pinned, " << n << " elements: relative error " << err << "\n";
@@ -131,7 +131,7 @@ TEST(Buckling, SparseShiftInvertPathGivesEulerLoadsOfAFineMesh) {
   BucklingOptions o;
   o.modes = 4;
   const BucklingResult r = solve_buckling(read_model(d), o);
-  ASSERT_EQ(r.status, BucklingStatus::Ok) << r.message;
+  ASSERT_EQ(r.status, BucklingStatus::Succeeded) << r.message;
   ASSERT_GT(r.free_dofs, 300);
   ASSERT_EQ(r.load_factors.size(), 4);
   EXPECT_NEAR(r.load_factors[0] / exact, 1.0, 1e-6);

@@ -41,7 +41,7 @@ TEST(CholmodAllocation, AFactorisationThroughThemSolves) {
   SparseFactor factor;
   FactorOptions sparse;
   sparse.dense_max_dofs = 0;
-  ASSERT_EQ(factor.factorize(K, sparse), FactorStatus::Ok);
+  ASSERT_EQ(factor.factorize(K, sparse), FactorStatus::Succeeded);
   const Eigen::VectorXd b = K * x;
   const Eigen::VectorXd solved = factor.solve(b);
   EXPECT_LT((solved - x).lpNorm<Eigen::Infinity>(), 1e-8);

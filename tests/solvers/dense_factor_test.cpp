@@ -102,7 +102,7 @@ TEST(DenseFactor, AgreesWithCholmodOnTheSuiteModels) {
     SparseFactor fd, fs_;
     const FactorStatus sd = fd.factorize(a.K, dense), ss = fs_.factorize(a.K, sparse);
     ASSERT_EQ(sd, ss) << f;
-    if (ss != FactorStatus::Ok) continue;
+    if (ss != FactorStatus::Succeeded) continue;
     EXPECT_TRUE(fd.dense()) << f;
     EXPECT_FALSE(fs_.dense()) << f;
     // A displacement of every DOF (unit size after the Jacobi scaling) and its load.

@@ -141,7 +141,7 @@ TEST(FillOrdering, SparseFactorFromTheThresholdSolvesAndNamesTheOrderingItKept) 
   const SparseMatrix K = node_grid(15, 7);
   ASSERT_GE(K.rows(), kOrderedMinDofs);
   SparseFactor f;
-  ASSERT_EQ(f.factorize(K), FactorStatus::Ok);
+  ASSERT_EQ(f.factorize(K), FactorStatus::Succeeded);
   const std::string ordering = f.ordering();
   EXPECT_TRUE(ordering.rfind("NESDIS (", 0) == 0 || ordering.rfind("METIS (", 0) == 0) << ordering;
   // The kept ordering is the one of fewer nonzeros: "<kept> (nnz(L): NESDIS of supervariables
@@ -160,7 +160,7 @@ TEST(FillOrdering, SparseFactorFromTheThresholdSolvesAndNamesTheOrderingItKept) 
 
   // Below the threshold CHOLMOD's own choice, as before.
   SparseFactor small;
-  ASSERT_EQ(small.factorize(node_grid(8)), FactorStatus::Ok);
+  ASSERT_EQ(small.factorize(node_grid(8)), FactorStatus::Succeeded);
   EXPECT_EQ(small.ordering(), "CHOLMOD's choice");
 }
 

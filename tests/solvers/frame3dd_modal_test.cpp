@@ -81,7 +81,7 @@ TEST(Frame3ddExampleD, UnrestrainedFrameHasFrame3ddsMassAndRigidBodyModes) {
   ModalOptions o;
   o.modes = 14;
   const ModalResult r = solve_modal(m, o);
-  ASSERT_EQ(r.status, ModalStatus::Ok) << r.message;
+  ASSERT_EQ(r.status, ModalStatus::Succeeded) << r.message;
   ASSERT_EQ(r.frequencies.size(), 14);
   // Frame3DD exD.out: total mass 3.240350e-01.
   EXPECT_NEAR(r.total_mass[0], 3.240350e-01, 1e-6);
@@ -188,8 +188,8 @@ TEST(Frame3ddExampleD, RigidJointZonesOverTheRadiiStiffenTheFrameButAreNotFrame3
   ModalOptions o;
   o.modes = 14;
   const ModalResult rz = solve_modal(zones, o), rp = solve_modal(plain, o);
-  ASSERT_EQ(rz.status, ModalStatus::Ok) << rz.message;
-  ASSERT_EQ(rp.status, ModalStatus::Ok) << rp.message;
+  ASSERT_EQ(rz.status, ModalStatus::Succeeded) << rz.message;
+  ASSERT_EQ(rp.status, ModalStatus::Succeeded) << rp.message;
   for (int k = 0; k < 6; ++k) EXPECT_EQ(rz.kinds[static_cast<std::size_t>(k)], ModeKind::RigidBody);
   for (int k = 6; k < 14; ++k) {
     std::cout << "mode " << k + 1 << ": full length " << rp.frequencies[k] << ", rigid zones " << rz.frequencies[k]

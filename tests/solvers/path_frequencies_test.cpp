@@ -135,8 +135,8 @@ TEST(PathFrequencies, CantileverUnderASmallTipLoadHasTheModalFrequencies) {
     const ModalResult free = solve_modal(m, mo);
     mo.preload = true;
     const ModalResult loaded = solve_modal(m, mo);
-    ASSERT_EQ(free.status, ModalStatus::Ok);
-    ASSERT_EQ(loaded.status, ModalStatus::Ok);
+    ASSERT_EQ(free.status, ModalStatus::Succeeded);
+    ASSERT_EQ(loaded.status, ModalStatus::Succeeded);
     const auto& f_start = r.steps.front().frequencies;
     const auto& f_end = r.steps.back().frequencies;
     ASSERT_EQ(f_start.size(), 6);

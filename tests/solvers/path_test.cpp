@@ -240,7 +240,7 @@ TEST(PathFollowing, ArchBifurcationThenLimitPointAreClassified) {
   d["loads"] = json::array({load("n10", 0, -1.0, 0)});
   const Model m = read_model(d);
   const BucklingResult b = solve_buckling(m);
-  ASSERT_EQ(b.status, BucklingStatus::Ok);
+  ASSERT_EQ(b.status, BucklingStatus::Succeeded);
   PathOptions o;
   o.control = PathControl::ArcLength;
   o.arc_length = 100.0;

@@ -164,10 +164,10 @@ TEST(PlannedAssembly, AnAnalysisAheadOfTheValuesIsTheOneFactorizeMakes) {
     const Assembled K = assemble(model, map, true);
     SCOPED_TRACE(K.Kff.rows());
     SparseFactor alone, ahead;
-    ASSERT_EQ(alone.factorize(K.Kff), FactorStatus::Ok);
+    ASSERT_EQ(alone.factorize(K.Kff), FactorStatus::Succeeded);
     ahead.analyze(planned_pattern(map, LinearStructure::assembly_blocks(model, map)));
     EXPECT_FALSE(ahead.ordering().empty());
-    ASSERT_EQ(ahead.factorize(K.Kff), FactorStatus::Ok);
+    ASSERT_EQ(ahead.factorize(K.Kff), FactorStatus::Succeeded);
     EXPECT_EQ(ahead.ordering(), alone.ordering());
     const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K.Kff.rows(), -1.0, 2.0);
     EXPECT_TRUE(ahead.solve(b).cwiseEqual(alone.solve(b)).all());
@@ -187,14 +187,14 @@ TEST(PlannedAssembly, TheLinearAnalysisOnThreadsEqualsItOnOneBitForBit) {
   // 2,430 free DOFs: above the size from which the tasks go to the hook.
   const Model model = test::model_from(frame(8, 8, 5));
   const LinearStaticResult serial = solve_linear_static(model);
-  ASSERT_EQ(serial.status, SolveStatus::Converged) << serial.message;
+  ASSERT_EQ(serial.status, SolveStatus::Succeeded) << serial.message;
   ASSERT_GT(serial.free_dofs, 2000);
   const test::ThreadPerTask threads;
   for (const ParallelTasks& hook : {ParallelTasks(threads), ParallelTasks(&test::last_first)}) {
     LinearStaticOptions o;
     o.parallel = hook;
     const LinearStaticResult r = solve_linear_static(model, o);
-    ASSERT_EQ(r.status, SolveStatus::Converged);
+    ASSERT_EQ(r.status, SolveStatus::Succeeded);
     EXPECT_TRUE(r.u.cwiseEqual(serial.u).all());
     ASSERT_EQ(r.end_forces.size(), serial.end_forces.size());
     for (std::size_t e = 0; e < r.end_forces.size(); ++e) EXPECT_TRUE(r.end_forces[e].cwiseEqual(serial.end_forces[e]).all());

@@ -86,7 +86,7 @@ TEST(Timoshenko, StubbyPinnedColumnBucklesAtEngessersLoad) {
     d["loads"].push_back(load("B", -1.0, 0, 0));
     const Model m = timoshenko(d);
     const BucklingResult r = solve_buckling(m);
-    ASSERT_EQ(r.status, BucklingStatus::Ok) << r.message;
+    ASSERT_EQ(r.status, BucklingStatus::Succeeded) << r.message;
     const double err = r.load_factors[0] / engesser - 1.0;
     std::cout << n << " elements: P_cr = " << r.load_factors[0] << ", Engesser " << engesser << ", Euler " << PE
               << ", relative " << err << "\n";
