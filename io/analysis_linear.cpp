@@ -290,14 +290,14 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
 }
 
 // The keys of a stiffness result (type, node, load_case, status, message, matrix, rank, null_space,
-// compliance, rigid_directions, statically_indeterminate, length_scale, scaled_eigenvalues), and
-// run_document's wall_time_s.
-constexpr std::size_t kStiffnessResultKeys = 14;
+// compliance, compliance_bounded, unbounded_directions, rigid_directions, statically_indeterminate,
+// length_scale, scaled_eigenvalues), and run_document's wall_time_s.
+constexpr std::size_t kStiffnessResultKeys = 16;
 
 void check_stiffness(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
   json_in::expect_keys(spec, p, {"id", "type", "description", "node", "load_case"});
   node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
-  // Any node answers (issue 11): where supports, loops or rigid links hold it, its compliance is zero
+  // Any node answers: where supports, loops or rigid links hold it, its compliance is zero
   // and rigid_directions names the directions (solvers/condensed_stiffness.hpp, node_compliance).
 }
 
@@ -341,6 +341,8 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
   r.slot("rank") = k.rank;
   set_vectors(r.slot("null_space"), k.null_space);
   set_matrix(r.slot("compliance"), k.compliance);
+  r.slot("compliance_bounded") = k.compliance_bounded();
+  set_vectors(r.slot("unbounded_directions"), k.unbounded_directions());
   set_vectors(r.slot("rigid_directions"), k.rigid_directions);
   set_strings(r.slot("statically_indeterminate"), k.statically_indeterminate);
   r.slot("length_scale") = model.length_scale();

@@ -12,8 +12,8 @@
 //
 // Result analyses.<id>: type, status, termination, completed, free_dofs, control,
 // steps[] {step, load_factor, control, arc_length, iterations, chord_iterations, nodes.<tracked>.displacement,
-//          negative_eigenvalues, stable, min_eigenvalue, stiffness, compliance, rank, null_space,
-//          rigid_directions (when stiffness_node), reaction
+//          negative_eigenvalues, stable, min_eigenvalue, stiffness, compliance, compliance_bounded,
+//          rank, null_space, unbounded_directions, rigid_directions (when stiffness_node), reaction
 //          (imposed motion), frequencies (Hz, with "frequencies"; null and frequencies_failure when the
 //          eigen-solver failed), step_control (displacement control: "displacement", or "arc_length" through
 //          a snap-back of the controlled DOF)}, critical_points[] {type, load_factor, step, control,
@@ -249,13 +249,16 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
       j["stiffness"] = s.stiffness ? to_json(*s.stiffness) : ojson(nullptr);
       const bool ok = s.node_stiffness && s.node_stiffness->ok;
       j["compliance"] = ok ? to_json(s.node_stiffness->compliance) : ojson(nullptr);
+      j["compliance_bounded"] = ok ? ojson(s.node_stiffness->compliance_bounded()) : ojson(nullptr);
       j["rank"] = ok ? ojson(s.node_stiffness->rank) : ojson(nullptr);
-      ojson ns = ojson::array(), rd = ojson::array();
+      ojson ns = ojson::array(), ud = ojson::array(), rd = ojson::array();
       if (ok) {
         for (const auto& v : s.node_stiffness->null_space) ns.push_back(to_json(v));
+        for (const auto& v : s.node_stiffness->unbounded_directions()) ud.push_back(to_json(v));
         for (const auto& v : s.node_stiffness->rigid_directions) rd.push_back(to_json(v));
       }
       j["null_space"] = std::move(ns);
+      j["unbounded_directions"] = std::move(ud);
       j["rigid_directions"] = std::move(rd);
     }
     if (imposed) j["reaction"] = s.reaction;

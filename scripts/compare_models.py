@@ -47,7 +47,8 @@ Quantities (tangents k = dP/d(deflection) of the displacement-controlled curve, 
   large           tangent at the large deflection
   P_at_L          force at the large deflection
   unloaded_compliance  compliance (entry dof, dof) of beamfea's "stiffness" at zero load: finite for a
-                  node whose motion closed loops restrict (the end point of a parallel manipulator)
+                  node whose motion closed loops restrict (the end point of a parallel manipulator),
+                  inf where the node moves freely along dof (its "unbounded_directions")
   loaded_compliance    the path's loaded compliance (entry dof, dof) at the step nearest to the load
                   factor "loaded_at" (default 1.0) before the first critical point (interpolated
                   linearly between the two steps around it)
@@ -164,10 +165,16 @@ def unloaded_stiffness(exe, doc, node, dof, out_dir, log):
     if a.get("status") != "ok":
         return math.inf, a.get("message", "")  # e.g. a rigid straight chain: unbounded
     if nonempty(a.get("compliance")):
-        UNLOADED_COMPLIANCE[out_dir] = a["compliance"][dof][dof]
+        UNLOADED_COMPLIANCE[out_dir] = compliance_entry(a, dof)
     if in_span(dof, a.get("rigid_directions")):
         return math.inf, ""  # the node cannot move along dof (e.g. a rigid straight chain): unbounded
     return a["matrix"][dof][dof], ""
+
+
+def compliance_entry(a, dof):
+    """compliance (dof, dof); inf along an unbounded direction (where "compliance" holds 0)."""
+    free = any(abs(v[dof]) > 1e-9 for v in a.get("unbounded_directions") or [])
+    return math.inf if free else a["compliance"][dof][dof]
 
 
 def in_span(dof, vectors, tol=1e-9):
@@ -222,8 +229,7 @@ def extract_curve(res, spec):
         # The engine's loaded stiffness entry dF/du of the node; the deflection and the force are
         # assumed measured along the same direction (both scales of the same sign), so dP/dd = dF/du.
         c.k.append(k[dof][dof] if nonempty(k) else None)
-        comp = s.get("compliance")
-        c.comp.append(comp[dof][dof] if nonempty(comp) else None)
+        c.comp.append(compliance_entry(s, dof) if nonempty(s.get("compliance")) else None)
     for cp in a.get("critical_points", []):
         # the step at whose end the engine detected it; the critical point lies between that step
         # and the one before, at the critical load factor

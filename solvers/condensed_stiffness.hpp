@@ -41,13 +41,25 @@ struct CondensedStiffness {
   bool ok = false;
   std::string message;
   Mat6 K = Mat6::Zero();
-  Mat6 compliance = Mat6::Zero();  // zero in rigid directions and in the null space
+  // Zero in rigid directions, and (by convention: a finite matrix) in the directions where the node
+  // moves freely, where the true compliance is unbounded: compliance_bounded() says whether there
+  // are any, unbounded_directions() which they are. A zero entry alone does not say which.
+  Mat6 compliance = Mat6::Zero();
   int rank = 0;
   std::vector<Vec6> null_space;    // unit vectors (in the length-scaled metric), u then rotation
   std::vector<Vec6> rigid_directions;  // directions the node cannot move (unit vectors, same metric)
   Vec6 eigenvalues = Vec6::Zero(); // of the length-scaled matrix, ascending
   std::vector<ZeroEnergyMode> modes;  // when holding the node leaves a mechanism
   std::vector<std::string> statically_indeterminate;  // redundant constraint rows (DofMap)
+
+  // The directions in which the node moves freely (mechanism directions of the node held nowhere
+  // else), in the metric of null_space: a load (force, moment / L) with a component along one of
+  // them does work along a motion that nothing resists, so the displacement is unbounded there.
+  // They are the null space of the stiffness on the directions the node can move.
+  const std::vector<Vec6>& unbounded_directions() const { return null_space; }
+  // True when the compliance is the whole answer: every direction the node can move is resisted
+  // (those it cannot move are in rigid_directions, with zero compliance).
+  bool compliance_bounded() const { return null_space.empty(); }
 };
 
 // The saddle-point condensation itself, onto any list of raw DOFs (rows of T_free).
