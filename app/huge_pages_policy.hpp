@@ -9,7 +9,7 @@
 // reporting"), every free huge page of the guest has been handed back to the host, so a huge page
 // is one the host must back afresh on its first touch, while the kernel hands 4 KiB pages out of
 // its smaller free blocks, which the host still backs. Measured on such a machine (an AMD Zen 5
-// guest, docs/performance.md, "Session 12"): the 97,344-DOF cube's whole process 5.4-5.8 s with huge
+// guest, docs/performance.md, "Huge pages"): the 97,344-DOF cube's whole process 5.4-5.8 s with huge
 // pages against 3.8-4.0 s without, system time 4.5 s against 1.7 s. There the advice is left off.
 //
 // BEAMFEA_HUGE_PAGES=1 (or on/yes) asks for huge pages whatever the machine, =0 (off/no) never.

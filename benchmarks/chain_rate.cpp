@@ -1,5 +1,5 @@
 // Stiffness analyses per second of the three-link chain (bench_models.hpp: 63 raw, 39 free DOFs)
-// on one core, at each stage a sweep case goes through (issue 15: 30,000 per second, a sweep within
+// on one core, at each stage a sweep case goes through (the aims: 30,000 per second, a sweep within
 // 1.2x of the in-process analysis):
 //   linear_node_stiffness      DOF map, element matrices, assembly, condensation, rank
 //   in-process analysis        load_and_check + run_document on the parsed document (the model
@@ -17,8 +17,8 @@
 // The last column divides each batch's time by the in-process analysis's time of the same batch
 // round and gives the median of those ratios (15 rounds), a paired figure less exposed to the
 // host's changes of speed than the ratio of two medians.
-// Only interfaces that predate the small-model work are used, so that the same source measures
-// an older build (paired before/after ratios: run both binaries alternately).
+// Only long-standing interfaces are used, so that the same source measures an older build
+// (paired ratios of two builds: run both binaries alternately).
 //
 // Usage: taskset -c 1 bench_chain_rate [seconds_per_stage] [sweep_cases]
 // Thread CPU time per call (the machine's load makes wall clock meaningless at this scale),

@@ -1,5 +1,5 @@
 // bench_closed_loop_step: cost of a path step on a closed-loop lumped model against the same model
-// opened at one joint (issue 11: within 1.5x).
+// opened at one joint (the aim: within 1.5x).
 //
 // The model: a planar arch of two chains of n rigid links each, from the ground pivots A = (0, 0, 0)
 // and B = (2, 0, 0) up to the crown C = (1, 1, 0), with a revolute spring about z (k = 100) at every

@@ -1,14 +1,14 @@
-// Writing results.json against the analysis it reports (issue 15 item 1: "writing results.json
-// under 10 % of the analysis" at 202,752 DOFs).
+// Writing results.json against the analysis it reports (the aim: writing results.json under 10 %
+// of the analysis at 202,752 DOFs).
 //
 //   python3 benchmarks/cube_frame.py 15x15x14 /tmp/cube.json    # 21,504 DOFs
 //   build/benchmarks/bench_results_write /tmp/cube.json [reps]
 //
 // Runs the model's analyses in process once (no files), then times, alternately, four writers of
 // the same results object into a temporary folder: nlohmann's dump(2) to a string + the atomic
-// write (before), write_results_json to a string + the same write, write_results_json_file
+// write (the baseline), write_results_json to a string + the same write, write_results_json_file
 // (streamed in chunks) on one thread, and the same with the program's threads
-// (app/thread_tasks.hpp: what `beamfea run` does now); checks that the threaded text is the
+// (app/thread_tasks.hpp: what `beamfea run` does); checks that the threaded text is the
 // serial one byte for byte; prints the bytes, the times (thread CPU of the calling thread, process
 // CPU and wall, median of the repetitions) and their ratios to the analysis (process CPU and wall).
 #include <fmt/format.h>
@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
              model.nodes.size(), model.elements.size(), analysis_cpu, analysis_wall);
   fmt::print("| writer (text and atomic file write) | MB | thread CPU s | process CPU s | wall s | / analysis CPU | / analysis wall | / before, CPU | / streamed, wall |\n"
              "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-  const char* names[kWriters] = {"nlohmann dump(2) to a string (before)", "write_results_json to a string",
+  const char* names[kWriters] = {"nlohmann dump(2) to a string (baseline)", "write_results_json to a string",
                                  "write_results_json_file (streamed, one thread)",
                                  "write_results_json_file (streamed, threads: now)"};
   for (int k = 0; k < kWriters; ++k)

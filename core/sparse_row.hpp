@@ -1,6 +1,6 @@
 #pragma once
 // Sparse linear expressions of DofMap's constraint elimination (core/dof_map.cpp), without a heap
-// node per term (issue 15: std::map rows were most of a small model's DofMap allocations).
+// node per term (std::map rows would be most of a small model's DofMap allocations).
 //
 // SparseRow: sum_k c_k x_k as terms sorted by k, each k once; the interface of the
 // std::map<int, double> it replaces (operator[] inserts a zero, iteration in increasing k), so the

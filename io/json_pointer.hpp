@@ -1,7 +1,7 @@
 #pragma once
 // A JSON pointer (RFC 6901) that is rendered only when it is needed: the readers name the field
 // they read by a pointer in every call, but a pointer string is wanted only for an error message
-// (issue 15: building one string per field read was a quarter of a small sweep case).
+// (building one string per field read would be a quarter of a small sweep case).
 //
 // A Pointer is a root (an already-rendered pointer: "" for the document, "/nodes", or a pointer
 // string held by the caller) and up to kMaxSegments keys or indices below it, stored by value:

@@ -1,5 +1,5 @@
 #pragma once
-// Model-level validation that no single entry shows (issue 9, "contradictions are errors"):
+// Model-level validation that no single entry shows (contradictions are errors):
 // a model without elements; a support and a prescribed value on one DOF that disagree; supports
 // and prescribed values on one rigid body (rigid links, locked joint directions) that disagree.
 // Each is an InputError naming both sides. Called by load_and_check after read_model.

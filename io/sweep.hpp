@@ -97,7 +97,7 @@ struct Sweep {
 // (io/editable_document.hpp): a case copies only the values it changes, not the whole document (a
 // small model's sweep spends as long copying the document as analysing it), and a warm case that
 // sets values or replaces them by patches allocates nothing. A case whose changes do not apply in
-// place gets a fresh copy (Sweep::document), which reports the error exactly as before.
+// place gets a fresh copy (Sweep::document), which reports the error exactly as a fresh document does.
 class SweepCaseDocument {
  public:
   explicit SweepCaseDocument(const Sweep& sweep) : sweep_(&sweep), doc_(sweep.base) {}
