@@ -1,5 +1,5 @@
-// Allocations of a sweep case once a worker's workspace is warm (issue 15, item 3: "no per-case
-// allocations in sweeps"). This executable replaces the global operator new with one that counts
+// Allocations of a sweep case once a worker's workspace is warm (the aim: no per-case
+// allocations in sweeps). This executable replaces the global operator new with one that counts
 // its calls, so it is a folder (test executable) of its own: no other test runs under the counter.
 //
 // A case goes through what `beamfea sweep --jobs 1` does for it inline: run_sweep_case with the
@@ -265,7 +265,7 @@ TEST(SweepAllocations, AWorkspaceMapCaseAllocatesNothingOnceTheWorkspaceIsWarm) 
 }
 
 TEST(SweepAllocations, APatchedCaseAllocatesNothingOnceTheWorkspaceIsWarm) {
-  // Patches are applied to the worker's document in place and undone (before: a copy of the whole
+  // Patches are applied to the worker's document in place and undone (not a copy of the whole
   // document per case).
   const Sweep sweep = beamfea::read_sweep(chain_patch_sweep(), BEAMFEA_SOURCE_DIR);
   ASSERT_EQ(sweep.size(), 3u);

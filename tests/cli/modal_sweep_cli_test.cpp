@@ -1,4 +1,4 @@
-// Modal results in `beamfea sweep` outputs (issue 13, item 4): the first two frequencies of a
+// Modal results in `beamfea sweep` outputs: the first two frequencies of a
 // point mass on a massless cantilever over a grid of lengths and masses, from the program's table.
 #include <gtest/gtest.h>
 

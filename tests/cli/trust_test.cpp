@@ -1,4 +1,4 @@
-// Inputs and outputs you can trust (issue 9): one small model per failure class that a fuzzer
+// Inputs and outputs you can trust: one small model per failure class that a fuzzer
 // found. Each asserts the exit code by the rules (0 success, 1 an analysis failed, 2 bad input),
 // what the message names, and what the output folder holds.
 // GCC 12 reports -Wrestrict false positives inside std::string concatenation with literals
@@ -147,10 +147,10 @@ TEST(SafeIds, AnalysesWhoseFilesOnlyLookAlikeAreAccepted) {
   EXPECT_EQ(r.code, 0) << r.message;
 }
 
-// --- Checks that used to run only inside the analysis -------------------------------------------
+// --- Checks made before any analysis runs -----------------------------------------------------
 
-// Issue 11: the stiffness of a node whose motion supports or rigid links restrict is a well-posed
-// question (formerly exit 2 "the stiffness there is unbounded"): the answer is a zero compliance, six
+// The stiffness of a node whose motion supports or rigid links restrict is a well-posed question
+// (not bad input): the answer is a zero compliance, six
 // rigid directions and rank 0.
 TEST(ValidateFirst, StiffnessAtASupportedNodeIsAZeroCompliance) {
   json d = base();
@@ -201,7 +201,7 @@ TEST(ValidateFirst, ImperfectionModeThatDoesNotExist) {
 
 TEST(ValidateFirst, EarlierAnalysesWriteNothingWhenALaterOneIsBad) {
   json d = base();
-  // (A stiffness at a supported node is no longer bad input since issue 11: a control on a supported DOF is.)
+  // (A stiffness at a supported node is not bad input: a control on a supported DOF is.)
   d["analyses"].push_back({{"id", "p"}, {"type", "path"}, {"control", {{"node", "A"}, {"dof", "uy"}, {"to", 0.1}}}});
   const auto r = run("staged_bad", d, "run", /*keep_out=*/true);
   EXPECT_EQ(r.code, 2) << r.message;

@@ -1,5 +1,5 @@
-// Replays every file of the fuzz corpora through the program on every build (issue 9;
-// docs/testing.md). No crash, no hang, and:
+// Replays every file of the fuzz corpora through the program on every build
+// (docs/testing.md). No crash, no hang, and:
 // - tests/fuzz/corpus (models): `check` exits 0 or 2 and `run` agrees with it (one shared
 //   validation): check 2 -> run 2 with --out left absent; check 0 -> run 0 or 1 with a parsable
 //   results.json;

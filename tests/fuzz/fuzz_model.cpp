@@ -1,5 +1,5 @@
 // libFuzzer target over the model file: parsing, the shared validation (`check`) and a bounded
-// run of small models (issue 9). Built only with clang (-DBEAMFEA_BUILD_FUZZERS=ON); how to build
+// run of small models. Built only with clang (-DBEAMFEA_BUILD_FUZZERS=ON); how to build
 // and run it: docs/testing.md.
 //
 // The rules it enforces beside "no crash, no sanitizer report": reading and checking throw only

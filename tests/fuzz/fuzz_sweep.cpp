@@ -1,4 +1,4 @@
-// libFuzzer target over the sweep file (issue 9): parsing, read_sweep's checks, and for a few
+// libFuzzer target over the sweep file: parsing, read_sweep's checks, and for a few
 // cases of an accepted sweep (the first, the middle and the last) the case document, one
 // bounded run, and the table's header and row. Built with fuzz_model (-DBEAMFEA_BUILD_FUZZERS=ON,
 // clang); how to build and run it: docs/testing.md.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the seed corpora of the fuzzers (issue 9; docs/testing.md):
+"""Writes the seed corpora of the fuzzers (docs/testing.md):
 - tests/fuzz/corpus/ for fuzz_model: small models from the examples and tests, one per analysis
   type, and the mutations that found bugs;
 - tests/fuzz/corpus_sweep/ for fuzz_sweep: sweep files (grid, list, patches, a base file, an
@@ -79,7 +79,7 @@ def main():
     shapes["sections"] = [{"id": "s", "shape": "tube", "d": 0.05, "t": 0.004}]
     write("seed_shape_tube.json", shapes)
 
-    # Mutations that found bugs (issue 9), one per class.
+    # Mutations that found bugs, one per class.
     held = cantilever()
     held["supports"].append({"node": "B", "fix": "all"})
     for kind, spec in [("buckling", {"id": "b", "type": "buckling"}),

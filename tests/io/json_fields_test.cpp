@@ -1,6 +1,6 @@
 // json_in::Fields (io/json_util.hpp), the one-pass reading of an object's fields, must be
 // expect_keys followed by json_in::require / json_in::field, error for error and value for value:
-// the model readers moved to it for speed (issue 15), not for new behaviour. Also the results
+// the model readers use it for speed, not for other behaviour. Also the results
 // helpers made cheaper with it: first_non_finite's walk and set_numbers written over old values.
 #include <gtest/gtest.h>
 

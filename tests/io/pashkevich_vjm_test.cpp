@@ -148,7 +148,7 @@ TEST(PashkevichVjm, Table1EnergiesAndStabilityOfTheTwelveConfigurations) {
   EXPECT_NEAR(p2 * p2, 0.302552, 1e-6);
 }
 
-// Under load: the engine's path analysis ("path", issue 4) on the lumped model against eqs. 6-7,
+// Under load: the engine's path analysis ("path") on the lumped model against eqs. 6-7,
 // 22-23 and 28 evaluated on the same chain at the same end displacement.
 namespace {
 

@@ -1,4 +1,4 @@
-// results.json keys (the contract of issue 2) and the VTK file.
+// results.json keys (a contract) and the VTK file.
 #include <gtest/gtest.h>
 
 #include <fstream>

@@ -1,5 +1,5 @@
 // A model read again and again into one ModelBuffer, and results written again and again into one
-// RunReport (a sweep worker's case after case, issue 15 item 3), are the fresh read's and the fresh
+// RunReport (a sweep worker's case after case), are the fresh read's and the fresh
 // run's, bit for bit: over every document of the fuzz corpus (tests/fuzz/corpus: models of each
 // analysis type and shape, and bad input of many kinds), read forward and then backward so that
 // each collection grows and shrinks, with bad documents in between.

@@ -64,7 +64,7 @@ def test_compare_models_both_engines_give_the_same_report(tmp_path):
     assert float(value[("A_S", "buckling_load")]) == pytest.approx(1.0, rel=1e-9)
     assert float(value[("A_S", "critical_force")]) == pytest.approx(1.0, rel=1e-5)
     assert float(value[("A_Pi", "unloaded")]) == pytest.approx(2.0, rel=1e-9)
-    assert (tmp_path / "api" / "A_S" / "lumped" / "results.json").exists()  # beamfea's files, as before
+    assert (tmp_path / "api" / "A_S" / "lumped" / "results.json").exists()  # beamfea's files
 
 
 def test_05_report_critical_force_in_process(tmp_path):

@@ -1,6 +1,6 @@
 // CHOLMOD allocates its factor through core/huge_pages.hpp's functions once a SparseFactor exists
 // (solvers/sparse_factor.cpp: SuiteSparse's process-wide allocation functions), and frees with
-// std::free as before; a factorisation through them still solves (a 1-D Laplacian, exact).
+// std::free; a factorisation through them still solves (a 1-D Laplacian, exact).
 #include <gtest/gtest.h>
 
 #include <SuiteSparse_config.h>

@@ -47,7 +47,7 @@ TEST(ClosedLoop, FiveBarUnloadedComplianceIsJKinvJT) {
   }
 }
 
-// A supported node has a compliance too: zero, rank 0, six rigid directions (formerly an error).
+// A supported node has a compliance too: zero, rank 0, six rigid directions.
 TEST(ClosedLoop, HeldNodeHasZeroComplianceAndSixRigidDirections) {
   const Model m = read_model(five_bar_model(FiveBar{}));
   const CondensedStiffness k = linear_node_stiffness(m, m.find_node("A2"));

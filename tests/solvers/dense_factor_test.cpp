@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Agreement asked of the two paths (issue 15): relative, in the max norm, of the loads balanced
+// Agreement asked of the two paths: relative, in the max norm, of the loads balanced
 // (|K (u_dense - u_sparse)| / |f|: both factorisations are backward stable, so this is what
 // rounding leaves whatever the conditioning) and of the displacements where the matrix is well
 // conditioned. An ill-conditioned matrix (the Pashkevich A beam models, rcond 1e-7) amplifies
@@ -248,7 +248,7 @@ TEST(DenseFactor, RefusesWhatItCannotDoAndLeavesItToTheSparsePath) {
   SparseFactor f;
   EXPECT_EQ(f.factorize(K), FactorStatus::NotPositiveDefinite);
   EXPECT_FALSE(f.dense());
-  EXPECT_TRUE(f.usable());  // UMFPACK's LU, as before
+  EXPECT_TRUE(f.usable());  // UMFPACK's LU
 }
 
 TEST(DenseFactor, CholeskySkippingZerosMatchesEigensLlt) {

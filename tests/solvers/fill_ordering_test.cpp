@@ -158,7 +158,7 @@ TEST(FillOrdering, SparseFactorFromTheThresholdSolvesAndNamesTheOrderingItKept) 
   // Backward stable Cholesky of a matrix of condition ~1e2: the residual is rounding.
   EXPECT_LT((K * x - b).norm() / b.norm(), 1e-13);
 
-  // Below the threshold CHOLMOD's own choice, as before.
+  // Below the threshold CHOLMOD's own choice.
   SparseFactor small;
   ASSERT_EQ(small.factorize(node_grid(8)), FactorStatus::Succeeded);
   EXPECT_EQ(small.ordering(), "CHOLMOD's choice");

@@ -1,4 +1,4 @@
-// Other programs' test cases with member loads and self-weight (issue 12: cases beamfea could not
+// Other programs' test cases with member loads and self-weight (cases beamfea could not
 // express), each value checked first against an independent closed form computed here.
 //
 // 1. Frame3DD (H. P. Gavin), examples/selfweight.3dd / selfweight.out, version 20091203

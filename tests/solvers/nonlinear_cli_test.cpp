@@ -1,4 +1,4 @@
-// "buckling" and "path" from the command line: result keys and files (contract of issue 4).
+// "buckling" and "path" from the command line: result keys and files (a contract).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
