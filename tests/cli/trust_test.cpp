@@ -150,8 +150,7 @@ TEST(SafeIds, AnalysesWhoseFilesOnlyLookAlikeAreAccepted) {
 // --- Checks made before any analysis runs -----------------------------------------------------
 
 // The stiffness of a node whose motion supports or rigid links restrict is a well-posed question
-// (not bad input): the answer is a zero compliance, six
-// rigid directions and rank 0.
+// (not bad input): the answer is a zero compliance, six rigid directions and rank 0.
 TEST(ValidateFirst, StiffnessAtASupportedNodeIsAZeroCompliance) {
   json d = base();
   d["analyses"].push_back({{"id", "K"}, {"type", "stiffness"}, {"node", "A"}});

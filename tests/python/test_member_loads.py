@@ -1,4 +1,4 @@
-"""Member loads, self-weight, load cases and a combination through the Python module :
+"""Member loads, self-weight, load cases and a combination through the Python module:
 a simply supported beam, its section forces along the member (`stations`) and end slopes against
 the closed forms, and a combination against the factored sum; a bad load case as an InputError
 naming its JSON pointer."""

@@ -1,4 +1,4 @@
-"""Modal analysis through the Python module , against closed forms."""
+"""Modal analysis through the Python module, against closed forms."""
 import math
 
 import numpy as np
