@@ -56,6 +56,28 @@ def test_tip_stiffness_is_the_element_end_block():
         assert K[i, j] == pytest.approx(k, rel=1e-9), (i, j)
         assert K[j, i] == pytest.approx(k, rel=1e-9), (j, i)
     assert res["analyses"]["K"]["rank"] == 6
+    assert res["analyses"]["K"]["compliance_bounded"] is True
+    assert len(res["analyses"]["K"]["unbounded_directions"]) == 0
+
+
+def test_a_node_that_spins_freely_has_unbounded_rotations_not_zero_compliance():
+    # A node C behind a spherical joint at the tip: its translations are the cantilever tip's,
+    # ux = L / (E A), uy = L^3 / (3 E Iz) per unit force (Euler-Bernoulli), its rotations free. The
+    # compliance holds 0 there by convention; compliance_bounded and unbounded_directions say so.
+    doc = cantilever(analyses=[{"id": "K", "type": "stiffness", "node": "C"}])
+    doc["nodes"].append({"id": "C", "xyz": [L, 0, 0]})
+    doc["joints"] = [{"id": "S", "type": "spherical", "nodes": ["B", "C"]}]
+    k = beamfea.run(doc)["analyses"]["K"]
+    C = np.asarray(k["compliance"])
+    assert C[0, 0] == pytest.approx(L / (E * A), rel=1e-9)
+    assert C[1, 1] == pytest.approx(L**3 / (3 * E * IZ), rel=1e-9)
+    assert np.all(C[3:, 3:] == 0.0)
+    assert k["compliance_bounded"] is False
+    U = np.asarray(k["unbounded_directions"])
+    assert U.shape == (3, 6)
+    # they span exactly the three rotations
+    assert np.allclose(U[:, :3], 0.0, atol=1e-12)
+    assert np.linalg.matrix_rank(U[:, 3:]) == 3
 
 
 def test_cantilever_buckles_at_the_euler_load():
