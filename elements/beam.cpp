@@ -3,6 +3,9 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "elements/beam_mass.hpp"
+#include "elements/geometric_stiffness.hpp"
+#include "elements/span_loads.hpp"
 
 namespace beamfea {
 
@@ -73,9 +76,71 @@ Mat12 to_global(const Mat12& k, const Mat3& R) {
 
 }  // namespace
 
-LinearBeam::LinearBeam(const BeamSection& section, const Vec3& x1, const Vec3& x2, const Vec3& orientation)
-    : L_((x2 - x1).norm()), R_(beam_local_axes(x1, x2, orientation)), T_(beam_transformation(R_)),
-      kl_(beam_local_stiffness(section, L_)), K_(to_global(kl_, R_)) {}
+BeamElement::BeamElement(const BeamSection& section, const Vec3& x1, const Vec3& x2, const Vec3& orientation)
+    : section_(section), X1_(x1), X2_(x2), L_((x2 - x1).norm()), R_(beam_local_axes(x1, x2, orientation)),
+      T_(beam_transformation(R_)), kl_(beam_local_stiffness(section, L_)), K_(to_global(kl_, R_)) {}
+
+Mat12 BeamElement::geometric_stiffness(const Vec12& f) const {
+  const Mat12 kg = beam_local_geometric_stiffness(L_, section_.A, section_.Iy, section_.Iz, f);
+  return T_.transpose() * kg * T_;
+}
+
+Mat12 BeamElement::mass(MassKind kind, double density) const {
+  return T_.transpose() * beam_local_mass(section_, density, L_, kind) * T_;
+}
+
+Vec12 BeamElement::equivalent_loads(const ElementLoads& loads) const { return equivalent_nodal_loads(L_, loads); }
+
+Vec12 BeamElement::thermal_loads(const Temperature& t) const {
+  // The restrained thermal strain and curvatures, eps = alpha dT, kappa_v = v'' = -alpha dT/dy,
+  // kappa_w = w'' = -alpha dT/dz (hotter fibres lengthen); their equivalent loads are the virtual
+  // work int B^T E (A eps, I kappa) dx of the element's strain-displacement B (linear u, Hermite v
+  // and w, w' = -ry): an axial pair and an end-moment pair per plane.
+  const double N = section_.E * section_.A * t.expansion * t.uniform;
+  const double Mz = -section_.E * section_.Iz * t.expansion * t.gradient_y;  // E Iz kappa_v
+  const double My = -section_.E * section_.Iy * t.expansion * t.gradient_z;  // E Iy kappa_w
+  Vec12 f = Vec12::Zero();
+  f(0) = -N;
+  f(6) = N;
+  f(5) = -Mz;
+  f(11) = Mz;
+  f(4) = My;
+  f(10) = -My;
+  return f;
+}
+
+Vec6 BeamElement::section_forces(double s, const Vec12& end_forces, const ElementLoads& loads, CutSide side) const {
+  return section_forces_at(s, end_forces, loads, side);
+}
+
+Vec12 LinearBeam::displacements(const NodalPoses& p) const {
+  Vec12 u;
+  u << p.x1 - X1_, log_so3(p.R1), p.x2 - X2_, log_so3(p.R2);
+  return u;
+}
+
+ElementResponse LinearBeam::respond(const NodalPoses& p, Evaluate what) const {
+  const Vec12 u = displacements(p);
+  ElementResponse r;
+  r.force = K_ * u;
+  r.energy = 0.5 * u.dot(r.force);
+  r.local_end_forces = local_end_forces(u);
+  if (what == Evaluate::ForceAndTangent) r.tangent = K_;
+  return r;
+}
+
+NodalPoses LinearBeam::advance(const NodalPoses& p, const Vec12& d) const {
+  return {p.x1 + d.segment<3>(0), p.x2 + d.segment<3>(6), exp_so3(log_so3(p.R1) + d.segment<3>(3)),
+          exp_so3(log_so3(p.R2) + d.segment<3>(9))};
+}
+
+Vec12 LinearBeam::fixed_end_forces_at(const NodalPoses&, const ElementLoads& loads) const {
+  return fixed_end_forces(L_, loads);
+}
+
+Vec3 LinearBeam::displacement_at(const NodalPoses& p, double xi) const {
+  return beam_displacement_at(R_, L_, displacements(p), xi);
+}
 
 Vec3 beam_displacement_at(const Mat3& R, double L, const Vec12& u_global, double xi) {
   const Vec12 ul = beam_transformation(R) * u_global;

@@ -16,18 +16,15 @@
 // Timoshenko matrix is exact for a prismatic member without span loads: it is the stiffness of
 // the "interdependent interpolation" shape functions (elements/beam_mass.hpp), which solve the
 // homogeneous Timoshenko equations, so one element gives the exact cantilever tip deflection
-// P L^3 / (3 E I) + P L / (G As). Not supported: warping, offsets, member loads.
+// P L^3 / (3 E I) + P L / (G As). Not supported: warping, offsets.
 //
-// An element answers three questions and never touches the global system: internal force,
-// tangent stiffness, strain energy, for given nodal kinematics.
+// The element contract it fulfils: elements/frame_element.hpp.
 #include <Eigen/Core>
 
 #include "core/model.hpp"
+#include "elements/frame_element.hpp"
 
 namespace beamfea {
-
-using Vec12 = Eigen::Matrix<double, 12, 1>;
-using Mat12 = Eigen::Matrix<double, 12, 12>;
 
 struct BeamSection {
   double E = 0, G = 0, A = 0, Iy = 0, Iz = 0, J = 0;
@@ -56,28 +53,59 @@ Mat12 beam_local_stiffness(const BeamSection& s, double L);
 // Chablat (2010) eq. 39 (a virtual spring's stiffness "from a beam").
 Mat6 cantilever_tip_stiffness(const BeamSection& s, double L);
 
-// The linear beam in global axes: kinematics are the 12 global nodal displacements/rotations.
-class LinearBeam {
+// What every beam kind shares: the section, the reference geometry, the linear local element and
+// the answers that do not depend on the geometric transformation (linear stiffness, geometric
+// stiffness, mass, member and thermal loads, section forces). LinearBeam and CorotationalBeam
+// add the kinematics (elements/frame_element.hpp).
+class BeamElement : public FrameElement {
  public:
-  LinearBeam(const BeamSection& section, const Vec3& x1, const Vec3& x2, const Vec3& orientation);
+  BeamElement(const BeamSection& section, const Vec3& x1, const Vec3& x2, const Vec3& orientation);
 
-  const Mat12& stiffness() const { return K_; }                      // global tangent
-  Vec12 internal_force(const Vec12& u) const { return K_ * u; }      // global
-  double strain_energy(const Vec12& u) const { return 0.5 * u.dot(K_ * u); }
-  // Forces exerted on the element at its ends, local axes: [N1 Vy1 Vz1 T1 My1 Mz1 N2 ... Mz2].
-  Vec12 local_end_forces(const Vec12& u) const { return kl_ * (T_ * u); }
+  double length() const override { return L_; }
+  const Mat3& axes() const override { return R_; }
+  NodalPoses reference_poses() const override { return {X1_, X2_, Mat3::Identity(), Mat3::Identity()}; }
+  const Mat12& stiffness() const override { return K_; }
+  Vec12 local_end_forces(const Vec12& u) const override { return kl_ * (T_ * u); }
+  // T^T kg T, kg of elements/geometric_stiffness.hpp (Euler-Bernoulli's also for a Timoshenko beam).
+  Mat12 geometric_stiffness(const Vec12& local_end_forces) const override;
+  // T^T m T, m of elements/beam_mass.hpp.
+  Mat12 mass(MassKind kind, double density) const override;
+  Vec12 equivalent_loads(const ElementLoads& loads) const override;
+  Vec12 thermal_loads(const Temperature& t) const override;
+  Vec6 section_forces(double s, const Vec12& end_forces, const ElementLoads& loads, CutSide side) const override;
 
-  double length() const { return L_; }
-  const Mat3& axes() const { return R_; }
+  const BeamSection& section() const { return section_; }
   const Mat12& local_stiffness() const { return kl_; }
   const Mat12& transformation() const { return T_; }
 
- private:
+ protected:
+  BeamSection section_;
+  Vec3 X1_, X2_;
   double L_;
   Mat3 R_;
   Mat12 T_;
   Mat12 kl_;
   Mat12 K_;
+};
+
+// The linear beam: small displacements and rotations. At a state, its displacements are
+// u = [x1 - X1, log R1, x2 - X2, log R2]; force K u, tangent K, energy u^T K u / 2.
+class LinearBeam final : public BeamElement {
+ public:
+  using BeamElement::BeamElement;
+
+  Vec12 internal_force(const Vec12& u) const { return K_ * u; }      // global
+  double strain_energy(const Vec12& u) const { return 0.5 * u.dot(K_ * u); }
+  // The small displacements u of a state (rotation vectors log R).
+  Vec12 displacements(const NodalPoses& p) const;
+
+  Mat3 axes_at(const NodalPoses&) const override { return R_; }
+  ElementResponse respond(const NodalPoses& p, Evaluate what) const override;
+  NodalPoses advance(const NodalPoses& p, const Vec12& d) const override;
+  Mat12 mass_at(const NodalPoses&, MassKind kind, double density) const override { return mass(kind, density); }
+  // Small displacements: the loads keep their reference local components.
+  Vec12 fixed_end_forces_at(const NodalPoses& p, const ElementLoads& loads) const override;
+  Vec3 displacement_at(const NodalPoses& p, double xi) const override;
 };
 
 // Cubic (Hermite) interpolation of a beam's displacement at xi in [0, 1], in global axes,

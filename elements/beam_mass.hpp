@@ -33,8 +33,6 @@
 
 namespace beamfea {
 
-enum class MassKind { Consistent, Lumped };
-
 // Local mass matrix of a member of length L, density rho (mass per unit volume).
 Mat12 beam_local_mass(const BeamSection& s, double rho, double L, MassKind kind);
 

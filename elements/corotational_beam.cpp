@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "elements/beam_mass.hpp"
+#include "elements/span_loads.hpp"
 
 // Derivation, in the notation of Battini & Pacoste (2002), with every variation written in
 // global spatial spins d = [du1 dw1 du2 dw2]:
@@ -97,29 +99,71 @@ Frame corotated_frame(const Mat3& E0, const Vec3& x1, const Mat3& R1, const Vec3
   return F;
 }
 
+// G^T: the frame spin in co-rotated components, Rr^T w_r = G^T d.
+Mat3x12 frame_spin_rows(const Frame& F) {
+  const double ln = F.ln;
+  const Vec3 &r2 = F.r2, &r3 = F.r3;
+  Mat3x12 GT = Mat3x12::Zero();
+  GT.block<1, 3>(0, 0) = (F.eta / ln) * r3.transpose();
+  GT.block<1, 3>(0, 3) = F.q1.cross(r3).transpose() / (2.0 * F.beta);
+  GT.block<1, 3>(0, 6) = -(F.eta / ln) * r3.transpose();
+  GT.block<1, 3>(0, 9) = F.q2.cross(r3).transpose() / (2.0 * F.beta);
+  GT.block<1, 3>(1, 0) = r3.transpose() / ln;
+  GT.block<1, 3>(1, 6) = -r3.transpose() / ln;
+  GT.block<1, 3>(2, 0) = -r2.transpose() / ln;
+  GT.block<1, 3>(2, 6) = r2.transpose() / ln;
+  return GT;
+}
+
+// K -= d(G v)/dd at fixed v (the derivation's last term), Wr = Rr G^T the frame spin (global),
+// r the row of d ubar (= d ln).
+void subtract_frame_spin_derivative(const Frame& F, const Mat3x12& Wr, const Row12& r, const Vec3& vs, Mat12& K) {
+  const double ln = F.ln;
+  const Vec3 &r1 = F.r1, &r2 = F.r2, &r3 = F.r3;
+  const Mat3x12 E[2] = {spin_selector(0), spin_selector(1)};
+  const Mat3x12 Dr2 = -skew(r2) * Wr, Dr3 = -skew(r3) * Wr, Dr1 = -skew(r1) * Wr;
+  const Mat3x12 Dq1 = -skew(F.q1) * E[0], Dq2 = -skew(F.q2) * E[1];
+  const Mat3x12 Dq = 0.5 * (Dq1 + Dq2);
+  const Row12 Dbeta = r2.transpose() * Dq + F.q.transpose() * Dr2;
+  const Row12 Dqr1 = r1.transpose() * Dq + F.q.transpose() * Dr1;
+  const Row12 Deta = (Dqr1 - F.eta * Dbeta) / F.beta;
+  const Row12& Dln = r;
+  const double ln2 = ln * ln;
+  // Block of G v at node 1's translation: vs0 eta r3/ln + vs1 r3/ln - vs2 r2/ln (node 2: minus).
+  const Mat3x12 Db0 = vs(0) * (r3 * (Deta / ln - F.eta * Dln / ln2) + (F.eta / ln) * Dr3) +
+                      vs(1) * (Dr3 / ln - r3 * Dln / ln2) - vs(2) * (Dr2 / ln - r2 * Dln / ln2);
+  // Blocks at the spins: vs0 (q_i x r3) / (2 beta).
+  const double w = vs(0) / (2.0 * F.beta);
+  const Mat3x12 Db1 = w * (-skew(r3) * Dq1 + skew(F.q1) * Dr3) - (w / F.beta) * F.q1.cross(r3) * Dbeta;
+  const Mat3x12 Db3 = w * (-skew(r3) * Dq2 + skew(F.q2) * Dr3) - (w / F.beta) * F.q2.cross(r3) * Dbeta;
+  K.middleRows<3>(0) -= Db0;
+  K.middleRows<3>(3) -= Db1;
+  K.middleRows<3>(6) += Db0;
+  K.middleRows<3>(9) -= Db3;
+}
+
 }  // namespace
 
 CorotationalBeam::CorotationalBeam(const BeamSection& section, const Vec3& X1, const Vec3& X2,
                                    const Vec3& orientation)
-    : section_(section), L0_((X2 - X1).norm()), E0_(beam_local_axes(X1, X2, orientation).transpose()),
-      kl_(beam_local_stiffness(section, L0_)) {}
+    : BeamElement(section, X1, X2, orientation), E0_(R_.transpose()) {}
 
 CorotationalKinematics CorotationalBeam::kinematics(const Vec3& x1, const Mat3& R1, const Vec3& x2,
                                                     const Mat3& R2) const {
   const Frame F = corotated_frame(E0_, x1, R1, x2, R2);
-  return {F.Rr, F.ln, F.ln - L0_, F.theta1, F.theta2};
+  return {F.Rr, F.ln, F.ln - L_, F.theta1, F.theta2};
 }
 
 CorotationalResponse CorotationalBeam::evaluate(const Vec3& x1, const Mat3& R1, const Vec3& x2, const Mat3& R2,
                                                 bool with_tangent) const {
   const Frame F = corotated_frame(E0_, x1, R1, x2, R2);
   const double ln = F.ln;
-  const Vec3 &r1 = F.r1, &r2 = F.r2, &r3 = F.r3;
+  const Vec3& r1 = F.r1;
 
   // The linear local element on dl = [0 0 0 thetabar_1  ubar 0 0 thetabar_2].
   Vec12 dl = Vec12::Zero();
   dl.segment<3>(3) = F.theta1;
-  dl(6) = ln - L0_;
+  dl(6) = ln - L_;
   dl.segment<3>(9) = F.theta2;
   CorotationalResponse out;
   out.local_end_forces = kl_ * dl;
@@ -133,16 +177,7 @@ CorotationalResponse CorotationalBeam::evaluate(const Vec3& x1, const Mat3& R1, 
   r.segment<3>(0) = -r1.transpose();
   r.segment<3>(6) = r1.transpose();
 
-  // G^T: the frame spin in co-rotated components, Rr^T w_r = G^T d.
-  Mat3x12 GT = Mat3x12::Zero();
-  GT.block<1, 3>(0, 0) = (F.eta / ln) * r3.transpose();
-  GT.block<1, 3>(0, 3) = F.q1.cross(r3).transpose() / (2.0 * F.beta);
-  GT.block<1, 3>(0, 6) = -(F.eta / ln) * r3.transpose();
-  GT.block<1, 3>(0, 9) = F.q2.cross(r3).transpose() / (2.0 * F.beta);
-  GT.block<1, 3>(1, 0) = r3.transpose() / ln;
-  GT.block<1, 3>(1, 6) = -r3.transpose() / ln;
-  GT.block<1, 3>(2, 0) = -r2.transpose() / ln;
-  GT.block<1, 3>(2, 6) = r2.transpose() / ln;
+  const Mat3x12 GT = frame_spin_rows(F);
   const Mat3x12 Wr = F.Rr * GT;  // frame spin, global components
 
   const Mat3x12 E[2] = {spin_selector(0), spin_selector(1)};
@@ -187,29 +222,52 @@ CorotationalResponse CorotationalBeam::evaluate(const Vec3& x1, const Mat3& R1, 
   }
 
   // Geometric part 4: d(G v), v = v_1 + v_2 held fixed.
-  const Vec3 vs = v[0] + v[1];
-  const Mat3x12 Dr2 = -skew(r2) * Wr, Dr3 = -skew(r3) * Wr, Dr1 = -skew(r1) * Wr;
-  const Mat3x12 Dq1 = -skew(F.q1) * E[0], Dq2 = -skew(F.q2) * E[1];
-  const Mat3x12 Dq = 0.5 * (Dq1 + Dq2);
-  const Row12 Dbeta = r2.transpose() * Dq + F.q.transpose() * Dr2;
-  const Row12 Dqr1 = r1.transpose() * Dq + F.q.transpose() * Dr1;
-  const Row12 Deta = (Dqr1 - F.eta * Dbeta) / F.beta;
-  const Row12& Dln = r;
-  const double ln2 = ln * ln;
-  // Block of G v at node 1's translation: vs0 eta r3/ln + vs1 r3/ln - vs2 r2/ln (node 2: minus).
-  const Mat3x12 Db0 = vs(0) * (r3 * (Deta / ln - F.eta * Dln / ln2) + (F.eta / ln) * Dr3) +
-                      vs(1) * (Dr3 / ln - r3 * Dln / ln2) - vs(2) * (Dr2 / ln - r2 * Dln / ln2);
-  // Blocks at the spins: vs0 (q_i x r3) / (2 beta).
-  const double w = vs(0) / (2.0 * F.beta);
-  const Mat3x12 Db1 = w * (-skew(r3) * Dq1 + skew(F.q1) * Dr3) - (w / F.beta) * F.q1.cross(r3) * Dbeta;
-  const Mat3x12 Db3 = w * (-skew(r3) * Dq2 + skew(F.q2) * Dr3) - (w / F.beta) * F.q2.cross(r3) * Dbeta;
-  K.middleRows<3>(0) -= Db0;
-  K.middleRows<3>(3) -= Db1;
-  K.middleRows<3>(6) += Db0;
-  K.middleRows<3>(9) -= Db3;
+  subtract_frame_spin_derivative(F, Wr, r, v[0] + v[1], K);
 
   out.tangent = K;
   return out;
+}
+
+Mat3 CorotationalBeam::axes_at(const NodalPoses& p) const {
+  return kinematics(p.x1, p.R1, p.x2, p.R2).Rr.transpose();
+}
+
+ElementResponse CorotationalBeam::respond(const NodalPoses& p, Evaluate what) const {
+  CorotationalResponse r = evaluate(p.x1, p.R1, p.x2, p.R2, what == Evaluate::ForceAndTangent);
+  return {r.force, r.tangent, r.energy, r.local_end_forces};
+}
+
+NodalPoses CorotationalBeam::advance(const NodalPoses& p, const Vec12& d) const {
+  return {p.x1 + d.segment<3>(0), p.x2 + d.segment<3>(6), exp_so3(d.segment<3>(3)) * p.R1,
+          exp_so3(d.segment<3>(9)) * p.R2};
+}
+
+Mat12 CorotationalBeam::mass_at(const NodalPoses& p, MassKind kind, double density) const {
+  // The reference length's local mass in the co-rotated axes: mass is conserved.
+  const Mat12 T = beam_transformation(axes_at(p));
+  return T.transpose() * beam_local_mass(section_, density, L_, kind) * T;
+}
+
+Vec12 CorotationalBeam::fixed_end_forces_at(const NodalPoses& p, const ElementLoads& loads) const {
+  // Reference local -> global (E0, columns the reference axes) -> current local (Rr^T): the load
+  // keeps its direction in space; over the reference length (loads per unit reference length).
+  const Mat3 Q = axes_at(p) * E0_;
+  ElementLoads now;
+  for (const auto& d : loads.distributed) now.distributed.push_back({d.a, d.b, Q * d.q_a, Q * d.q_b});
+  for (const auto& pt : loads.points) now.points.push_back({pt.a, Q * pt.force, Q * pt.moment});
+  return fixed_end_forces(L_, now);
+}
+
+Vec3 CorotationalBeam::displacement_at(const NodalPoses& p, double xi) const {
+  // The chord, plus the cubic deflection of the local end rotations in the co-rotated plane.
+  const CorotationalKinematics k = kinematics(p.x1, p.R1, p.x2, p.R2);
+  const Vec3 X = (1.0 - xi) * X1_ + xi * X2_;
+  const double ln = k.length;
+  const double h1 = xi * (1 - xi) * (1 - xi), h2 = -xi * xi * (1 - xi);
+  const double v = ln * (h1 * k.theta1.z() + h2 * k.theta2.z());
+  const double w = -ln * (h1 * k.theta1.y() + h2 * k.theta2.y());
+  const Vec3 x = p.x1 + xi * (p.x2 - p.x1) + k.Rr * Vec3(0.0, v, w);
+  return x - X;
 }
 
 }  // namespace beamfea

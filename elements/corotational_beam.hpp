@@ -52,12 +52,14 @@
 // (forces ON the element). The local moments are conjugate to thetabar (not to spins); the shears
 // are those of equilibrium. The tangent already contains the element's geometric (initial-stress)
 // stiffness: it IS the loaded stiffness at the current state; never add
-// beam_local_geometric_stiffness to it (that matrix is for linearised buckling about the
+// geometric_stiffness() to it (that matrix is for linearised buckling about the
 // reference state, on LinearBeam).
 //
 // Shear deformation: the local element is beam_local_stiffness of the section, Timoshenko when the
 // section has shear areas (the element's "theory"); the co-rotated frame is unchanged.
-// Not supported: warping, offsets, member loads, large local strains; the frame
+// Member loads: dead loads (fixed in space) through fixed_end_forces_at and the chord-following
+// consistent vectors of elements/span_loads.hpp (DeadLoadTerm).
+// Not supported: warping, offsets, large local strains; the frame
 // is undefined when the mean nodal y axis q becomes parallel to the chord (local rotations near
 // 90 deg about the member's z axis), which throws ModelError.
 #include "elements/beam.hpp"
@@ -79,7 +81,7 @@ struct CorotationalKinematics {
   Vec3 theta1, theta2;     // local rotation vectors thetabar_i, co-rotated components
 };
 
-class CorotationalBeam {
+class CorotationalBeam final : public BeamElement {
  public:
   // Reference geometry: end positions X1, X2 and the orientation vector of elements/beam.hpp.
   // Throws ModelError for a zero length or an orientation parallel to the member.
@@ -91,17 +93,25 @@ class CorotationalBeam {
                                 bool with_tangent = true) const;
   CorotationalKinematics kinematics(const Vec3& x1, const Mat3& R1, const Vec3& x2, const Mat3& R2) const;
 
-  double reference_length() const { return L0_; }
+  double reference_length() const { return L_; }
   // Columns are the reference local axes (the transpose of beam_local_axes).
   const Mat3& reference_axes() const { return E0_; }
-  const Mat12& local_stiffness() const { return kl_; }
-  const BeamSection& section() const { return section_; }
+
+  // The element contract (elements/frame_element.hpp). axes_at: the co-rotated axes as rows
+  // (Rr^T); respond: evaluate; advance: x += du, R = exp(dw) R; mass_at: the local mass in the
+  // co-rotated axes; fixed_end_forces_at: dead loads in the co-rotated axes; displacement_at: the
+  // chord plus the cubic deflection of the local end rotations, in the co-rotated axes.
+  // geometric_stiffness (from BeamElement) is the matrix at the reference, for linearised
+  // buckling: the tangent already contains the geometric stiffness at a state.
+  Mat3 axes_at(const NodalPoses& p) const override;
+  ElementResponse respond(const NodalPoses& p, Evaluate what) const override;
+  NodalPoses advance(const NodalPoses& p, const Vec12& d) const override;
+  Mat12 mass_at(const NodalPoses& p, MassKind kind, double density) const override;
+  Vec12 fixed_end_forces_at(const NodalPoses& p, const ElementLoads& loads) const override;
+  Vec3 displacement_at(const NodalPoses& p, double xi) const override;
 
  private:
-  BeamSection section_;
-  double L0_;
   Mat3 E0_;
-  Mat12 kl_;
 };
 
 }  // namespace beamfea

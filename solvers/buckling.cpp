@@ -12,7 +12,6 @@
 
 #include "core/assembly.hpp"
 #include "core/errors.hpp"
-#include "elements/geometric_stiffness.hpp"
 #include "solvers/initial_stress.hpp"
 #include "solvers/linear_static.hpp"
 #include "solvers/structure.hpp"
@@ -49,6 +48,69 @@ Eigen::VectorXd normalise_mode(const Model& model, const Eigen::VectorXd& u) {
   return u / u[arg];
 }
 
+namespace {
+
+using LoadFactorPairs = std::vector<std::pair<double, Eigen::VectorXd>>;
+
+// Dense: -Kg phi = mu K phi, mu = 1 / lambda; the positive load factors, lowest first. False when
+// the eigen-solver fails.
+bool dense_buckling_pairs(const SparseMatrix& K, const SparseMatrix& KG, LoadFactorPairs& pairs) {
+  const Eigen::MatrixXd KGd(KG), Kd(K);
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(KGd, Kd);
+  if (es.info() != Eigen::Success) return false;
+  const double mu_max = es.eigenvalues().cwiseAbs().maxCoeff();
+  for (auto i = static_cast<int>(K.rows()) - 1; i >= 0; --i) {
+    const double mu = es.eigenvalues()[i];
+    if (mu <= 1e-12 * mu_max || mu <= 0.0) break;
+    pairs.emplace_back(1.0 / mu, es.eigenvectors().col(i));
+  }
+  return true;
+}
+
+// Sparse (Spectra): the positive load factors nearest half the first one; none when the loads put
+// nothing in compression.
+LoadFactorPairs sparse_buckling_pairs(const SparseMatrix& K, const SparseMatrix& KG, int want) {
+  const auto n = static_cast<int>(K.rows());
+  LoadFactorPairs pairs;
+  // Pass 1, an estimate of the first load factor without a shift: the largest eigenvalue
+  // mu = 1/lambda of (-Kg) phi = mu K phi (Spectra, Cholesky mode on K).
+  double sigma = 0.0;
+  {
+    Spectra::SparseSymMatProd<double> Aop(KG);
+    Spectra::SparseCholesky<double> Bop(K);
+    Spectra::SymGEigsSolver<Spectra::SparseSymMatProd<double>, Spectra::SparseCholesky<double>, Spectra::GEigsMode::Cholesky>
+        est(Aop, Bop, 1, std::min(n, 20));
+    est.init();
+    est.compute(Spectra::SortRule::LargestAlge, 2000, 1e-6);
+    if (est.info() == Spectra::CompInfo::Successful && est.eigenvalues()[0] > 0.0) sigma = 0.5 / est.eigenvalues()[0];
+  }
+  if (!(sigma > 0.0)) return pairs;
+  // Pass 2, shift-invert in buckling mode about half the first load factor: the factors nearest
+  // sigma, negative ones (tension buckling) dropped.
+  using OpType = Spectra::SymShiftInvert<double, Eigen::Sparse, Eigen::Sparse>;
+  using BOpType = Spectra::SparseSymMatProd<double>;
+  const int nev = std::min(n - 1, 2 * want + 2);
+  const int ncv = std::min(n, std::max(2 * nev + 1, 24));
+  for (int attempt = 0; attempt < 4 && pairs.size() < static_cast<std::size_t>(want); ++attempt) {
+    pairs.clear();
+    OpType op(K, KG);
+    BOpType Bop(K);
+    Spectra::SymGEigsShiftSolver<OpType, BOpType, Spectra::GEigsMode::Buckling> eigs(op, Bop, nev, ncv, sigma);
+    eigs.init();
+    eigs.compute(Spectra::SortRule::LargestMagn, 2000, 1e-10);
+    if (eigs.info() == Spectra::CompInfo::Successful) {
+      const Eigen::VectorXd v = eigs.eigenvalues();
+      const Eigen::MatrixXd V = eigs.eigenvectors();
+      for (int i = 0; i < v.size(); ++i)
+        if (v[i] > 0.0) pairs.emplace_back(v[i], V.col(i));
+    }
+    sigma *= 0.5;
+  }
+  return pairs;
+}
+
+}  // namespace
+
 BucklingResult solve_buckling(const Model& model, const BucklingOptions& options) {
   options.validate();
   BucklingResult res;
@@ -80,61 +142,15 @@ BucklingResult solve_buckling(const Model& model, const BucklingOptions& options
 
   // Solve K phi = lambda (-Kg) phi.
   const SparseMatrix KG = -Kg;
-  std::vector<std::pair<double, Eigen::VectorXd>> pairs;
+  LoadFactorPairs pairs;
   if (n <= 300) {
-    // Dense: -Kg phi = mu K phi, mu = 1 / lambda.
-    const Eigen::MatrixXd KGd(KG), Kd(K);
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(KGd, Kd);
-    if (es.info() != Eigen::Success) {
+    if (!dense_buckling_pairs(K, KG, pairs)) {
       res.status = BucklingStatus::Failed;
       res.message = "buckling: the dense eigen-solver failed (is K positive definite?)";
       return res;
     }
-    const double mu_max = es.eigenvalues().cwiseAbs().maxCoeff();
-    for (int i = n - 1; i >= 0; --i) {
-      const double mu = es.eigenvalues()[i];
-      if (mu <= 1e-12 * mu_max || mu <= 0.0) break;
-      pairs.emplace_back(1.0 / mu, es.eigenvectors().col(i));
-    }
   } else {
-    // Pass 1, an estimate of the first load factor without a shift: the largest eigenvalue
-    // mu = 1/lambda of (-Kg) phi = mu K phi (Spectra, Cholesky mode on K).
-    double sigma = 0.0;
-    {
-      Spectra::SparseSymMatProd<double> Aop(KG);
-      Spectra::SparseCholesky<double> Bop(K);
-      Spectra::SymGEigsSolver<Spectra::SparseSymMatProd<double>, Spectra::SparseCholesky<double>, Spectra::GEigsMode::Cholesky>
-          est(Aop, Bop, 1, std::min(n, 20));
-      est.init();
-      est.compute(Spectra::SortRule::LargestAlge, 2000, 1e-6);
-      if (est.info() == Spectra::CompInfo::Successful && est.eigenvalues()[0] > 0.0) sigma = 0.5 / est.eigenvalues()[0];
-    }
-    if (!(sigma > 0.0)) {
-      res.status = BucklingStatus::NoCompression;
-      res.message = "buckling: no positive load factor (the loads put nothing in compression)";
-      return res;
-    }
-    // Pass 2, shift-invert in buckling mode about half the first load factor: the factors nearest
-    // sigma, negative ones (tension buckling) dropped.
-    using OpType = Spectra::SymShiftInvert<double, Eigen::Sparse, Eigen::Sparse>;
-    using BOpType = Spectra::SparseSymMatProd<double>;
-    const int nev = std::min(n - 1, 2 * want + 2);
-    const int ncv = std::min(n, std::max(2 * nev + 1, 24));
-    for (int attempt = 0; attempt < 4 && pairs.size() < static_cast<std::size_t>(want); ++attempt) {
-      pairs.clear();
-      OpType op(K, KG);
-      BOpType Bop(K);
-      Spectra::SymGEigsShiftSolver<OpType, BOpType, Spectra::GEigsMode::Buckling> eigs(op, Bop, nev, ncv, sigma);
-      eigs.init();
-      eigs.compute(Spectra::SortRule::LargestMagn, 2000, 1e-10);
-      if (eigs.info() == Spectra::CompInfo::Successful) {
-        const Eigen::VectorXd v = eigs.eigenvalues();
-        const Eigen::MatrixXd V = eigs.eigenvectors();
-        for (int i = 0; i < v.size(); ++i)
-          if (v[i] > 0.0) pairs.emplace_back(v[i], V.col(i));
-      }
-      sigma *= 0.5;
-    }
+    pairs = sparse_buckling_pairs(K, KG, want);
   }
   std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   if (pairs.size() > static_cast<std::size_t>(want)) pairs.resize(want);

@@ -4,7 +4,7 @@
 //
 // K   the elastic stiffness (beams, joint springs) on the free DOFs (DofMap, reference state);
 // K_g the geometric (initial-stress) stiffness of the linear solution at lambda = 1:
-//     - beams: beam_local_geometric_stiffness (Yang & McGuire 1986, McGuire et al. 2000 eq. 9.18)
+//     - beams: FrameElement::geometric_stiffness (Yang & McGuire 1986, McGuire et al. 2000 eq. 9.18)
 //       from each beam's linear end forces; its moment terms carry lateral-torsional buckling;
 //     - rigid links and joints: the constraint-curvature matrix G of solvers/nonlinear_structure.hpp
 //       for the raw forces f_int - f_ext - reactions transmitted at the slave nodes, mapped to the

@@ -1,7 +1,6 @@
 #include "solvers/initial_stress.hpp"
 
 #include "core/assembly.hpp"
-#include "elements/geometric_stiffness.hpp"
 #include "solvers/member_loading.hpp"
 #include "solvers/nonlinear_structure.hpp"
 
@@ -28,13 +27,10 @@ SparseMatrix geometric_stiffness(const Model& model, const DofMap& map, const Li
   for (std::size_t e = 0; e < model.elements.size(); ++e) {
     const auto& beam = structure.beam(static_cast<int>(e));
     if (!beam) continue;
-    const auto& s = model.sections[model.elements[e].section];
     // End forces include the member loads' fixed-end forces: kg takes the element's mean axial
     // force, so a load along the member (a column's own weight) converges with the mesh.
-    const Mat12 kg = beam_local_geometric_stiffness(beam->length(), s.A, s.Iy, s.Iz, lin.end_forces[e]);
-    const Mat12 Kg = beam->transformation().transpose() * kg * beam->transformation();
     const auto dofs = structure.element_dofs(map, static_cast<int>(e));
-    ga.add(dofs, Kg);
+    ga.add(dofs, beam->geometric_stiffness(lin.end_forces[e]));
   }
   ga.end();
   SparseMatrix Kg = ga.K_ff();

@@ -3,7 +3,7 @@
 // buckling analysis multiplies by lambda and what the modal analysis about a loaded equilibrium
 // adds to K.
 //
-//   K_g = sum_beams T^T kg(end forces) T                    (elements/geometric_stiffness.hpp)
+//   K_g = sum_beams FrameElement::geometric_stiffness(end forces)  (T^T kg T, elements/geometric_stiffness.hpp)
 //       + Z^T G Z                                            (rigid links and joints)
 // G is the constraint-curvature matrix of solvers/nonlinear_structure.hpp for the raw forces
 // f_int - f_ext - reactions at slave nodes that rigid links and joints transmit, Z the DofMap's

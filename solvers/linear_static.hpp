@@ -9,7 +9,7 @@
 #include "core/model.hpp"
 #include "core/parallel_tasks.hpp"
 #include "elements/beam.hpp"
-#include "elements/member_loads.hpp"
+#include "elements/span_loads.hpp"
 #include "solvers/mechanism.hpp"
 
 namespace beamfea {

@@ -8,20 +8,15 @@ namespace {
 
 // Calls f(raw dofs, global matrix) for each beam with mass and each point mass.
 template <class F>
-void for_each_mass(const Model& model, const DofMap& map, MassKind kind, F&& f) {
-  for (const auto& el : model.elements) {
-    if (el.type != MemberType::Beam) continue;
-    const double rho = model.materials[el.material].density;
+void for_each_mass(const LinearStructure& structure, const DofMap& map, MassKind kind, F&& f) {
+  const Model& model = structure.model();
+  for (std::size_t e = 0; e < model.elements.size(); ++e) {
+    const FrameElement* beam = structure.beam(static_cast<int>(e));
+    if (!beam) continue;
+    const double rho = model.materials[model.elements[e].material].density;
     if (!(rho > 0.0)) continue;
-    const Vec3& x1 = model.nodes[el.nodes[0]].x;
-    const Vec3& x2 = model.nodes[el.nodes[1]].x;
-    const Mat12 T = beam_transformation(beam_local_axes(x1, x2, el.orientation));
-    const Mat12 M = T.transpose() * beam_local_mass(beam_section(model, el), rho, (x2 - x1).norm(), kind) * T;
-    std::array<int, 12> dofs{};
-    for (int k = 0; k < 6; ++k) {
-      dofs[k] = map.raw_node(el.nodes[0], k);
-      dofs[6 + k] = map.raw_node(el.nodes[1], k);
-    }
+    const Mat12 M = beam->mass(kind, rho);
+    const auto dofs = structure.element_dofs(map, static_cast<int>(e));
     f(std::span<const int>(dofs), Eigen::Ref<const Eigen::MatrixXd>(M));
   }
   for (const auto& pm : model.masses) {
@@ -34,15 +29,16 @@ void for_each_mass(const Model& model, const DofMap& map, MassKind kind, F&& f) 
 
 }  // namespace
 
-void assemble_mass(const Model& model, const DofMap& map, MassKind kind, SystemAssembler& assembler) {
-  for_each_mass(model, map, kind, [&](std::span<const int> dofs, const Eigen::Ref<const Eigen::MatrixXd>& M) {
+void assemble_mass(const LinearStructure& structure, const DofMap& map, MassKind kind, SystemAssembler& assembler) {
+  for_each_mass(structure, map, kind, [&](std::span<const int> dofs, const Eigen::Ref<const Eigen::MatrixXd>& M) {
     assembler.add(dofs, M);
   });
 }
 
-Eigen::VectorXd raw_mass_product(const Model& model, const DofMap& map, MassKind kind, const Eigen::VectorXd& u) {
+Eigen::VectorXd raw_mass_product(const LinearStructure& structure, const DofMap& map, MassKind kind,
+                                 const Eigen::VectorXd& u) {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(map.raw_size());
-  for_each_mass(model, map, kind, [&](std::span<const int> dofs, const Eigen::Ref<const Eigen::MatrixXd>& M) {
+  for_each_mass(structure, map, kind, [&](std::span<const int> dofs, const Eigen::Ref<const Eigen::MatrixXd>& M) {
     const auto n = static_cast<Eigen::Index>(dofs.size());
     Eigen::VectorXd ue(n);
     for (Eigen::Index k = 0; k < n; ++k) ue[k] = u[dofs[static_cast<std::size_t>(k)]];

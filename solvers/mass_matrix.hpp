@@ -1,5 +1,5 @@
 #pragma once
-// The mass matrix of a model: beams (elements/beam_mass.hpp, from the material's density) and
+// The mass matrix of a model: beams (FrameElement::mass, from the material's density) and
 // point masses ("masses"), over raw DOFs, assembled on the free DOFs through the DofMap.
 //
 // Rigid links and joints carry the mass of what they connect exactly: the raw DOFs of a slave
@@ -11,15 +11,17 @@
 #include "core/dof_map.hpp"
 #include "core/model.hpp"
 #include "elements/beam_mass.hpp"
+#include "solvers/structure.hpp"
 
 namespace beamfea {
 
 // Adds every beam's and point mass's matrix over its raw DOFs to `assembler` (begin/end are the
 // caller's).
-void assemble_mass(const Model& model, const DofMap& map, MassKind kind, SystemAssembler& assembler);
+void assemble_mass(const LinearStructure& structure, const DofMap& map, MassKind kind, SystemAssembler& assembler);
 
 // M_raw u_raw (raw DOFs), element by element.
-Eigen::VectorXd raw_mass_product(const Model& model, const DofMap& map, MassKind kind, const Eigen::VectorXd& u_raw);
+Eigen::VectorXd raw_mass_product(const LinearStructure& structure, const DofMap& map, MassKind kind,
+                                 const Eigen::VectorXd& u_raw);
 
 // The 6 raw rigid-body motions of the whole model about the origin, as columns: unit
 // translations along x, y, z, then unit rotations about the global x, y, z axes through the

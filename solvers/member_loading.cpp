@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "elements/beam.hpp"
+#include "elements/corotational_beam.hpp"
+#include "solvers/structure.hpp"
 
 namespace beamfea {
 
@@ -151,6 +153,21 @@ std::vector<std::vector<DeadLoadTerm>> element_dead_loads(const Model& m, const 
       const double Le = (m.nodes[m.elements[e].nodes[1]].x - m.nodes[m.elements[e].nodes[0]].x).norm();
       append(out[e], dead_load_terms(Le, 0.0, Le, q, q));
     }
+  return out;
+}
+
+std::vector<Vec12> corotated_fixed_end_forces(const Model& model, const LoadSet& loads, const std::vector<Vec3>& x,
+                                              const std::vector<Mat3>& R, double factor) {
+  std::vector<Vec12> out(model.elements.size(), Vec12::Zero());
+  if (factor == 0.0) return out;
+  const std::vector<ElementLoads> ref = element_loads(model, loads);  // reference local axes
+  for (std::size_t e = 0; e < model.elements.size(); ++e) {
+    const auto& el = model.elements[e];
+    if (el.type != MemberType::Beam || ref[e].empty()) continue;
+    const int a = el.nodes[0], b = el.nodes[1];
+    const CorotationalBeam beam(beam_section(model, el), model.nodes[a].x, model.nodes[b].x, el.orientation);
+    out[e] = factor * beam.fixed_end_forces_at({x[a], x[b], R[a], R[b]}, ref[e]);
+  }
   return out;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
-// A load case on the model: member loads and self-weight distributed onto the analysis elements,
-// the external load vector over raw DOFs, dead-load terms for the co-rotational analyses, and
-// section forces at stations along members.
+// A load case on the model: member loads and self-weight distributed onto the analysis elements
+// (ElementLoads, elements/span_loads.hpp: the loads between one element's nodes), the external
+// load vector over raw DOFs, dead-load terms and fixed-end forces for the co-rotational analyses,
+// and section forces at stations along members. The one owner of member loads in solvers/.
 //
 // A member load follows its member over its segments: a distributed load on [from, to] (fractions
 // of the member's length) is cut at the segment ends, its intensity interpolated linearly; a point
@@ -13,7 +14,7 @@
 
 #include "core/dof_map.hpp"
 #include "core/model.hpp"
-#include "elements/member_loads.hpp"
+#include "elements/span_loads.hpp"
 
 namespace beamfea {
 
@@ -33,8 +34,18 @@ void external_force(const Model& model, const DofMap& map, const LoadSet& loads,
                     Eigen::VectorXd& f);
 
 // Dead-load terms of every element (global directions, fixed at the reference configuration),
-// for the co-rotational analyses (elements/member_loads.hpp, DeadLoadTerm).
+// for the co-rotational analyses (elements/span_loads.hpp, DeadLoadTerm).
 std::vector<std::vector<DeadLoadTerm>> element_dead_loads(const Model& model, const LoadSet& loads);
+
+// The member loads' share of deformed beams' end forces, for the geometrically nonlinear analyses.
+// A co-rotational beam's internal forces are its nodal forces only; the loads between its nodes
+// (member loads, self-weight) are dead loads whose direction stays fixed in space. Their fixed-end
+// forces in the element's co-rotated axes at the state (CorotationalBeam::fixed_end_forces_at)
+// times the load factor complete its end forces; at a small load they tend to linear_static's.
+// Per element (zero for rigid links and unloaded beams); x, R: node positions and rotations from
+// the reference.
+std::vector<Vec12> corotated_fixed_end_forces(const Model& model, const LoadSet& loads, const std::vector<Vec3>& x,
+                                              const std::vector<Mat3>& R, double factor);
 
 // Section forces [N Vy Vz T My Mz] (local, positive face, docs/conventions.md) at x, the distance
 // from the member's first node.

@@ -6,6 +6,10 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
+#include <utility>
+
+#include <Eigen/QR>
 
 #include "core/assembly.hpp"
 #include "core/errors.hpp"
@@ -56,6 +60,97 @@ const char* to_string(ModeKind k) {
 
 int modal_dof_count(const Model& model) { return DofMap(model).free_size(); }
 
+namespace {
+
+// The shift: just below zero, relative to the smallest diagonal ratio; nullopt when M has no mass
+// on the free DOFs.
+std::optional<double> modal_shift(const Eigen::VectorXd& dK, const Eigen::VectorXd& dM) {
+  double ratio = std::numeric_limits<double>::infinity();
+  double m_max = 0.0;
+  for (Eigen::Index i = 0; i < dK.size(); ++i) {
+    m_max = std::max(m_max, dM[i]);
+    if (dM[i] > 0.0 && dK[i] > 0.0) ratio = std::min(ratio, dK[i] / dM[i]);
+  }
+  if (!(m_max > 0.0)) return std::nullopt;
+  if (!std::isfinite(ratio)) ratio = 1.0;  // no DOF both stiff and massive: any scale
+  return -kShiftRelative * ratio;
+}
+
+// The rigid-body motions' node DOFs, rotations scaled by the model's length (commensurable), and
+// the test whether a raw mode lies in their span.
+class RigidMotions {
+ public:
+  RigidMotions(const Model& model, const Eigen::MatrixXd& R) : model_(model), Ls_(model.length_scale()) {
+    Rn_.resize(6 * static_cast<Eigen::Index>(model.nodes.size()), 6);
+    for (int d = 0; d < 6; ++d) Rn_.col(d) = node_part(R.col(d));
+    qr_ = Rn_.colPivHouseholderQr();
+  }
+  bool contains(const Eigen::VectorXd& raw) const {
+    const Eigen::VectorXd v = node_part(raw);
+    const Eigen::VectorXd fit = Rn_ * qr_.solve(v);
+    return (v - fit).norm() <= kRigidRelative * v.norm();
+  }
+
+ private:
+  Eigen::VectorXd node_part(const Eigen::VectorXd& u) const {
+    Eigen::VectorXd v(6 * static_cast<Eigen::Index>(model_.nodes.size()));
+    for (Eigen::Index i = 0; i < v.size(); ++i) v[i] = (i % 6 < 3) ? u[i] : Ls_ * u[i];
+    return v;
+  }
+  const Model& model_;
+  double Ls_;
+  Eigen::MatrixXd Rn_;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;
+};
+
+// Mode kinds, frequencies, raw shapes and participation of the eigen-pairs, into res; the counts
+// of zero-frequency and unstable modes.
+std::pair<int, int> classify_modes(const Model& model, const DofMap& map, const LinearStructure& structure,
+                                   const ModalOptions& options, const SparseMatrix& K, const GeneralizedEigenPairs& eig,
+                                   ModalResult& res) {
+  const Eigen::MatrixXd R = rigid_body_motions(model, map);
+  Eigen::MatrixXd MR(map.raw_size(), 6);
+  for (int d = 0; d < 6; ++d) MR.col(d) = raw_mass_product(structure, map, options.mass, R.col(d));
+  for (int d = 0; d < 6; ++d) res.total_mass[d] = R.col(d).dot(MR.col(d));
+  const RigidMotions rigid(model, R);
+  const Eigen::VectorXd dK = K.diagonal();
+  const Eigen::Index count = eig.values.size();
+  res.eigenvalues = eig.values;
+  res.frequencies.resize(count);
+  res.participation.resize(count, 6);
+  res.effective_mass.resize(count, 6);
+  int zero = 0, unstable = 0;
+  for (Eigen::Index k = 0; k < count; ++k) {
+    const Eigen::VectorXd phi = eig.vectors.col(k);
+    const double quad = phi.dot(K * phi);
+    double scaled = 0.0;
+    for (Eigen::Index i = 0; i < phi.size(); ++i) scaled += std::abs(dK[i]) * phi[i] * phi[i];
+    const double rayleigh = scaled > 0.0 ? quad / scaled : 0.0;
+    const Eigen::VectorXd raw = map.T_free() * phi;
+    ModeKind kind = ModeKind::Elastic;
+    double lambda = eig.values[k];
+    if (std::abs(rayleigh) < options.zero_tolerance) {
+      ++zero;
+      lambda = 0.0;
+      kind = rigid.contains(raw) ? ModeKind::RigidBody : ModeKind::Mechanism;
+    } else if (lambda < 0.0) {
+      ++unstable;
+      kind = ModeKind::Unstable;
+    }
+    res.eigenvalues[k] = lambda;
+    res.frequencies[k] = std::copysign(std::sqrt(std::abs(lambda)), lambda) / (2.0 * std::numbers::pi);
+    res.kinds.push_back(kind);
+    res.modes.push_back(raw);
+    for (int d = 0; d < 6; ++d) {
+      res.participation(k, d) = raw.dot(MR.col(d));
+      res.effective_mass(k, d) = res.participation(k, d) * res.participation(k, d);
+    }
+  }
+  return {zero, unstable};
+}
+
+}  // namespace
+
 ModalResult solve_modal(const Model& model, const ModalOptions& options) {
   options.validate();
   ModalResult res;
@@ -74,7 +169,7 @@ ModalResult solve_modal(const Model& model, const ModalOptions& options) {
   structure.assemble(map, ka);
   ka.end();
   ma.begin();
-  assemble_mass(model, map, options.mass, ma);
+  assemble_mass(structure, map, options.mass, ma);
   ma.end();
   SparseMatrix K = ka.K_ff();
   const SparseMatrix& M = ma.K_ff();
@@ -89,25 +184,15 @@ ModalResult solve_modal(const Model& model, const ModalOptions& options) {
     K += SparseMatrix(0.5 * (SparseMatrix(Kg.transpose()) + Kg));
   }
 
-  // The shift: just below zero, relative to the smallest diagonal ratio.
-  const Eigen::VectorXd dK = K.diagonal(), dM = M.diagonal();
-  double ratio = std::numeric_limits<double>::infinity();
-  double m_max = 0.0;
-  for (int i = 0; i < n; ++i) {
-    m_max = std::max(m_max, dM[i]);
-    if (dM[i] > 0.0 && dK[i] > 0.0) ratio = std::min(ratio, dK[i] / dM[i]);
-  }
-  if (!(m_max > 0.0)) {
+  const std::optional<double> sigma = modal_shift(K.diagonal(), M.diagonal());
+  if (!sigma) {
     res.status = ModalStatus::NoMass;
     res.message = "modal: the model has no mass (give the materials a density or add point masses)";
     return res;
   }
-  if (!std::isfinite(ratio)) ratio = 1.0;  // no DOF both stiff and massive: any scale
-  const double sigma = -kShiftRelative * ratio;
-
   GeneralizedEigenPairs eig;
   try {
-    eig = nearest_generalized_eigenpairs(K, M, options.modes, sigma);
+    eig = nearest_generalized_eigenpairs(K, M, options.modes, *sigma);
   } catch (const Error& e) {
     res.status = ModalStatus::MasslessMechanism;
     res.message = std::string("modal: ") + e.what();
@@ -119,57 +204,8 @@ ModalResult solve_modal(const Model& model, const ModalOptions& options) {
     return res;
   }
 
-  // Mode kinds, frequencies, raw shapes, participation.
-  const Eigen::MatrixXd R = rigid_body_motions(model, map);
-  Eigen::MatrixXd MR(map.raw_size(), 6);
-  for (int d = 0; d < 6; ++d) MR.col(d) = raw_mass_product(model, map, options.mass, R.col(d));
-  for (int d = 0; d < 6; ++d) res.total_mass[d] = R.col(d).dot(MR.col(d));
-  // Node DOFs of the rigid motions, rotations scaled by the model's length (commensurable).
-  const double Ls = model.length_scale();
-  auto node_part = [&](const Eigen::VectorXd& u) {
-    Eigen::VectorXd v(6 * static_cast<Eigen::Index>(model.nodes.size()));
-    for (Eigen::Index i = 0; i < v.size(); ++i) v[i] = (i % 6 < 3) ? u[i] : Ls * u[i];
-    return v;
-  };
-  Eigen::MatrixXd Rn(6 * static_cast<Eigen::Index>(model.nodes.size()), 6);
-  for (int d = 0; d < 6; ++d) Rn.col(d) = node_part(R.col(d));
-  const auto rigid_qr = Rn.colPivHouseholderQr();
-
+  const auto [zero, unstable] = classify_modes(model, map, structure, options, K, eig, res);
   const Eigen::Index count = eig.values.size();
-  res.eigenvalues = eig.values;
-  res.frequencies.resize(count);
-  res.participation.resize(count, 6);
-  res.effective_mass.resize(count, 6);
-  int zero = 0, unstable = 0;
-  for (Eigen::Index k = 0; k < count; ++k) {
-    const Eigen::VectorXd phi = eig.vectors.col(k);
-    const double quad = phi.dot(K * phi);
-    double scaled = 0.0;
-    for (int i = 0; i < n; ++i) scaled += std::abs(dK[i]) * phi[i] * phi[i];
-    const double rayleigh = scaled > 0.0 ? quad / scaled : 0.0;
-    const Eigen::VectorXd raw = map.T_free() * phi;
-    ModeKind kind = ModeKind::Elastic;
-    double lambda = eig.values[k];
-    if (std::abs(rayleigh) < options.zero_tolerance) {
-      ++zero;
-      lambda = 0.0;
-      const Eigen::VectorXd v = node_part(raw);
-      const Eigen::VectorXd fit = Rn * rigid_qr.solve(v);
-      const bool rigid = (v - fit).norm() <= kRigidRelative * v.norm();
-      kind = rigid ? ModeKind::RigidBody : ModeKind::Mechanism;
-    } else if (lambda < 0.0) {
-      ++unstable;
-      kind = ModeKind::Unstable;
-    }
-    res.eigenvalues[k] = lambda;
-    res.frequencies[k] = std::copysign(std::sqrt(std::abs(lambda)), lambda) / (2.0 * std::numbers::pi);
-    res.kinds.push_back(kind);
-    res.modes.push_back(raw);
-    for (int d = 0; d < 6; ++d) {
-      res.participation(k, d) = raw.dot(MR.col(d));
-      res.effective_mass(k, d) = res.participation(k, d) * res.participation(k, d);
-    }
-  }
   res.status = ModalStatus::Succeeded;
   res.message = fmt::format("modal: {} free DOFs, {} modes{}, lowest {:.6g} Hz{}{}", n, count,
                             options.preload ? " about the loaded state" : "",

@@ -340,9 +340,9 @@ NonlinearStructure::Evaluation NonlinearStructure::evaluate(const NonlinearState
     if (!beams_[e]) continue;
     const auto& el = model_->elements[e];
     const int a = el.nodes[0], b = el.nodes[1];
-    CorotationalResponse r;
+    ElementResponse r;
     try {
-      r = beams_[e]->evaluate(s.x[a], s.R[a], s.x[b], s.R[b], with_tangent);
+      r = beams_[e]->respond({s.x[a], s.x[b], s.R[a], s.R[b]}, with_tangent ? Evaluate::ForceAndTangent : Evaluate::Force);
     } catch (const Error& err) {  // the element's own error, named here
       throw ModelError("element '" + el.id + "'", err.what());
     }
@@ -431,13 +431,7 @@ Vec3 NonlinearStructure::beam_shape(const NonlinearState& s, int e, double xi) c
   const int a = el.nodes[0], b = el.nodes[1];
   const Vec3 X = (1.0 - xi) * model_->nodes[a].x + xi * model_->nodes[b].x;
   if (!beams_[e]) return (1.0 - xi) * s.x[a] + xi * s.x[b] - X;
-  const auto k = beams_[e]->kinematics(s.x[a], s.R[a], s.x[b], s.R[b]);
-  const double ln = k.length;
-  const double h1 = xi * (1 - xi) * (1 - xi), h2 = -xi * xi * (1 - xi);
-  const double v = ln * (h1 * k.theta1.z() + h2 * k.theta2.z());
-  const double w = -ln * (h1 * k.theta1.y() + h2 * k.theta2.y());
-  const Vec3 p = s.x[a] + xi * (s.x[b] - s.x[a]) + k.Rr * Vec3(0.0, v, w);
-  return p - X;
+  return beams_[e]->displacement_at({s.x[a], s.x[b], s.R[a], s.R[b]}, xi);
 }
 
 }  // namespace beamfea

@@ -63,7 +63,7 @@
 #include "core/dof_map.hpp"
 #include "core/model.hpp"
 #include "elements/corotational_beam.hpp"
-#include "elements/member_loads.hpp"
+#include "elements/span_loads.hpp"
 
 namespace beamfea {
 
@@ -157,7 +157,7 @@ class NonlinearStructure {
   // closure_curvature(mu).
   // dead_load_factor: the load factor of the default case's loads between the nodes of beams
   // (member loads, self-weight): f_app holds them at the reference configuration (external_force);
-  // their consistent vector follows the chords (elements/member_loads.hpp, DeadLoadTerm), so
+  // their consistent vector follows the chords (elements/span_loads.hpp, DeadLoadTerm), so
   // evaluate adds dead_load_factor x (vector at s - vector at the reference) and its derivative
   // (an unsymmetric load stiffness) to the tangent.
   Evaluation evaluate(const NonlinearState& s, const Eigen::VectorXd& f_app, bool with_tangent,

@@ -8,7 +8,7 @@
 #include "core/errors.hpp"
 #include "solvers/blas_threads.hpp"
 #include "solvers/buckling.hpp"
-#include "solvers/corotated_member_loads.hpp"
+#include "solvers/member_loading.hpp"
 #include "solvers/path/critical_points.hpp"
 #include "solvers/path/equilibrium.hpp"
 #include "solvers/path/path_scales.hpp"

@@ -140,7 +140,7 @@ void LinearStructure::internal_force(const DofMap& map, const Eigen::VectorXd& u
     const auto dofs = element_dofs(map, static_cast<int>(e));
     Vec12 ue;
     for (int k = 0; k < 12; ++k) ue[k] = u[dofs[k]];
-    const Vec12 fe = beams_[e]->internal_force(ue);
+    const Vec12 fe = beams_[e]->stiffness() * ue;
     for (int k = 0; k < 12; ++k) f[dofs[k]] += fe[k];
   }
   for (std::size_t j = 0; j < model_->joints.size(); ++j) {

@@ -1,6 +1,7 @@
 #pragma once
-// The model's elements in their linear form, built once per analysis: beams (LinearBeam) and
-// joint springs; rigid links and joints themselves are constraints handled by the DofMap.
+// The model's elements in their linear form, built once per analysis: beams (LinearBeam, the
+// element contract of elements/frame_element.hpp) and joint springs; rigid links and joints
+// themselves are constraints handled by the DofMap.
 #include <optional>
 #include <vector>
 
@@ -40,7 +41,8 @@ class LinearStructure {
   // Local end forces [N Vy Vz T My Mz] x 2 of a beam element for raw displacements u.
   Vec12 end_forces(const DofMap& map, int element, const Eigen::VectorXd& u_raw) const;
 
-  const std::optional<LinearBeam>& beam(int element) const { return beams_[element]; }
+  // The element of a beam, null for a rigid link.
+  const FrameElement* beam(int element) const { return beams_[element] ? &*beams_[element] : nullptr; }
   const Model& model() const { return *model_; }
   // Points the structure at `model`, which must equal the model it was built from in everything
   // the constructor reads (solvers/structure_cache.hpp checks that): `assemble` then reads the

@@ -8,7 +8,6 @@
 #include <span>
 
 #include "core/errors.hpp"
-#include "elements/beam.hpp"
 #include "elements/corotational_beam.hpp"
 #include "solvers/generalized_eigen.hpp"
 #include "solvers/modal.hpp"
@@ -38,12 +37,8 @@ SparseMatrix deformed_raw_mass(const NonlinearStructure& ns, const NonlinearStat
     const double rho = model.materials[el.material].density;
     if (!(rho > 0.0)) continue;
     const int n1 = el.nodes[0], n2 = el.nodes[1];
-    const BeamSection section = beam_section(model, el);
-    const CorotationalBeam beam(section, model.nodes[n1].x, model.nodes[n2].x, el.orientation);
-    // The co-rotated axes r1 r2 r3 as columns: beam_transformation takes them as rows.
-    const Mat3 Rr = beam.kinematics(s.x[n1], s.R[n1], s.x[n2], s.R[n2]).Rr;
-    const Mat12 T = beam_transformation(Rr.transpose());
-    const Mat12 M = T.transpose() * beam_local_mass(section, rho, beam.reference_length(), kind) * T;
+    const CorotationalBeam beam(beam_section(model, el), model.nodes[n1].x, model.nodes[n2].x, el.orientation);
+    const Mat12 M = beam.mass_at({s.x[n1], s.x[n2], s.R[n1], s.R[n2]}, kind, rho);
     const std::array<int, 2> nodes{n1, n2};
     add(nodes, M);
   }

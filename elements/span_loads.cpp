@@ -1,4 +1,4 @@
-#include "elements/member_loads.hpp"
+#include "elements/span_loads.hpp"
 
 #include <algorithm>
 #include <array>

@@ -9,9 +9,9 @@
 
 #include <cmath>
 
-#include "elements/member_loads.hpp"
+#include "elements/span_loads.hpp"
 
-namespace member_loads_test {
+namespace span_loads_test {
 
 using namespace beamfea;
 
@@ -161,4 +161,4 @@ TEST(MemberLoads, DeadLoadVectorEqualsTheLocalLoadsTurnedAndItsDerivativeTheFini
   }
 }
 
-}  // namespace member_loads_test
+}  // namespace span_loads_test

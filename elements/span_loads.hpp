@@ -1,7 +1,9 @@
 #pragma once
-// Loads between the nodes of one Euler-Bernoulli beam element (elements/beam.hpp): equivalent
-// nodal loads, fixed-end forces, section forces along the element, and the consistent vector of
-// a dead load (fixed direction) in a rotated configuration.
+// Span loads: the loads between the nodes of one beam element (elements/beam.hpp), in the
+// element's local axes: equivalent nodal loads, fixed-end forces, section forces along the
+// element, and the consistent vector of a dead load (fixed direction) in a rotated configuration.
+// The elements answer through the contract (FrameElement::equivalent_loads, section_forces,
+// fixed_end_forces_at); the model's member loads become span loads in solvers/member_loading.hpp.
 //
 // Formulation. The equivalent (consistent) nodal loads are the virtual work of the load on the
 // element's shape functions, f = int N^T q ds + N(a)^T P + N'(a)^T m: linear for the axial
