@@ -1,7 +1,6 @@
 #include "solvers/actuator_allocation.hpp"
 
 #include <Eigen/Dense>
-#include <Eigen/UmfPackSupport>
 #include <cmath>
 #include <fmt/format.h>
 #include <set>
@@ -9,7 +8,8 @@
 #include "core/assembly.hpp"
 #include "core/errors.hpp"
 #include "solvers/condensed_stiffness.hpp"
-#include "solvers/sparse_factor.hpp"
+#include "solvers/condensation.hpp"
+#include "solvers/linear_solver.hpp"
 #include "solvers/structure.hpp"
 
 namespace beamfea {
@@ -69,18 +69,18 @@ DirectionalStiffness condense_to_directions(const Model& model, const DofMap& ma
   DirectionalStiffness out;
   std::vector<int> raw;
   for (int d : dirs) raw.push_back(map.raw_node(node, d));
-  const RawCondensation c = condense_to_raw_dofs(map, K, raw);
+  const Condensation c = condense(map, K, raw);
   switch (c.outcome) {
-    case RawCondensation::Outcome::HeldDof:
+    case Condensation::Outcome::HeldDof:
       out.message = "node '" + model.nodes[node].id + "' dof " + kDofNames[dirs[c.held]] +
                     " is held rigidly (supported, prescribed or fixed by rigid constraints): its stiffness is unbounded";
       return out;
-    case RawCondensation::Outcome::Mechanism:
+    case Condensation::Outcome::Mechanism:
       out.message = "holding node '" + model.nodes[node].id +
                     "' in the requested directions leaves a mechanism, or a direction is not independent of the "
                     "constraints";
       return out;
-    case RawCondensation::Outcome::Succeeded:
+    case Condensation::Outcome::Succeeded:
       break;
   }
   out.K = c.K;
@@ -179,16 +179,14 @@ double linear_product(double L, double a1, double b1, double a2, double b2) {
   return L / 6.0 * (2.0 * a1 * a2 + a1 * b2 + b1 * a2 + 2.0 * b1 * b2);
 }
 
-}  // namespace
-
-ActuatedStiffness actuated_stiffness(const Model& model, const AllocationOptions& o, const std::vector<int>& actuated) {
-  ActuatedStiffness out;
+// The Jacobian J of eqs. 1-10 (out.J, out.jacobian_ok, or out.jacobian_message why not): rigid links,
+// actuated coordinates prescribed (one at 1, the others locked at 0).
+void actuation_jacobian(const Model& model, const AllocationOptions& o, const std::vector<int>& actuated,
+                        ActuatedStiffness& out) {
   const int nd = static_cast<int>(o.directions.size());
   const int na = static_cast<int>(actuated.size());
   const int P = o.platform_node;
   const double L = model.length_scale();
-
-  // (a) Jacobian: rigid links, actuated coordinates prescribed (one at 1, the others locked at 0).
   {
     const Model m = scheme_model(model, o, actuated, SchemeLinks::Rigid, SchemeActuators::Frozen);
     const DofMap map(m);
@@ -237,7 +235,14 @@ ActuatedStiffness actuated_stiffness(const Model& model, const AllocationOptions
       }
     }
   }
-  if (out.jacobian_ok) {
+}
+
+// K_A from J (eq. 10, or its forms for a J that is not square), where J could be formed.
+void stiffness_from_jacobian(const AllocationOptions& o, const std::vector<int>& actuated, ActuatedStiffness& out) {
+  const int nd = static_cast<int>(o.directions.size());
+  const int na = static_cast<int>(actuated.size());
+  if (!out.jacobian_ok) return;
+  {
     Eigen::VectorXd kI(na);
     for (int k = 0; k < na; ++k) kI[k] = o.actuator_stiffness[actuated[k]];
     const Eigen::MatrixXd& J = out.J;
@@ -282,6 +287,15 @@ ActuatedStiffness actuated_stiffness(const Model& model, const AllocationOptions
       }
     }
   }
+}
+
+}  // namespace
+
+ActuatedStiffness actuated_stiffness(const Model& model, const AllocationOptions& o, const std::vector<int>& actuated) {
+  ActuatedStiffness out;
+  const int P = o.platform_node;
+  actuation_jacobian(model, o, actuated, out);  // (a)
+  stiffness_from_jacobian(o, actuated, out);
   // (b) Condensed stiffness of the rigid model with actuator springs.
   {
     const Model m = scheme_model(model, o, actuated, SchemeLinks::Rigid, SchemeActuators::Springs);
@@ -295,54 +309,15 @@ ActuatedStiffness actuated_stiffness(const Model& model, const AllocationOptions
   return out;
 }
 
-StructuralStiffness structural_stiffness(const Model& model, const AllocationOptions& o, const std::vector<int>& actuated) {
-  StructuralStiffness out;
-  const int nd = static_cast<int>(o.directions.size());
-  const int P = o.platform_node;
-  const Model m = scheme_model(model, o, actuated, SchemeLinks::Flexible, SchemeActuators::Frozen);
-  const DofMap map(m);
-  const LinearStructure structure(m);
-  SystemAssembler assembler(map);
-  assembler.begin();
-  structure.assemble(map, assembler);
-  assembler.end();
-  const SparseMatrix& K = assembler.K_ff();
-  SparseFactor factor;
-  const FactorStatus fs = factor.factorize(K);
-  if (fs != FactorStatus::Succeeded) {
-    out.modes = zero_energy_modes(m, map, K, 12);
-    if (!out.modes.empty()) {
-      out.message = "with " + actuator_names(model, o, actuated) + " frozen, " + describe_mechanism(out.modes);
-      return out;
-    }
-    if (fs == FactorStatus::Singular || !factor.usable()) {
-      out.message = "the frozen structure's stiffness matrix could not be factorised";
-      return out;
-    }
-  }
-  for (int d : o.directions) {
-    bool any = false;
-    for (SparseRowMatrix::InnerIterator it(map.T_free(), map.raw_node(P, d)); it; ++it) any = any || it.value() != 0.0;
-    if (!any) {
-      out.message = "node '" + m.nodes[P].id + "' dof " + kDofNames[d] + " is held rigidly in the frozen structure";
-      return out;
-    }
-  }
-  // Unit loads (eq. 11): one solve per direction; displacements and element end forces.
-  const Eigen::VectorXd up = Eigen::VectorXd::Zero(map.prescribed_size());
-  out.C_fea = Eigen::MatrixXd::Zero(nd, nd);
+namespace {
+
+// The virtual-force compliance of eq. 12 (out.C_terms, out.links) for the unit-load end forces
+// f[i][e] of each direction i and element e; section forces: start = -f1, end = f2 (N, Qy, Qz, T
+// constant, My, Mz linear along a beam without member loads).
+void virtual_force(const Model& m, const LinearStructure& structure, const std::vector<std::vector<Vec12>>& f,
+                   StructuralStiffness& out) {
+  const int nd = static_cast<int>(f.size());
   const int ne = static_cast<int>(m.elements.size());
-  std::vector<std::vector<Vec12>> f(nd, std::vector<Vec12>(ne, Vec12::Zero()));
-  for (int i = 0; i < nd; ++i) {
-    Eigen::VectorXd f_raw = Eigen::VectorXd::Zero(map.raw_size());
-    f_raw[map.raw_node(P, o.directions[i])] = 1.0;
-    const Eigen::VectorXd u = map.expand(factor.solve(map.reduce(f_raw)), up);
-    for (int j = 0; j < nd; ++j) out.C_fea(j, i) = u[map.raw_node(P, o.directions[j])];
-    for (int e = 0; e < ne; ++e) f[i][e] = structure.end_forces(map, e, u);
-  }
-  out.C_fea = 0.5 * (out.C_fea + out.C_fea.transpose());
-  // Virtual force (eq. 12), element by element; section forces: start = -f1, end = f2
-  // (N, Qy, Qz, T constant, My, Mz linear along a beam without member loads).
   for (auto& c : out.C_terms) c = Eigen::MatrixXd::Zero(nd, nd);
   std::vector<int> member_row(m.members.size(), -1);
   for (int e = 0; e < ne; ++e) {
@@ -390,6 +365,57 @@ StructuralStiffness structural_stiffness(const Model& model, const AllocationOpt
       }
     }
   }
+}
+
+}  // namespace
+
+StructuralStiffness structural_stiffness(const Model& model, const AllocationOptions& o, const std::vector<int>& actuated) {
+  StructuralStiffness out;
+  const int nd = static_cast<int>(o.directions.size());
+  const int P = o.platform_node;
+  const Model m = scheme_model(model, o, actuated, SchemeLinks::Flexible, SchemeActuators::Frozen);
+  const DofMap map(m);
+  const LinearStructure structure(m);
+  SystemAssembler assembler(map);
+  assembler.begin();
+  structure.assemble(map, assembler);
+  assembler.end();
+  const SparseMatrix& K = assembler.K_ff();
+  const std::unique_ptr<LinearSolver> factor = make_linear_solver();
+  const FactorStatus fs = factor->compute(K);
+  if (fs != FactorStatus::Succeeded) {
+    out.modes = zero_energy_modes(m, map, K, 12);
+    if (!out.modes.empty()) {
+      out.message = "with " + actuator_names(model, o, actuated) + " frozen, " + describe_mechanism(out.modes);
+      return out;
+    }
+    if (fs == FactorStatus::Singular || !factor->usable()) {
+      out.message = "the frozen structure's stiffness matrix could not be factorised";
+      return out;
+    }
+  }
+  for (int d : o.directions) {
+    bool any = false;
+    for (SparseRowMatrix::InnerIterator it(map.T_free(), map.raw_node(P, d)); it; ++it) any = any || it.value() != 0.0;
+    if (!any) {
+      out.message = "node '" + m.nodes[P].id + "' dof " + kDofNames[d] + " is held rigidly in the frozen structure";
+      return out;
+    }
+  }
+  // Unit loads (eq. 11): one solve per direction; displacements and element end forces.
+  const Eigen::VectorXd up = Eigen::VectorXd::Zero(map.prescribed_size());
+  out.C_fea = Eigen::MatrixXd::Zero(nd, nd);
+  const int ne = static_cast<int>(m.elements.size());
+  std::vector<std::vector<Vec12>> f(nd, std::vector<Vec12>(ne, Vec12::Zero()));
+  for (int i = 0; i < nd; ++i) {
+    Eigen::VectorXd f_raw = Eigen::VectorXd::Zero(map.raw_size());
+    f_raw[map.raw_node(P, o.directions[i])] = 1.0;
+    const Eigen::VectorXd u = map.expand(factor->solve(map.reduce(f_raw)), up);
+    for (int j = 0; j < nd; ++j) out.C_fea(j, i) = u[map.raw_node(P, o.directions[j])];
+    for (int e = 0; e < ne; ++e) f[i][e] = structure.end_forces(map, e, u);
+  }
+  out.C_fea = 0.5 * (out.C_fea + out.C_fea.transpose());
+  virtual_force(m, structure, f, out);
   out.C = Eigen::MatrixXd::Zero(nd, nd);
   for (auto t : o.terms) out.C += out.C_terms[static_cast<int>(t)];
   const Eigen::MatrixXd C_eb = out.C_terms[0] + out.C_terms[2] + out.C_terms[3];

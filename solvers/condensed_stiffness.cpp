@@ -2,19 +2,17 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
-#include <Eigen/UmfPackSupport>
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <array>
 #include <iterator>
 #include <optional>
 #include <type_traits>
 
 #include "core/assembly.hpp"
 #include "core/errors.hpp"
-#include "solvers/dense_condensation.hpp"
+#include "solvers/condensation.hpp"
 #include "solvers/initial_stress.hpp"
 #include "solvers/linear_static.hpp"
 #include "solvers/sparse_factor.hpp"
@@ -53,63 +51,6 @@ void analyse_rank(const Mat6& K, double L, double tolerance, CondensedStiffness&
   }
 }
 
-RawCondensation condense_to_raw_dofs(const DofMap& map, const SparseMatrix& K, const std::vector<int>& raw) {
-  RawCondensation out;
-  const int n = map.free_size();
-  const int nd = static_cast<int>(raw.size());
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(K.nonZeros() + 12 * nd);
-  for (int j = 0; j < K.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(K, j); it; ++it) t.emplace_back(static_cast<int>(it.row()), j, it.value());
-  for (int k = 0; k < nd; ++k) {
-    bool any = false;
-    for (SparseRowMatrix::InnerIterator it(map.T_free(), raw[k]); it; ++it) {
-      if (it.value() == 0.0) continue;
-      t.emplace_back(n + k, static_cast<int>(it.col()), it.value());
-      t.emplace_back(static_cast<int>(it.col()), n + k, it.value());
-      any = true;
-    }
-    if (!any) {
-      out.outcome = RawCondensation::Outcome::HeldDof;
-      out.held = k;
-      return out;
-    }
-  }
-  if (n <= kDenseMaxDofs) {  // small model: dense Schur complement (solvers/sparse_factor.hpp)
-    Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(nd, n);
-    for (int k = 0; k < nd; ++k)
-      for (SparseRowMatrix::InnerIterator it(map.T_free(), raw[k]); it; ++it) rows(k, it.col()) += it.value();
-    Eigen::MatrixXd Kz;
-    if (condense_dense(K, rows, Kz)) {
-      out.K = Kz;
-      out.outcome = RawCondensation::Outcome::Succeeded;
-      return out;
-    }
-  }
-  SparseMatrix A(n + nd, n + nd);
-  A.setFromTriplets(t.begin(), t.end());
-  A.makeCompressed();
-  Eigen::UmfPackLU<SparseMatrix> lu(A);
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n + nd, nd);
-  rhs.bottomRows(nd).setIdentity();
-  Eigen::MatrixXd X;
-  bool ok = lu.info() == Eigen::Success;
-  if (ok) {
-    X = lu.solve(rhs);
-    ok = lu.info() == Eigen::Success && X.allFinite();
-    if (ok) {
-      // A nearly singular saddle point shows as a residual far above rounding.
-      const double res = (A * X - rhs).norm();
-      ok = res <= 1e-8 * (Eigen::MatrixXd(A.cwiseAbs() * X.cwiseAbs()).norm() + 1.0);
-    }
-  }
-  if (!ok) return out;
-  const Eigen::MatrixXd M = X.bottomRows(nd);
-  out.K = -0.5 * (M + M.transpose());
-  out.outcome = RawCondensation::Outcome::Succeeded;
-  return out;
-}
-
 namespace {
 
 // Eigenvalues of the compliance below this fraction of the largest are the zeros of its rigid and
@@ -124,54 +65,15 @@ Vec6 reproducible_direction(Vec6 v) {
   return v[k] < 0 ? Vec6(-v) : v;
 }
 
-// K_z = -M of the saddle point [K A^T; A 0][X; M] = [0; I] for dense rows A (r x n) by UMFPACK;
-// false when singular.
-bool saddle_point_lu(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz) {
-  const int n = static_cast<int>(K.rows()), r = static_cast<int>(A.rows());
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(K.nonZeros() + 2 * A.size());
-  for (int j = 0; j < K.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(K, j); it; ++it) t.emplace_back(static_cast<int>(it.row()), j, it.value());
-  for (int k = 0; k < r; ++k)
-    for (int j = 0; j < n; ++j)
-      if (A(k, j) != 0.0) {
-        t.emplace_back(n + k, j, A(k, j));
-        t.emplace_back(j, n + k, A(k, j));
-      }
-  SparseMatrix S(n + r, n + r);
-  S.setFromTriplets(t.begin(), t.end());
-  S.makeCompressed();
-  Eigen::UmfPackLU<SparseMatrix> lu(S);
-  if (lu.info() != Eigen::Success) return false;
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n + r, r);
-  rhs.bottomRows(r).setIdentity();
-  const Eigen::MatrixXd X = lu.solve(rhs);
-  if (lu.info() != Eigen::Success || !X.allFinite()) return false;
-  // A nearly singular saddle point shows as a residual far above rounding.
-  if ((S * X - rhs).norm() > 1e-8 * (Eigen::MatrixXd(S.cwiseAbs() * X.cwiseAbs()).norm() + 1.0)) return false;
-  const Eigen::MatrixXd M = X.bottomRows(r);
-  Kz = -0.5 * (M + M.transpose());
-  return true;
-}
-
-// The same, first by the dense Schur complement (small model, K positive definite, well-posed rows:
-// solvers/dense_condensation.hpp), else by the saddle point.
-bool condense_rows(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz, DenseCondensationWorkspace&) {
-  return condense_dense(K, A, Kz) || saddle_point_lu(K, A, Kz);
-}
-bool condense_rows(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz, DenseCondensationWorkspace& w) {
-  return condense_dense(K, A, Kz, {}, &w) || saddle_point_lu(SparseMatrix(K.sparseView()), A, Kz);
-}
-
-// K_z by static condensation onto picked columns (solvers/dense_condensation.hpp), a small sparse
-// K through its dense copy; false where it declines.
-bool condense_onto(const SparseMatrix& K, std::span<const int> cols, std::span<const double> a, Eigen::MatrixXd& Kz,
-                   DenseCondensationWorkspace&) {
-  return condense_onto_columns(K, cols, a, Kz);
-}
-bool condense_onto(const Eigen::MatrixXd& K, std::span<const int> cols, std::span<const double> a, Eigen::MatrixXd& Kz,
-                   DenseCondensationWorkspace& w) {
-  return condense_onto_columns(K, cols, a, Kz, {}, &w);
+// The pseudo-inverse of a symmetric 6x6 matrix (eigenvalues below kPseudoInverseTolerance of the
+// largest taken as zero).
+Mat6 pseudo_inverse(const Mat6& C) {
+  Eigen::SelfAdjointEigenSolver<Mat6> ec(C);
+  const double cmax = ec.eigenvalues().cwiseAbs().maxCoeff();
+  Vec6 ci = Vec6::Zero();
+  for (int i = 0; i < 6; ++i)
+    if (std::abs(ec.eigenvalues()[i]) > kPseudoInverseTolerance * cmax) ci[i] = 1.0 / ec.eigenvalues()[i];
+  return ec.eigenvectors() * ci.asDiagonal() * ec.eigenvectors().transpose();
 }
 
 // The arrays of one node condensation. A thread keeps one set for models of up to kDenseMaxDofs
@@ -181,27 +83,10 @@ struct NodeCondensationScratch {
   Eigen::MatrixXd Tn, Ts, A, Kz;
   Eigen::VectorXd col_scale;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd;
-  DenseCondensationWorkspace dense;
+  CondensationWorkspace dense;
   std::vector<Vec6> free_dirs;
-  std::array<int, 6> columns;         // picked_columns'
-  std::array<double, 6> coefficients;
 };
 
-// Whether each of the node's rows T_n has one term (its DOF is a free DOF of its own, times a
-// coefficient): then `columns` names those free DOFs and `coefficients` their S_k T_n(k, c_k).
-bool picked_columns(const Eigen::MatrixXd& Tn, const Vec6& S, std::array<int, 6>& columns,
-                    std::array<double, 6>& coefficients) {
-  if (Tn.rows() != 6) return false;
-  columns.fill(-1);
-  for (Eigen::Index j = 0; j < Tn.cols(); ++j)
-    for (int k = 0; k < 6; ++k) {
-      if (Tn(k, j) == 0.0) continue;
-      if (columns[k] >= 0) return false;
-      columns[k] = static_cast<int>(j);
-      coefficients[k] = S[k] * Tn(k, j);
-    }
-  return std::all_of(columns.begin(), columns.end(), [](int c) { return c >= 0; });
-}
 // The thread's set for n free DOFs up to kDenseMaxDofs, else `local`.
 NodeCondensationScratch& scratch_for(Eigen::Index n, NodeCondensationScratch& local) {
   thread_local NodeCondensationScratch s;
@@ -308,19 +193,14 @@ void node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen:
     }
     Ur = U.leftCols(r);
   }
+  // K_z of the rows A = U_r^T S T_n (S T_n when the node moves in every direction: a node whose
+  // DOFs are free DOFs of their own then takes the static condensation onto them).
   Eigen::MatrixXd& Kz = w.Kz;
-  // A node whose six DOFs are free DOFs of their own (rows of one term each): K_z by static
-  // condensation onto them (a small model's dense K). Otherwise, or where that declines, the
-  // rows A = U_r^T S T_n condensed by the Schur complement onto them or the saddle point.
-  const bool condensed = whole && picked_columns(Tn, S, w.columns, w.coefficients) &&
-                         condense_onto(K, w.columns, w.coefficients, Kz, w.dense);
-  if (!condensed) {
-    Eigen::MatrixXd& A = w.A;
-    A.resize(r, Tn.cols());
-    if (whole) A.noalias() = S.asDiagonal() * Tn;
-    else A.noalias() = (Ur.transpose() * S.asDiagonal()).lazyProduct(Tn);
-    if (!condense_rows(K, A, Kz, w.dense)) return;
-  }
+  Eigen::MatrixXd& A = w.A;
+  A.resize(r, Tn.cols());
+  if (whole) A.noalias() = S.asDiagonal() * Tn;
+  else A.noalias() = (Ur.transpose() * S.asDiagonal()).lazyProduct(Tn);
+  if (condense(K, A, Kz, {}, &w.dense) != Condensation::Outcome::Succeeded) return;
   // Free directions of the node: the null space of K_z.
   const Small Kzs = Kz;
   Eigen::SelfAdjointEigenSolver<Small> es(Kzs);
@@ -347,12 +227,7 @@ void node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen:
   } else {
     // Restricted node: the pseudo-inverse of the compliance in the components [ux .. rz] (as the
     // loaded stiffness of a chain with fewer than six joints has always been reported).
-    Eigen::SelfAdjointEigenSolver<Mat6> ec(out.compliance);
-    const double cmax = ec.eigenvalues().cwiseAbs().maxCoeff();
-    Vec6 ci = Vec6::Zero();
-    for (int i = 0; i < 6; ++i)
-      if (std::abs(ec.eigenvalues()[i]) > kPseudoInverseTolerance * cmax) ci[i] = 1.0 / ec.eigenvalues()[i];
-    out.K = ec.eigenvectors() * ci.asDiagonal() * ec.eigenvectors().transpose();
+    out.K = pseudo_inverse(out.compliance);
   }
   out.K = 0.5 * (out.K + out.K.transpose()).eval();
   if (whole) {

@@ -25,6 +25,7 @@
 
 #include "core/dof_map.hpp"
 #include "core/model.hpp"
+#include "solvers/condensation.hpp"
 #include "solvers/mechanism.hpp"
 
 namespace beamfea {
@@ -62,14 +63,7 @@ struct CondensedStiffness {
   bool compliance_bounded() const { return null_space.empty(); }
 };
 
-// The saddle-point condensation itself, onto any list of raw DOFs (rows of T_free).
-struct RawCondensation {
-  enum class Outcome { Succeeded, HeldDof, Mechanism };
-  Outcome outcome = Outcome::Mechanism;
-  Eigen::MatrixXd K;   // raw.size() square, symmetric
-  int held = -1;       // Outcome::HeldDof: index into `raw` of a DOF with no free motion at all
-};
-RawCondensation condense_to_raw_dofs(const DofMap& map, const SparseMatrix& K, const std::vector<int>& raw);
+// The saddle-point condensation itself, onto any list of raw DOFs: condense (solvers/condensation.hpp).
 
 // Stiffness and compliance of a node (see the header comment) for a symmetric stiffness K (n x n) over
 // some coordinates, the node's six raw rows Tn (6 x n) over the same coordinates, col_scale (n): 1 for a

@@ -64,7 +64,7 @@ double cholesky_rcond(const Eigen::MatrixXd& L) {
   return hi > 0.0 ? (lo / hi) * (lo / hi) : 0.0;
 }
 
-bool condense_dense(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz, const FactorOptions& options,
+bool dense_schur_condensation(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz, const FactorOptions& options,
                     DenseCondensationWorkspace* workspace) {
   const Eigen::Index n = K.rows(), r = A.rows();
   if (n == 0 || n > options.dense_max_dofs || K.cols() != n || A.cols() != n || r == 0) return false;
@@ -105,7 +105,7 @@ bool condense_dense(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::M
   return Kz.allFinite();
 }
 
-bool condense_onto_columns(const Eigen::MatrixXd& K, std::span<const int> cols, std::span<const double> a,
+bool dense_static_condensation(const Eigen::MatrixXd& K, std::span<const int> cols, std::span<const double> a,
                            Eigen::MatrixXd& Kz, const FactorOptions& options, DenseCondensationWorkspace* workspace) {
   const Eigen::Index n = K.rows();
   const Eigen::Index r = static_cast<Eigen::Index>(cols.size());
@@ -131,7 +131,7 @@ bool condense_onto_columns(const Eigen::MatrixXd& K, std::span<const int> cols, 
       if (picked[j] < 0) order[next++] = static_cast<int>(j);
     for (Eigen::Index k = 0; k < r; ++k) order[m + k] = cols[k];
   }
-  // Jacobi scaling of the condensed block as in condense_dense (the condition estimate then does
+  // Jacobi scaling of the condensed block as in dense_schur_condensation (the condition estimate then does
   // not depend on units); a picked DOF is scaled too where its diagonal is positive (it is not a
   // pivot: a mechanism may leave it zero).
   w.s.resize(n);
@@ -158,9 +158,9 @@ bool condense_onto_columns(const Eigen::MatrixXd& K, std::span<const int> cols, 
   // The first m columns of the factor; their right-looking updates leave the Schur complement
   // K_22 - K_21 K_11^-1 K_12 (scaled) in the trailing r x r block.
   if (!cholesky_in_place(w.L, w.last, static_cast<int>(m))) return false;
-  // K itself positive definite and well-conditioned, as condense_dense asks (the trailing block's
+  // K itself positive definite and well-conditioned, as dense_schur_condensation asks (the trailing block's
   // own factor completes K's: the same reciprocal condition estimate over both diagonals); a
-  // mechanism or an ill-posed condensation is left to condense_dense and the saddle point.
+  // mechanism or an ill-posed condensation is left to dense_schur_condensation and the saddle point.
   {
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> T;
     if (r > 6) return false;

@@ -1,6 +1,8 @@
 #pragma once
-// The dense small-model path of the stiffness condensation (issue 15): a Cholesky factor that
-// skips the zeros of a small stiffness matrix, and the Schur complement onto constraint rows.
+// The kernels of the dense back end of the solver contract and of the condensation: a Cholesky
+// factor that skips the zeros of a small stiffness matrix (SparseFactor's small-model path), and
+// the Schur complement onto constraint rows. Callers condense through solvers/condensation.hpp,
+// which chooses between these and the saddle point.
 //
 // Below kDenseMaxDofs (solvers/sparse_factor.hpp) the matrix is stored dense but is still sparse:
 // a right-looking column Cholesky that skips zero multipliers and stops each column at its last
@@ -13,7 +15,7 @@
 #include <span>
 #include <vector>
 
-#include "solvers/sparse_factor.hpp"
+#include "solvers/linear_solver.hpp"
 
 namespace beamfea {
 
@@ -40,14 +42,16 @@ struct DenseCondensationWorkspace {
   Eigen::VectorXd s;
   std::vector<int> last;
   Eigen::LLT<Eigen::MatrixXd> llt;  // of C
-  std::vector<int> order;           // condense_onto_columns' DOF order
+  std::vector<int> order;           // dense_static_condensation's DOF order
 };
 
-// As condense_dense (solvers/sparse_factor.hpp) for a dense K (n x n, lower triangle read): Kz =
-// (A K^-1 A^T)^-1, false when K is larger than options.dense_max_dofs, not positive definite, or
+// Condensation onto constraint rows: for K (n x n, symmetric positive definite, lower triangle
+// read) and dense rows A (r x n), Kz = (A K^-1 A^T)^-1, which is minus the multiplier block M of
+// the saddle point [K A^T; A 0][X; M] = [0; I] (Schur complement), by the Cholesky of K and of the
+// r x r complement. False when K is larger than options.dense_max_dofs, not positive definite, or
 // either factor's reciprocal condition estimate is below options.singular_rcond.
-bool condense_dense(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz,
-                    const FactorOptions& options = {}, DenseCondensationWorkspace* workspace = nullptr);
+bool dense_schur_condensation(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz,
+                              const FactorOptions& options = {}, DenseCondensationWorkspace* workspace = nullptr);
 
 // The same for rows A = diag(a) E that pick columns `cols` of K (distinct; a node whose DOFs are
 // free DOFs of their own), by static condensation: the picked DOFs ordered last, a Cholesky factor
@@ -56,9 +60,9 @@ bool condense_dense(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::M
 // No inverse of the compliance is formed. At most six picked columns. False when K is larger
 // than options.dense_max_dofs, not positive definite, or its factor's reciprocal condition
 // estimate is below options.singular_rcond (a mechanism, an ill-posed condensation: the caller
-// falls back to condense_dense and the saddle point, as before).
-bool condense_onto_columns(const Eigen::MatrixXd& K, std::span<const int> cols, std::span<const double> a,
-                           Eigen::MatrixXd& Kz, const FactorOptions& options = {},
-                           DenseCondensationWorkspace* workspace = nullptr);
+// falls back to dense_schur_condensation and the saddle point, as before).
+bool dense_static_condensation(const Eigen::MatrixXd& K, std::span<const int> cols, std::span<const double> a,
+                               Eigen::MatrixXd& Kz, const FactorOptions& options = {},
+                               DenseCondensationWorkspace* workspace = nullptr);
 
 }  // namespace beamfea

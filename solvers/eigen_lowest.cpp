@@ -1,45 +1,38 @@
 #include "solvers/eigen_lowest.hpp"
 
-#include <Eigen/CholmodSupport>
 #include <Eigen/Eigenvalues>
-#include <Eigen/SparseLU>
 #include <Spectra/SymEigsShiftSolver.h>
 #include <algorithm>
 
 #include "core/errors.hpp"
+#include "solvers/linear_solver.hpp"
 
 namespace beamfea {
 
 namespace {
-// y = (A - sigma I)^-1 x; Cholesky first, sparse LU when A - sigma I is indefinite.
+// y = (A - sigma I)^-1 x by the solver contract's Cholmod back end (solvers/linear_solver.hpp):
+// CHOLMOD's LL^T first, UMFPACK's LU when A - sigma I is indefinite.
 class ShiftInvert {
  public:
   using Scalar = double;
-  explicit ShiftInvert(const SparseMatrix& A) : A_(A) { llt_.cholmod().print = 0; }
+  explicit ShiftInvert(const SparseMatrix& A)
+      : A_(A), factor_(make_linear_solver(SolverOptions{.backend = SolverBackend::Cholmod})) {}
   Eigen::Index rows() const { return A_.rows(); }
   Eigen::Index cols() const { return A_.cols(); }
   void set_shift(const double& sigma) {
     SparseMatrix S = A_;
     for (int i = 0; i < S.rows(); ++i) S.coeffRef(i, i) -= sigma;
     S.makeCompressed();
-    llt_.compute(S);
-    use_lu_ = llt_.info() != Eigen::Success;
-    if (use_lu_) {
-      lu_.compute(S);
-      if (lu_.info() != Eigen::Success) throw Error("eigen-solver: the shifted matrix is singular; move the shift");
-    }
+    factor_->compute(S);
+    if (!factor_->usable()) throw Error("eigen-solver: the shifted matrix is singular; move the shift");
   }
   void perform_op(const double* x_in, double* y_out) const {
-    Eigen::Map<const Eigen::VectorXd> x(x_in, rows());
-    Eigen::Map<Eigen::VectorXd> y(y_out, rows());
-    y = use_lu_ ? Eigen::VectorXd(lu_.solve(x)) : Eigen::VectorXd(llt_.solve(x));
+    factor_->solve(Eigen::Map<const Eigen::VectorXd>(x_in, rows()), Eigen::Map<Eigen::VectorXd>(y_out, rows()));
   }
 
  private:
   const SparseMatrix& A_;
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
-  Eigen::SparseLU<SparseMatrix> lu_;
-  bool use_lu_ = false;
+  std::unique_ptr<LinearSolver> factor_;
 };
 // The operator of lowest_eigenpairs_of_inverse: A^-1 as given (the shift is always zero).
 class GivenInverse {

@@ -1,8 +1,6 @@
 #include "solvers/generalized_eigen.hpp"
 
-#include <Eigen/CholmodSupport>
 #include <Eigen/Eigenvalues>
-#include <Eigen/SparseLU>
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymGEigsShiftSolver.h>
 #include <algorithm>
@@ -10,6 +8,7 @@
 #include <numeric>
 
 #include "core/errors.hpp"
+#include "solvers/linear_solver.hpp"
 
 namespace beamfea {
 
@@ -23,36 +22,30 @@ constexpr int kMinSubspace = 20;  // ncv at least this (a few modes need room to
 // (a massless direction), not a mode.
 constexpr double kMasslessRelative = 1e-12;
 
-// y = (K - sigma M)^{-1} x: CHOLMOD's supernodal LL^T, or a sparse LU when K - sigma M is
-// indefinite (a preload beyond buckling). The interface Spectra's shift-invert modes expect.
+// y = (K - sigma M)^{-1} x by the solver contract's Cholmod back end (solvers/linear_solver.hpp):
+// CHOLMOD's supernodal LL^T, or UMFPACK's LU when K - sigma M is indefinite (a preload beyond
+// buckling). The interface Spectra's shift-invert modes expect.
 class ShiftedSolve {
  public:
   using Scalar = double;
-  ShiftedSolve(const SparseMatrix& K, const SparseMatrix& M) : K_(K), M_(M) { llt_.cholmod().print = 0; }
+  ShiftedSolve(const SparseMatrix& K, const SparseMatrix& M)
+      : K_(K), M_(M), factor_(make_linear_solver(SolverOptions{.backend = SolverBackend::Cholmod})) {}
   Eigen::Index rows() const { return K_.rows(); }
   Eigen::Index cols() const { return K_.cols(); }
   void set_shift(const double& sigma) {
     SparseMatrix S = K_ - sigma * M_;
     S.makeCompressed();
-    llt_.compute(S);
-    use_lu_ = llt_.info() != Eigen::Success;
-    if (use_lu_) {
-      lu_.compute(S);
-      if (lu_.info() != Eigen::Success) throw Error("eigen-solver: K - sigma M is singular (a massless mechanism?)");
-    }
+    factor_->compute(S);
+    if (!factor_->usable()) throw Error("eigen-solver: K - sigma M is singular (a massless mechanism?)");
   }
   void perform_op(const double* x_in, double* y_out) const {
-    Eigen::Map<const Eigen::VectorXd> x(x_in, rows());
-    Eigen::Map<Eigen::VectorXd> y(y_out, rows());
-    y = use_lu_ ? Eigen::VectorXd(lu_.solve(x)) : Eigen::VectorXd(llt_.solve(x));
+    factor_->solve(Eigen::Map<const Eigen::VectorXd>(x_in, rows()), Eigen::Map<Eigen::VectorXd>(y_out, rows()));
   }
 
  private:
   const SparseMatrix& K_;
   const SparseMatrix& M_;
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
-  Eigen::SparseLU<SparseMatrix> lu_;
-  bool use_lu_ = false;
+  std::unique_ptr<LinearSolver> factor_;
 };
 
 GeneralizedEigenPairs dense_pairs(const SparseMatrix& K, const SparseMatrix& M, int count, double sigma) {

@@ -126,7 +126,8 @@ void LinearSystem::solve(const LoadSet& loads, LinearStaticResult& res, LinearSo
   Eigen::VectorXd& f = scratch.f;
   s.map.reduce(f_raw, f);
   if (s.map.prescribed_size() > 0) f -= s.assembler.K_fp() * s.up;
-  s.factor.solve(f, scratch.u_free, scratch.solve_work);
+  scratch.u_free.resize(f.size());
+  s.factor.solve(f, scratch.u_free);
   s.map.expand(scratch.u_free, s.up, res.u);
 
   Eigen::VectorXd& r = scratch.residual;  // f_int - f_ext

@@ -51,7 +51,7 @@ struct LinearStaticResult {
 // The arrays of a solution besides its result, kept by a caller that solves case after case (a
 // sweep worker), with the result it writes over (LinearSystem::solve's second overload).
 struct LinearSolveScratch {
-  Eigen::VectorXd f_raw, f, u_free, solve_work, residual;  // external force, reduced, K_ff^-1 f, r
+  Eigen::VectorXd f_raw, f, u_free, residual;  // external force, reduced, K_ff^-1 f, r
   DofMap::ConstraintForces constraint_forces;
   DofMap::ConstraintForceScratch constraint_scratch;
 };

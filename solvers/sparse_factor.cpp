@@ -16,21 +16,6 @@
 
 namespace beamfea {
 
-const char* to_string(FactorStatus s) {
-  switch (s) {
-    case FactorStatus::Succeeded: return "ok";
-    case FactorStatus::NotPositiveDefinite: return "not positive definite";
-    case FactorStatus::Singular: return "singular";
-    case FactorStatus::TooLarge: return "too large to factorise";
-  }
-  return "?";
-}
-
-void FactorOptions::validate() const {
-  if (!(singular_rcond > 0.0 && singular_rcond < 1.0)) throw Error("FactorOptions: singular_rcond must be in (0, 1)");
-  if (dense_max_dofs < 0) throw Error("FactorOptions: dense_max_dofs must not be negative");
-}
-
 struct SparseFactor::Impl {
   // Gives access to CHOLMOD's factor for the reciprocal condition estimate.
   class Cholesky : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
@@ -107,7 +92,9 @@ void advise_cholmod_allocations() {
 }
 }  // namespace
 
-SparseFactor::SparseFactor() : impl_((advise_cholmod_allocations(), std::make_unique<Impl>())) {
+SparseFactor::SparseFactor(const SolverOptions& options)
+    : impl_((advise_cholmod_allocations(), std::make_unique<Impl>())), options_(options) {
+  options_.validate();
   impl_->llt.cholmod().print = 0;  // failures are outcomes here, reported by the caller
 }
 SparseFactor::~SparseFactor() = default;
@@ -154,6 +141,11 @@ SparseMatrix scaled_lower(const SparseMatrix& K, const Eigen::VectorXd& s) {
 }
 
 FactorStatus SparseFactor::factorize(const SparseMatrix& K, const FactorOptions& options) {
+  status_ = factorize_scaled(K, options);
+  return status_;
+}
+
+FactorStatus SparseFactor::factorize_scaled(const SparseMatrix& K, const FactorOptions& options) {
   options.validate();
   const Eigen::Index n = K.rows();
   s_.resize(n);
@@ -265,52 +257,38 @@ void SparseFactor::analyze(const SparseMatrix& K, const FactorOptions& options) 
 
 std::string SparseFactor::ordering() const { return impl_->ordering; }
 
-Eigen::VectorXd SparseFactor::solve(const Eigen::VectorXd& b) const {
-  Eigen::VectorXd x, work;
-  solve(b, x, work);
-  return x;
-}
-
-void SparseFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, Eigen::VectorXd& work) const {
-  if (s_.size() == 0) {
-    x.resize(0);
-    return;
-  }
+void SparseFactor::solve(Eigen::Ref<const Eigen::VectorXd> b, Eigen::Ref<Eigen::VectorXd> x) const {
+  if (s_.size() == 0) return;
   if (!cholesky_ok_ && !lu_ok_) throw Error("SparseFactor::solve: no valid factorisation");
-  work = s_.cwiseProduct(b);  // S b
+  if (b.size() != s_.size() || x.size() != s_.size()) throw Error("SparseFactor::solve: sizes differ");
+  x = s_.cwiseProduct(b);  // S b
   if (dense_ok_) {
-    cholesky_solve_in_place(impl_->dense_l, impl_->dense_last, work);
-    x = s_.cwiseProduct(work);
+    cholesky_solve_in_place(impl_->dense_l, impl_->dense_last, x);
+    x.array() *= s_.array();
     return;
   }
-  const Eigen::VectorXd y = cholesky_ok_ ? Eigen::VectorXd(impl_->llt.solve(work)) : Eigen::VectorXd(impl_->lu.solve(work));
+  const Eigen::VectorXd y = cholesky_ok_ ? Eigen::VectorXd(impl_->llt.solve(x)) : Eigen::VectorXd(impl_->lu.solve(x));
   x = s_.cwiseProduct(y);
 }
 
-Eigen::MatrixXd SparseFactor::solve(const Eigen::MatrixXd& B) const {
-  if (s_.size() == 0) return Eigen::MatrixXd(0, B.cols());
-  if (!cholesky_ok_ && !lu_ok_) throw Error("SparseFactor::solve: no valid factorisation");
-  const Eigen::MatrixXd SB = s_.asDiagonal() * B;
-  if (dense_ok_) {
-    Eigen::MatrixXd X = SB;
-    for (Eigen::Index c = 0; c < X.cols(); ++c) cholesky_solve_in_place(impl_->dense_l, impl_->dense_last, X.col(c));
-    return s_.asDiagonal() * X;
+void SparseFactor::solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X) const {
+  if (s_.size() == 0) {
+    X.resize(0, B.cols());
+    return;
   }
-  const Eigen::MatrixXd Y = cholesky_ok_ ? Eigen::MatrixXd(impl_->llt.solve(SB)) : Eigen::MatrixXd(impl_->lu.solve(SB));
-  return s_.asDiagonal() * Y;
+  if (!cholesky_ok_ && !lu_ok_) throw Error("SparseFactor::solve: no valid factorisation");
+  X = s_.asDiagonal() * B;
+  if (dense_ok_) {
+    for (Eigen::Index c = 0; c < X.cols(); ++c) cholesky_solve_in_place(impl_->dense_l, impl_->dense_last, X.col(c));
+  } else {
+    X = cholesky_ok_ ? Eigen::MatrixXd(impl_->llt.solve(X)) : Eigen::MatrixXd(impl_->lu.solve(X));
+  }
+  X = s_.asDiagonal() * X;
 }
 
-bool condense_dense(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz, const FactorOptions& options) {
-  const Eigen::Index n = K.rows();
-  if (n == 0 || n > options.dense_max_dofs || A.cols() != n || A.rows() == 0) return false;
-  return condense_dense(Eigen::MatrixXd(K), A, Kz, options);  // solvers/dense_condensation.cpp
-}
-
-bool condense_onto_columns(const SparseMatrix& K, std::span<const int> cols, std::span<const double> a,
-                           Eigen::MatrixXd& Kz, const FactorOptions& options) {
-  const Eigen::Index n = K.rows();
-  if (n == 0 || n > options.dense_max_dofs || K.cols() != n) return false;
-  return condense_onto_columns(Eigen::MatrixXd(K), cols, a, Kz, options);  // solvers/dense_condensation.cpp
+std::optional<Inertia> SparseFactor::inertia() const {
+  if (status_ != FactorStatus::Succeeded || !cholesky_ok_) return std::nullopt;
+  return Inertia{0, 0, static_cast<int>(s_.size())};
 }
 
 }  // namespace beamfea

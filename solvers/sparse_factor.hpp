@@ -8,35 +8,19 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <memory>
-#include <span>
 #include <vector>
 #include <string>
 
 #include "core/dof_map.hpp"
+#include "solvers/linear_solver.hpp"
 
 namespace beamfea {
-
-enum class FactorStatus {
-  Succeeded,           // factorised; solves are meaningful
-  NotPositiveDefinite, // Cholesky failed: singular or indefinite (LU may still have succeeded)
-  Singular,            // no factorisation could be made
-  TooLarge,            // the symbolic analysis failed: the factor exceeds CHOLMOD's int interface or memory
-};
-const char* to_string(FactorStatus s);
-
-// Up to this many DOFs a dense Cholesky replaces CHOLMOD (same scaling, same reciprocal
-// condition estimate; the factor skips the zeros of the matrix, solvers/dense_condensation.hpp).
-// Measured (bench_small_models, docs/performance.md "Small models"): dense is at least 2.2x faster
-// than CHOLMOD up to 160 DOFs on every model tried; the crossover is near 290 DOFs for 3-D fill
-// and above 360 for a banded matrix. Not raised: beyond 160 the dense factor's (unpermuted)
-// condition estimate would decide singularity for models CHOLMOD decides today.
-inline constexpr int kDenseMaxDofs = 160;
 
 // From kOrderedMinDofs, CHOLMOD's default (AMD, then METIS when AMD's fill looks poor) is
 // replaced: on the frames measured from 2e4 DOFs up it always ended with METIS, so its AMD trial
 // was spent for nothing. Up to kNesdisTrialMaxDofs two orderings of the graph compressed by
 // supervariables (solvers/fill_ordering.hpp), NESDIS and METIS, are each analysed by CHOLMOD and
-// the one of fewer nonzeros in L kept (session 10: METIS of the compressed graph instead of
+// the one of fewer nonzeros in L kept (METIS of the compressed graph instead of
 // CHOLMOD's METIS of the whole one, 3-6 % more fill for less time, and NESDIS kept on every frame
 // measured in this band); above, CHOLMOD's METIS alone. Measured on cube frames (docs/performance.md, "Orderings"): NESDIS's factor has 13 % and 21 % fewer nonzeros at
 // 21,504 and 34,992 DOFs (process CPU 0.82x at 21,504), but 25 %, 7 % and 1.5 % more at 69,828,
@@ -45,38 +29,42 @@ inline constexpr int kDenseMaxDofs = 160;
 inline constexpr int kOrderedMinDofs = 20000;
 inline constexpr int kNesdisTrialMaxDofs = 50000;
 
-struct FactorOptions {
-  double singular_rcond = 1e-13;  // below this (scaled) the matrix is treated as singular
-  bool allow_lu = true;           // fall back to LU for indefinite matrices
-  int dense_max_dofs = kDenseMaxDofs;  // dense Cholesky up to this size (0: always sparse)
-  void validate() const;
-};
-
-class SparseFactor {
+// The Automatic back end of the solver contract (solvers/linear_solver.hpp).
+class SparseFactor final : public LinearSolver {
  public:
-  SparseFactor();
-  ~SparseFactor();
+  explicit SparseFactor(const SolverOptions& options = {});
+  ~SparseFactor() override;
   SparseFactor(const SparseFactor&) = delete;
   SparseFactor& operator=(const SparseFactor&) = delete;
 
   // Factorises K; the symbolic analysis is reused while the sparsity pattern is unchanged.
-  FactorStatus factorize(const SparseMatrix& K, const FactorOptions& options = {});
+  FactorStatus factorize(const SparseMatrix& K, const FactorOptions& options);
+  FactorStatus factorize(const SparseMatrix& K) { return factorize(K, options_); }
   // The symbolic analysis (ordering included) of K's pattern alone, ahead of factorize, which
   // reuses it for a matrix of that pattern: for a caller that knows the pattern before the values
   // (solvers/linear_static.cpp orders it while the element matrices are computed and assembled).
   // K's values are not read, so another thread may write them meanwhile; K must be compressed.
   // Nothing for a matrix factorize would factorise dense. Not at the same time as another call on
   // this object.
-  void analyze(const SparseMatrix& K, const FactorOptions& options = {});
-  Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
-  // The same written over `x` (distinct from b), with `work` as scratch: no allocation on the dense
-  // path once both have the size (CHOLMOD's and UMFPACK's solves allocate their own).
-  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, Eigen::VectorXd& work) const;
-  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+  void analyze(const SparseMatrix& K, const FactorOptions& options);
+
+  // The contract, with the options given at construction.
+  void analyze(const SparseMatrix& K) override { analyze(K, options_); }
+  FactorStatus compute(const SparseMatrix& K) override { return factorize(K, options_); }
+  FactorStatus status() const override { return status_; }
+  bool usable() const override { return cholesky_ok_ || lu_ok_; }
+  using LinearSolver::solve;
+  // No allocation on the dense path (x is the scratch); CHOLMOD's and UMFPACK's solves allocate
+  // their own.
+  void solve(Eigen::Ref<const Eigen::VectorXd> b, Eigen::Ref<Eigen::VectorXd> x) const override;
+  void solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X) const override;
+  // Positive definite (0, 0, n) when the Cholesky succeeded and passed the condition test; none
+  // otherwise.
+  std::optional<Inertia> inertia() const override;
+  Eigen::Index rows() const override { return s_.size(); }
 
   bool cholesky() const { return cholesky_ok_; }
   bool dense() const { return dense_ok_; }  // the last factorisation was the dense one
-  bool usable() const { return cholesky_ok_ || lu_ok_; }  // solve() may be called
   double rcond() const { return rcond_; }             // of the scaled matrix (Cholesky only)
   // The fill-reducing ordering of the last sparse analysis, for reports: "NESDIS (...)" or
   // "METIS (...)" with the nonzeros of L under both where both were tried, "METIS" where METIS
@@ -88,15 +76,18 @@ class SparseFactor {
 
  private:
   struct Impl;
+  FactorStatus factorize_scaled(const SparseMatrix& K, const FactorOptions& options);
   // The analysis of `lower` (the lower triangle CHOLMOD reads) unless the last one is of its
   // pattern; false when CHOLMOD could not make one (too large).
   bool analyse(const SparseMatrix& lower);
   std::unique_ptr<Impl> impl_;
+  SolverOptions options_;
   Eigen::VectorXd s_;
   bool cholesky_ok_ = false;
   bool dense_ok_ = false;
   bool lu_ok_ = false;
   double rcond_ = 0.0;
+  FactorStatus status_ = FactorStatus::Singular;
   std::vector<int> unrestrained_;
 };
 
@@ -130,19 +121,5 @@ SparseMatrix scaled(const SparseMatrix& K, const Eigen::VectorXd& s);
 // The lower triangle (diagonal included) of S K S, compressed: what CHOLMOD reads of a symmetric
 // matrix, in half the memory and time of the full copy.
 SparseMatrix scaled_lower(const SparseMatrix& K, const Eigen::VectorXd& s);
-
-// Condensation onto constraint rows: for K (n x n, symmetric positive definite) and dense rows A
-// (r x n), Kz = (A K^-1 A^T)^-1, which is minus the multiplier block M of the saddle point
-// [K A^T; A 0][X; M] = [0; I] (Schur complement). Dense (Cholesky of K, then of the r x r
-// complement) up to `dense_max_dofs`; returns false, leaving the caller to its general saddle-point
-// LU, when K is larger, not positive definite, or either factor's reciprocal condition estimate is
-// below `singular_rcond` (a mechanism held only by the constraint rows, an ill-posed condensation).
-bool condense_dense(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz,
-                    const FactorOptions& options = {});
-// The static condensation onto picked columns of solvers/dense_condensation.hpp for a small
-// sparse K, through its own dense copy (the same arithmetic as the dense K's): false when K is
-// larger than options.dense_max_dofs, or as there.
-bool condense_onto_columns(const SparseMatrix& K, std::span<const int> cols, std::span<const double> a,
-                           Eigen::MatrixXd& Kz, const FactorOptions& options = {});
 
 }  // namespace beamfea

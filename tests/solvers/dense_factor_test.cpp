@@ -12,6 +12,7 @@
 #include "core/assembly.hpp"
 #include "core/dense_assembly.hpp"
 #include "io/model_reader.hpp"
+#include "solvers/condensation.hpp"
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/dense_condensation.hpp"
 #include "solvers/sparse_factor.hpp"
@@ -138,7 +139,7 @@ TEST(DenseFactor, SchurCondensationAgreesWithTheSaddlePointLu) {
     FactorOptions o;
     o.dense_max_dofs = n;
     Eigen::MatrixXd Kz;
-    if (!condense_dense(a.K, rows, Kz, o)) continue;  // a mechanism held by the node: LU's case
+    if (!dense_schur_condensation(Eigen::MatrixXd(a.K), rows, Kz, o)) continue;  // a mechanism held by the node: LU's case
     // Reference: UMFPACK on [K A^T; A 0] [X; M] = [0; I], Kz = -M.
     std::vector<Eigen::Triplet<double>> t;
     for (int j = 0; j < a.K.outerSize(); ++j)
@@ -166,7 +167,7 @@ TEST(DenseFactor, SchurCondensationAgreesWithTheSaddlePointLu) {
   EXPECT_GE(compared, 12);
 }
 
-// Static condensation onto a node's own free DOFs (condense_onto_columns, the stiffness analysis'
+// Static condensation onto a node's own free DOFs (dense_static_condensation, the stiffness analysis'
 // path for a node no constraint mixes): K_z = D^-1 (K_22 - K_21 K_11^-1 K_12) D^-1 by the
 // factor of K_11 alone equals the compliance route (A K^-1 A^T)^-1 with A = D E, within the
 // forward error bound of the conditioning (two algorithms: their roundings differ).
@@ -192,8 +193,8 @@ TEST(DenseFactor, StaticCondensationOntoANodesOwnDofsAgreesWithTheSchurComplemen
     FactorOptions o;
     o.dense_max_dofs = n;
     Eigen::MatrixXd Kz, ref;
-    const bool picked = condense_onto_columns(Eigen::MatrixXd(a.K), cols, coef, Kz, o);
-    if (!condense_dense(a.K, rows, ref, o)) {
+    const bool picked = dense_static_condensation(Eigen::MatrixXd(a.K), cols, coef, Kz, o);
+    if (!dense_schur_condensation(Eigen::MatrixXd(a.K), rows, ref, o)) {
       EXPECT_FALSE(picked) << f << ": a mechanism or an ill-posed condensation stays with the saddle point";
       continue;
     }
@@ -201,8 +202,10 @@ TEST(DenseFactor, StaticCondensationOntoANodesOwnDofsAgreesWithTheSchurComplemen
     SparseFactor fk;
     fk.factorize(a.K);
     EXPECT_LE(rel_diff(Kz, ref), forward_bound(a.K, fk.scaling())) << f << " (" << n << " DOFs)";
-    Eigen::MatrixXd Kz_sparse;  // the sparse K's own dense copy: the same arithmetic
-    ASSERT_TRUE(condense_onto_columns(a.K, cols, coef, Kz_sparse, o)) << f;
+    Eigen::MatrixXd Kz_sparse;  // the condensation of the sparse K on the dense back end: the same arithmetic
+    SolverOptions dense_backend;
+    dense_backend.backend = SolverBackend::DenseLlt;
+    ASSERT_EQ(condense(a.K, rows, Kz_sparse, dense_backend), Condensation::Outcome::Succeeded) << f;
     EXPECT_LE(rel_diff(Kz_sparse, Kz), 1e-14) << f;
     ++compared;
   }
@@ -216,24 +219,24 @@ TEST(DenseFactor, StaticCondensationByHandAndItsRefusals) {
   K << 2.0, -1.0, -1.0, 2.0;
   Eigen::MatrixXd Kz;
   const std::vector<int> one{1};
-  ASSERT_TRUE(condense_onto_columns(K, one, std::vector<double>{1.0}, Kz));
+  ASSERT_TRUE(dense_static_condensation(K, one, std::vector<double>{1.0}, Kz));
   EXPECT_NEAR(Kz(0, 0), 1.5, 1e-15);
-  ASSERT_TRUE(condense_onto_columns(K, one, std::vector<double>{2.0}, Kz));
+  ASSERT_TRUE(dense_static_condensation(K, one, std::vector<double>{2.0}, Kz));
   EXPECT_NEAR(Kz(0, 0), 0.375, 1e-15);
   // Both DOFs kept: nothing condensed, K_z = K.
-  ASSERT_TRUE(condense_onto_columns(K, std::vector<int>{0, 1}, std::vector<double>{1.0, 1.0}, Kz));
+  ASSERT_TRUE(dense_static_condensation(K, std::vector<int>{0, 1}, std::vector<double>{1.0, 1.0}, Kz));
   EXPECT_NEAR((Kz - K).norm(), 0.0, 1e-15);
-  // A mechanism (K singular, K_11 positive): left to the saddle point, as condense_dense leaves it.
+  // A mechanism (K singular, K_11 positive): left to the saddle point, as dense_schur_condensation leaves it.
   Eigen::MatrixXd M(2, 2);
   M << 1.0, -1.0, -1.0, 1.0;
-  EXPECT_FALSE(condense_onto_columns(M, one, std::vector<double>{1.0}, Kz));
+  EXPECT_FALSE(dense_static_condensation(M, one, std::vector<double>{1.0}, Kz));
   // Indefinite, a column picked twice, a zero coefficient, a column out of range.
   Eigen::MatrixXd I(2, 2);
   I << 1.0, 2.0, 2.0, 1.0;
-  EXPECT_FALSE(condense_onto_columns(I, one, std::vector<double>{1.0}, Kz));
-  EXPECT_FALSE(condense_onto_columns(K, std::vector<int>{1, 1}, std::vector<double>{1.0, 1.0}, Kz));
-  EXPECT_FALSE(condense_onto_columns(K, one, std::vector<double>{0.0}, Kz));
-  EXPECT_FALSE(condense_onto_columns(K, std::vector<int>{2}, std::vector<double>{1.0}, Kz));
+  EXPECT_FALSE(dense_static_condensation(I, one, std::vector<double>{1.0}, Kz));
+  EXPECT_FALSE(dense_static_condensation(K, std::vector<int>{1, 1}, std::vector<double>{1.0, 1.0}, Kz));
+  EXPECT_FALSE(dense_static_condensation(K, one, std::vector<double>{0.0}, Kz));
+  EXPECT_FALSE(dense_static_condensation(K, std::vector<int>{2}, std::vector<double>{1.0}, Kz));
 }
 
 TEST(DenseFactor, RefusesWhatItCannotDoAndLeavesItToTheSparsePath) {
@@ -244,7 +247,7 @@ TEST(DenseFactor, RefusesWhatItCannotDoAndLeavesItToTheSparsePath) {
   K.insert(1, 1) = 1.0;  // eigenvalues 3 and -1: indefinite, positive diagonal
   K.makeCompressed();
   Eigen::MatrixXd Kz;
-  EXPECT_FALSE(condense_dense(K, Eigen::MatrixXd::Identity(1, 2), Kz));
+  EXPECT_FALSE(dense_schur_condensation(Eigen::MatrixXd(K), Eigen::MatrixXd::Identity(1, 2), Kz));
   SparseFactor f;
   EXPECT_EQ(f.factorize(K), FactorStatus::NotPositiveDefinite);
   EXPECT_FALSE(f.dense());
