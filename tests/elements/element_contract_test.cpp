@@ -10,6 +10,8 @@
 #include <Eigen/LU>
 #include <cmath>
 #include <memory>
+#include <string>
+#include <type_traits>
 
 #include "elements/corotational_beam.hpp"
 #include "elements/span_loads.hpp"
@@ -42,6 +44,9 @@ struct Kind {
   static constexpr bool corotational = std::is_same_v<E, CorotationalBeam>;
   static std::unique_ptr<FrameElement> make() { return std::make_unique<E>(test_section(Shear), kX1, kX2, kOrientation); }
   static BeamSection section() { return test_section(Shear); }
+  static std::string name() {
+    return std::string(Shear ? "Timoshenko" : "EulerBernoulli") + (corotational ? "Corotational" : "Linear");
+  }
 };
 using EulerBernoulliLinear = Kind<LinearBeam, false>;
 using TimoshenkoLinear = Kind<LinearBeam, true>;
@@ -97,7 +102,13 @@ template <class K>
 class ElementContract : public ::testing::Test {};
 using ElementKinds =
     ::testing::Types<EulerBernoulliLinear, TimoshenkoLinear, EulerBernoulliCorotational, TimoshenkoCorotational>;
-TYPED_TEST_SUITE(ElementContract, ElementKinds);
+struct KindName {
+  template <class T>
+  static std::string GetName(int) {
+    return T::name();
+  }
+};
+TYPED_TEST_SUITE(ElementContract, ElementKinds, KindName);
 
 TYPED_TEST(ElementContract, StiffnessIsSymmetricAndIsTheTangentAtTheReference) {
   const auto e = TypeParam::make();
