@@ -72,6 +72,7 @@ struct SparseFactor::Impl {
   std::vector<int> dense_last;
   Cholesky llt;
   Eigen::UmfPackLU<SparseMatrix> lu;
+  SparseMatrix lu_matrix;  // S K S, which lu refers to
   Eigen::Index rows = -1, nnz = -1;
   std::string ordering;  // SparseFactor::ordering()
   bool analysed = false, lu_analysed = false;
@@ -195,7 +196,10 @@ FactorStatus SparseFactor::factorize_scaled(const SparseMatrix& K, const FactorO
     return FactorStatus::NotPositiveDefinite;
   }
   if (!options.allow_lu) return FactorStatus::NotPositiveDefinite;
-  const SparseMatrix full = scaled(K, s_);  // UMFPACK needs both triangles
+  // UMFPACK needs both triangles, and keeps a reference to the matrix for the iterative
+  // refinement of its solves: the scaled copy lives as long as the factor.
+  SparseMatrix& full = impl_->lu_matrix;
+  full = scaled(K, s_);
   if (!impl_->lu_analysed) {
     impl_->lu.analyzePattern(full);
     impl_->lu_analysed = true;

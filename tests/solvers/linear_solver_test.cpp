@@ -228,7 +228,9 @@ TYPED_TEST(LinearSolverContract, ReportsASingularMatrixAsAnOutcomeNotAnException
   EXPECT_NE(s, FactorStatus::Succeeded) << to_string(s);
   if (full_inertia(TypeParam::value)) {
     // One zero pivot; Eigen's simplicial LDL^T stops at an exactly zero one and gives none.
-    if (const auto in = solver->inertia()) EXPECT_EQ(*in, (Inertia{0, 1, 7}));
+    if (const auto in = solver->inertia()) {
+      EXPECT_EQ(*in, (Inertia{0, 1, 7}));
+    }
   } else {
     EXPECT_FALSE(solver->inertia().has_value());
   }
