@@ -4,13 +4,16 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
 
 #include "core/errors.hpp"
 #include "solvers/blas_threads.hpp"
 #include "solvers/buckling.hpp"
 #include "solvers/member_loading.hpp"
+#include "solvers/path/corrector.hpp"
 #include "solvers/path/critical_points.hpp"
 #include "solvers/path/equilibrium.hpp"
+#include "solvers/path/factor_cache.hpp"
 #include "solvers/path/path_scales.hpp"
 #include "solvers/path/predictor.hpp"
 #include "solvers/path/stability.hpp"
@@ -32,53 +35,6 @@ Model imperfect_model(const Model& model, int mode, double amplitude) {
 }
 
 namespace {
-
-// The record of a converged state; returns its negative-eigenvalue count (-1 without stability).
-int record(PathResult& res, const PathOptions& o, const Model& original, const PathEquilibrium& P,
-           StabilityAnalyzer& stab, const Converged& c, int step, double control, double ds, PathControl kind) {
-  PathStep ps;
-  ps.step = step;
-  ps.step_control = kind;
-  ps.load_factor = c.lambda;
-  ps.control = control;
-  ps.arc_length = ds;
-  ps.iterations = c.iterations;
-  ps.chord_iterations = c.chord_iterations;
-  ps.reaction = c.extra_mu;
-  for (int n : o.track) {
-    Vec6 d;
-    d << c.state.x[n] - original.nodes[n].x, log_so3(c.state.R[n]);
-    ps.track.push_back(d);
-  }
-  if (o.stability) {
-    const bool disp = o.control == PathControl::Displacement;
-    const auto st = stab.analyse(c, disp, false);
-    ps.negative_eigenvalues = st.info.negative;
-    ps.stable = st.info.negative == 0;
-    ps.min_eigenvalue = st.info.min_eigenvalue;
-    // The loaded stiffness of the node with the controlled DOF released (it is the probe).
-    if (o.stiffness_node >= 0) {
-      ps.node_stiffness = stab.node_stiffness(c, disp ? stab.analyse(c, false, false) : st, o.stiffness_node);
-      if (ps.node_stiffness->ok) ps.stiffness = ps.node_stiffness->K;
-    }
-  }
-  if (o.frequency_modes > 0) {
-    // Vibrations about the state: the controlled DOF is held only by an imposed motion (no loads).
-    const bool hold = o.control == PathControl::Displacement && !P.has_loads;
-    const PathFrequencies f =
-        path_frequencies(P, c, constrained_tangent(P, c, hold), {o.frequency_modes, o.frequency_mass});
-    if (f.ok) ps.frequencies = f.frequencies;
-    else ps.frequencies_failure = f.message;
-  }
-  ps.state = c.state;
-  // The evaluation at the state, shared with the stability analysis and the next predictor.
-  ps.end_forces = P.evaluation_at(c).end_forces;
-  // Plus the member loads' fixed-end forces in the co-rotated frames (dead loads), as linear_static.
-  const auto fe = corotated_fixed_end_forces(original, original.default_loads(), c.state.x, c.state.R, c.lambda);
-  for (std::size_t e = 0; e < fe.size(); ++e) ps.end_forces[e] += fe[e];
-  res.steps.push_back(std::move(ps));
-  return res.steps.back().negative_eigenvalues;
-}
 
 // The stop conditions after a converged step; sets the termination.
 bool stopped(PathResult& res, const PathOptions& o, const Model& original, const Converged& nx, int step) {
@@ -105,6 +61,270 @@ bool stopped(PathResult& res, const PathOptions& o, const Model& original, const
   return false;
 }
 
+// Why a converged step is not taken (arc length): the termination should the cuts run out, and the
+// words of the progress report.
+struct StepRejection {
+  PathTermination why;
+  const char* what;
+};
+
+// One path: the parts of solvers/path/ and the loop's state (the current state, the step count,
+// the cuts of the step, the last inertia and slope), composed by run().
+class PathRun {
+ public:
+  PathRun(const Model& original, const PathOptions& o, const PathSystem& sys, FactorCache& factors,
+          KinsolSolver& kin, const Converged& start, double ds0, PathResult& res)
+      : o_(o), original_(original), sys_(sys), factors_(factors),
+        corrector_(sys, factors, kin, o.chord_corrector ? ChordIterations::On : ChordIterations::Off),
+        stability_(sys, factors), predictor_(sys, factors), control_(o, sys, start, ds0),
+        parts_{o, sys, factors, corrector_, stability_, predictor_}, res_(res), cur_(start) {}
+  // Follows the path to its termination (set in the result).
+  void run();
+  const Corrector& corrector() const { return corrector_; }
+
+ private:
+  bool displacement() const { return o_.control == PathControl::Displacement; }
+  ControlDof held_control() const { return displacement() ? ControlDof::Held : ControlDof::Free; }
+  void say(const std::string& s) const {
+    if (o_.progress) o_.progress(s);
+  }
+  // Records a converged state; returns its negative-eigenvalue count (-1 without stability).
+  int record(const Converged& c, int step, double control, double ds, PathControl kind);
+  void record_stability(PathStep& ps, const Converged& c);
+  // A failed step: cut it (or fall back to arc length); false when the path stops here.
+  bool cut(PathTermination why, const std::string& what);
+  // A converged step from its prediction that is not taken, or none.
+  std::optional<StepRejection> rejected(const StepPrediction& pred, const Eigen::VectorXd& dir) const;
+  // Displacement control: a limit point located between cur_ and next by the slope of the load
+  // factor (or reaction); true when the step straddles a turn of the controlled DOF instead.
+  bool locate_limit_point(const Converged& next, bool fall_back);
+  // A change of inertia between cur_ and next: the critical point located, classified and recorded;
+  // true when the path switched branch onto the secondary path there (cur_ is then its first state).
+  bool locate_inertia_change(const Converged& next, const Eigen::VectorXd& dir, int neg_before);
+  bool switch_onto_branch(const LocatedCriticalPoint& lc, CriticalPoint& cp);
+
+  const PathOptions& o_;
+  const Model& original_;
+  const PathSystem& sys_;
+  FactorCache& factors_;
+  Corrector corrector_;
+  StabilityAnalyzer stability_;
+  Predictor predictor_;
+  StepControl control_;
+  const CriticalPointParts parts_;
+  PathResult& res_;
+  Converged cur_;
+  std::string report_;   // the last solver report (the reason given when the path stops)
+  int step_ = 0, cuts_ = 0, neg_ = -1;
+  double slope_ = NAN;
+  bool switched_ = false;
+};
+
+int PathRun::record(const Converged& c, int step, double control, double ds, PathControl kind) {
+  PathStep ps;
+  ps.step = step;
+  ps.step_control = kind;
+  ps.load_factor = c.lambda;
+  ps.control = control;
+  ps.arc_length = ds;
+  ps.iterations = c.iterations;
+  ps.chord_iterations = c.chord_iterations;
+  ps.reaction = c.extra_mu;
+  for (int n : o_.track) {
+    Vec6 d;
+    d << c.state.x[n] - original_.nodes[n].x, log_so3(c.state.R[n]);
+    ps.track.push_back(d);
+  }
+  if (o_.stability) record_stability(ps, c);
+  if (o_.frequency_modes > 0) {
+    // Vibrations about the state: the controlled DOF is held only by an imposed motion (no loads).
+    const ControlDof hold = displacement() && !sys_.has_loads() ? ControlDof::Held : ControlDof::Free;
+    const PathFrequencies f = path_frequencies(sys_, c, constrained_tangent(sys_, factors_, c, hold),
+                                               {o_.frequency_modes, o_.frequency_mass});
+    if (f.ok) ps.frequencies = f.frequencies;
+    else ps.frequencies_failure = f.message;
+  }
+  ps.state = c.state;
+  // The evaluation at the state, shared with the stability analysis and the next predictor.
+  ps.end_forces = factors_.evaluation_at(sys_, c).end_forces;
+  // Plus the member loads' fixed-end forces in the co-rotated frames (dead loads), as linear_static.
+  const auto fe = corotated_fixed_end_forces(original_, original_.default_loads(), c.state.x, c.state.R, c.lambda);
+  for (std::size_t e = 0; e < fe.size(); ++e) ps.end_forces[e] += fe[e];
+  res_.steps.push_back(std::move(ps));
+  return res_.steps.back().negative_eigenvalues;
+}
+
+void PathRun::record_stability(PathStep& ps, const Converged& c) {
+  const auto st = stability_.analyse(c, {.control = held_control()});
+  ps.negative_eigenvalues = st.info.negative;
+  ps.stable = st.info.negative == 0;
+  ps.min_eigenvalue = st.info.min_eigenvalue;
+  // The loaded stiffness of the node with the controlled DOF released (it is the probe).
+  if (o_.stiffness_node >= 0) {
+    ps.node_stiffness = stability_.node_stiffness(c, displacement() ? stability_.analyse(c) : st, o_.stiffness_node);
+    if (ps.node_stiffness->ok) ps.stiffness = ps.node_stiffness->K;
+  }
+}
+
+bool PathRun::cut(PathTermination why, const std::string& what) {
+  ++cuts_;
+  const bool ok = control_.cut() && cuts_ <= o_.max_cuts;
+  say(fmt::format("step {}: {}; cutting the step to {:.4g}", step_ + 1, what, control_.h()));
+  if (ok) return true;
+  // Displacement control at a snap-back of the controlled DOF: on under arc length, with the
+  // arc length of the last accepted step.
+  const Eigen::VectorXd& d = predictor_.previous_direction();
+  if (sys_.has_loads() && d.size() && control_.fall_back_to_arc_length(cur_, std::sqrt(sys_.arc_dot(d, d)))) {
+    cuts_ = 0;
+    say(fmt::format("step {}: the controlled DOF turns back: arc length from here (ds {:.4g})", step_ + 1, control_.h()));
+    return true;
+  }
+  res_.finish(why, cur_.lambda, cuts_, report_);
+  return false;
+}
+
+std::optional<StepRejection> PathRun::rejected(const StepPrediction& pred, const Eigen::VectorXd& dir) const {
+  if (control_.mode() != PathControl::ArcLength) return std::nullopt;
+  // The corrector went far from the predictor: Newton may have jumped to another branch (over a
+  // limit point, with the same inertia at both ends). Cut the step.
+  const int nf = sys_.nf();
+  Eigen::VectorXd moved = dir;
+  moved.head(nf) -= pred.u.head(nf);
+  moved[nf] -= pred.u[nf + sys_.nc()] - cur_.lambda;
+  const double h = control_.h();
+  if (sys_.arc_dot(moved, moved) > kMaxCorrectorRatio * kMaxCorrectorRatio * h * h)
+    return StepRejection{PathTermination::NoConvergence, "the corrector went far from the predictor (a jump?)"};
+  // The spherical constraint has a second root behind the start: a step that went back along the
+  // path is rejected and cut.
+  const Eigen::VectorXd& d = predictor_.previous_direction();
+  if (d.size() && sys_.arc_dot(dir, d) < 0.0)
+    return StepRejection{PathTermination::NoForwardSolution, "the step went back along the path"};
+  return std::nullopt;
+}
+
+bool PathRun::locate_limit_point(const Converged& next, bool fall_back) {
+  bool control_turns = false;
+  const double slope_next = conjugate_slope(sys_, factors_, next);
+  if (!fall_back && slope_ * slope_next < 0.0) {
+    LocatedCriticalPoint lc = locate_extremum(parts_, cur_, next, control_.h(), slope_,
+                                              [&](const Converged& c, double) { return control_.value(c); });
+    // The slope changes sign through zero at an extremum of the load factor (or reaction), and
+    // through infinity where the controlled DOF turns back: only the first is a limit point.
+    const auto conj = [&](const Converged& c) { return sys_.has_loads() ? c.lambda : c.extra_mu; };
+    const double mid = 0.5 * (conj(lc.before) + conj(lc.after));
+    control_turns = (mid - conj(cur_)) * (mid - conj(next)) <= 0.0;
+    if (!control_turns) {
+      lc.point.step = step_;
+      say(fmt::format("critical point (limit_point) at load factor {:.6g}, step {}", lc.point.load_factor, step_));
+      res_.critical_points.push_back(lc.point);
+    }
+  }
+  slope_ = slope_next;
+  return control_turns;
+}
+
+bool PathRun::locate_inertia_change(const Converged& next, const Eigen::VectorXd& dir, int neg_before) {
+  const double h = control_.h(), s_end = control_.path_length();
+  const auto control_at = [&](const Converged& c, double f) {
+    return o_.control == PathControl::ArcLength ? s_end - (1.0 - f) * std::abs(h) : control_.value(c);
+  };
+  const LocatedCriticalPoint lc =
+      locate_critical_point(parts_, cur_, next, h, dir, neg_before, neg_, held_control(), control_at);
+  CriticalPoint cp = lc.point;
+  cp.step = step_;
+  say(fmt::format("critical point ({}) at load factor {:.6g}, step {}", to_string(cp.type), cp.load_factor, step_));
+  if (cp.type == CriticalPointType::Bifurcation && o_.branch_switch && !switched_ &&
+      o_.control == PathControl::ArcLength && lc.mode.size()) {
+    if (switch_onto_branch(lc, cp)) return true;
+    say("branch switching failed: " + report_);
+  }
+  res_.critical_points.push_back(cp);
+  return false;
+}
+
+bool PathRun::switch_onto_branch(const LocatedCriticalPoint& lc, CriticalPoint& cp) {
+  const double h = control_.h(), s_end = control_.path_length();
+  BranchSwitch bs = switch_branch(parts_, lc.before, lc.mode, h);
+  report_ = bs.report;
+  if (!bs.switched) return false;
+  switched_ = true;
+  cp.branch_switched = true;
+  // Replace the primary-path step by the located point and the first secondary step.
+  res_.steps.pop_back();
+  const double s_lo = s_end - std::abs(h) + lc.lo * std::abs(h);
+  record(lc.before, step_, s_lo, lc.lo * std::abs(h), o_.control);
+  ++step_;
+  control_.restart_at(s_lo + bs.ds, bs.ds);
+  neg_ = record(bs.state, step_, control_.path_length(), bs.ds, o_.control);
+  predictor_.accept(bs.direction);
+  cur_ = std::move(bs.state);
+  res_.critical_points.push_back(cp);
+  say(fmt::format("branch switched onto the secondary path at load factor {:.6g}", cur_.lambda));
+  return true;
+}
+
+void PathRun::run() {
+  neg_ = record(cur_, 0, control_.value(cur_), 0.0, o_.control);
+  // Displacement control: the slope of the load factor (or reaction) against the controlled DOF,
+  // whose change of sign is a limit point.
+  if (displacement() && o_.locate_critical) slope_ = conjugate_slope(sys_, factors_, cur_);
+  while (true) {
+    if (control_.target_reached(cur_)) {
+      res_.finish(PathTermination::Succeeded);
+      return;
+    }
+    if (step_ >= o_.max_steps) {  // an incomplete path
+      res_.finish(PathTermination::MaxSteps, 0.0, o_.max_steps);
+      return;
+    }
+    const StepPrediction pred = predictor_.predict(cur_, control_.mode(), control_.h());
+    StepSolution sol = corrector_.solve(cur_, pred.spec, pred.u);
+    report_ = sol.report;
+    if (!sol.converged) {
+      if (!cut(PathTermination::NoConvergence, "no convergence (" + report_ + ")")) return;
+      continue;
+    }
+    const Converged next = std::move(sol.state);
+    const Eigen::VectorXd dir = sys_.direction(cur_, next);
+    if (const auto r = rejected(pred, dir)) {
+      if (!cut(r->why, r->what)) return;
+      continue;
+    }
+    ++step_;
+    control_.advance();
+    const int neg_before = neg_;
+    neg_ = record(next, step_, control_.value(next), std::abs(control_.h()), control_.mode());
+    say(fmt::format("step {}: load factor {:.6g}, control {:.6g}, {} iterations{}, {} negative eigenvalues", step_,
+                    next.lambda, control_.value(next), next.iterations,
+                    next.chord_iterations ? fmt::format(" ({} chord)", next.chord_iterations) : std::string(), neg_));
+    const bool fall_back = control_.mode() != o_.control;  // no critical points in a snap-back fall-back
+    const bool control_turns = displacement() && o_.locate_critical && locate_limit_point(next, fall_back);
+    if (!fall_back && !control_turns && o_.stability && o_.locate_critical && neg_ >= 0 && neg_before >= 0 &&
+        neg_ != neg_before && locate_inertia_change(next, dir, neg_before)) {
+      if (stopped(res_, o_, original_, cur_, step_)) return;
+      continue;
+    }
+    predictor_.accept(dir);
+    if (fall_back && control_.resume_displacement(cur_, next))
+      say(fmt::format("step {}: the controlled DOF moves toward its target again: displacement control", step_));
+    else
+      control_.adapt(adapt_count(next));
+    cur_ = next;
+    cuts_ = 0;
+    if (stopped(res_, o_, original_, next, step_)) return;
+  }
+}
+
+// The first step of the path: the user's arc length, or the automatic one (0: none available).
+double first_step(const PathOptions& o, const PathScales& scales) {
+  if (o.control != PathControl::ArcLength || !o.arc_length_auto) return o.arc_length;
+  if (!(scales.ds_auto > 0.0)) return 0.0;
+  if (o.progress)
+    o.progress(fmt::format("arc_length auto: first step {:.6g} (load factor scale {:.6g}, psi {:.6g})", scales.ds_auto,
+                           scales.lambda_ref, scales.psi));
+  return scales.ds_auto;
+}
+
 }  // namespace
 
 PathResult follow_path(const Model& original, const PathOptions& o) {
@@ -114,187 +334,36 @@ PathResult follow_path(const Model& original, const PathOptions& o) {
   PathResult res;
   const Model model = o.imperfection_mode > 0 ? imperfect_model(original, o.imperfection_mode, o.imperfection_amplitude)
                                               : original;
-  PathEquilibrium P(model, o);
-  res.free_dofs = P.nf;
-  res.statically_indeterminate = P.redundant;
-  if (P.nf == 0) {  // every DOF held: no path to follow (and KINSOL cannot take an empty system)
+  PathSystem unscaled(model, o);
+  res.free_dofs = unscaled.nf();
+  res.statically_indeterminate = unscaled.redundant();
+  if (unscaled.nf() == 0) {  // every DOF held: no path to follow (and KINSOL cannot take an empty system)
     res.finish(PathTermination::InitialStateFailed, 0.0, 0,
                "no free DOF (every DOF is supported, prescribed or held): there is no path to follow");
     return res;
   }
   KinsolSolver kin(o.newton);
-  StabilityAnalyzer stab(P);
-  Predictor predictor(o.control, P);
-  const CriticalPointParts parts{o, P, kin, stab, predictor};
-  auto say = [&](const std::string& s) {
-    if (o.progress) o.progress(s);
-  };
-  const bool disp = o.control == PathControl::Displacement;
-
-  Converged cur;
-  std::string rep;
-  if (!P.initial_state(kin, cur, rep)) {
-    res.finish(PathTermination::InitialStateFailed, 0.0, 0, rep);
+  FactorCache factors;
+  const StepSolution start = initial_state(unscaled, factors, kin);
+  if (!start.converged) {
+    res.finish(PathTermination::InitialStateFailed, 0.0, 0, start.report);
     return res;
   }
   // The structure's own scales: the arc-length weight of the load factor, the automatic first
   // step and the force scale of the convergence test (solvers/path/path_scales.hpp).
-  const PathScales scales = path_scales(model, P, cur, P.has_loads);
-  if (scales.lambda_ref > 0.0) P.set_load_scale(scales.lambda_ref);
-  P.psi2 = scales.psi * scales.psi;
-  double ds0 = o.arc_length;
-  if (o.control == PathControl::ArcLength && o.arc_length_auto) {
-    if (!(scales.ds_auto > 0.0)) {
-      res.finish(PathTermination::NoAutomaticStep);
-      return res;
-    }
-    ds0 = scales.ds_auto;
-    say(fmt::format("arc_length auto: first step {:.6g} (load factor scale {:.6g}, psi {:.6g})", ds0, scales.lambda_ref,
-                    scales.psi));
+  const PathScales scales = path_scales(model, unscaled, factors, start.state);
+  const PathSystem sys = std::move(unscaled).with_scales(scales.lambda_ref, scales.psi);
+  const double ds0 = first_step(o, scales);
+  if (o.control == PathControl::ArcLength && o.arc_length_auto && !(ds0 > 0.0)) {
+    res.finish(PathTermination::NoAutomaticStep);
+    return res;
   }
-  StepControl control(o, P, cur, ds0);
-  int neg = record(res, o, original, P, stab, cur, 0, control.value(cur), 0.0, o.control);
-
-  int step = 0, cuts = 0;
-  bool switched = false;
-  auto fail = [&](PathTermination why, const std::string& what) {  // a failed step: cut or give up
-    ++cuts;
-    const bool ok = control.cut() && cuts <= o.max_cuts;
-    say(fmt::format("step {}: {}; cutting the step to {:.4g}", step + 1, what, control.h));
-    if (ok) return true;
-    // Displacement control at a snap-back of the controlled DOF: on under arc length, with the
-    // arc length of the last accepted step.
-    const Eigen::VectorXd& d = predictor.previous_direction;
-    if (P.has_loads && d.size() && control.fall_back_to_arc_length(cur, std::sqrt(predictor.arc_dot(d, d)))) {
-      cuts = 0;
-      say(fmt::format("step {}: the controlled DOF turns back: arc length from here (ds {:.4g})", step + 1, control.h));
-      return true;
-    }
-    res.finish(why, cur.lambda, cuts, rep);
-    return false;
-  };
-  // Displacement control: the slope of the load factor (or reaction) against the controlled DOF,
-  // whose change of sign is a limit point.
-  double slope = disp && o.locate_critical ? P.conjugate_slope(cur) : NAN;
-  while (true) {
-    if (control.target_reached(cur)) {
-      res.finish(PathTermination::Succeeded);
-      break;
-    }
-    if (step >= o.max_steps) {  // an incomplete path
-      res.finish(PathTermination::MaxSteps, 0.0, o.max_steps);
-      break;
-    }
-    StepSpec spec;
-    Eigen::VectorXd u;
-    predictor.control = control.mode;
-    predictor.make_step(cur, control.h, spec, u);
-    Converged next;
-    if (!P.solve(kin, cur, spec, u, next, rep)) {
-      if (!fail(PathTermination::NoConvergence, "no convergence (" + rep + ")")) break;
-      continue;
-    }
-    const Eigen::VectorXd dir = predictor.direction(cur, next);
-    if (control.mode == PathControl::ArcLength) {
-      // The corrector went far from the predictor: Newton may have jumped to another branch (over
-      // a limit point, with the same inertia at both ends). Cut the step.
-      Eigen::VectorXd moved = dir;
-      moved.head(P.nf) -= u.head(P.nf);
-      moved[P.nf] -= u[P.nf + P.nc] - cur.lambda;
-      if (predictor.arc_dot(moved, moved) > kMaxCorrectorRatio * kMaxCorrectorRatio * control.h * control.h) {
-        if (!fail(PathTermination::NoConvergence, "the corrector went far from the predictor (a jump?)")) break;
-        continue;
-      }
-    }
-    // The spherical constraint has a second root behind the start: a step that went back along the
-    // path is rejected and cut.
-    if (control.mode == PathControl::ArcLength && predictor.previous_direction.size()) {
-      const Eigen::VectorXd& d = predictor.previous_direction;
-      if (predictor.arc_dot(dir, d) < 0.0) {
-        if (!fail(PathTermination::NoForwardSolution, "the step went back along the path")) break;
-        continue;
-      }
-    }
-    ++step;
-    control.advance();
-    const int neg_before = neg;
-    neg = record(res, o, original, P, stab, next, step, control.value(next), std::abs(control.h), control.mode);
-    say(fmt::format("step {}: load factor {:.6g}, control {:.6g}, {} iterations{}, {} negative eigenvalues", step,
-                    next.lambda, control.value(next), next.iterations,
-                    next.chord_iterations ? fmt::format(" ({} chord)", next.chord_iterations) : std::string(), neg));
-
-    const bool fall_back = control.mode != o.control;  // no critical points in a snap-back fall-back
-    bool control_turns = false;  // the step straddles a turn of the controlled DOF (not of the load)
-    if (disp && o.locate_critical) {
-      const double slope_next = P.conjugate_slope(next);
-      if (!fall_back && slope * slope_next < 0.0) {
-        const double h = control.h;
-        LocatedCriticalPoint lc = locate_extremum(parts, cur, next, h, slope,
-                                                  [&](const Converged& c, double) { return control.value(c); });
-        // The slope changes sign through zero at an extremum of the load factor (or reaction), and
-        // through infinity where the controlled DOF turns back: only the first is a limit point.
-        const auto conj = [&](const Converged& c) { return P.has_loads ? c.lambda : c.extra_mu; };
-        const double mid = 0.5 * (conj(lc.before) + conj(lc.after));
-        control_turns = (mid - conj(cur)) * (mid - conj(next)) <= 0.0;
-        if (!control_turns) {
-          lc.point.step = step;
-          say(fmt::format("critical point (limit_point) at load factor {:.6g}, step {}", lc.point.load_factor, step));
-          res.critical_points.push_back(lc.point);
-        }
-      }
-      slope = slope_next;
-    }
-    if (!fall_back && !control_turns && o.stability && o.locate_critical && neg >= 0 && neg_before >= 0 &&
-        neg != neg_before) {
-      const double h = control.h, s_end = control.path_length;
-      const auto control_at = [&](const Converged& c, double f) {
-        return o.control == PathControl::ArcLength ? s_end - (1.0 - f) * std::abs(h) : control.value(c);
-      };
-      LocatedCriticalPoint lc = locate_critical_point(parts, cur, next, h, dir, neg_before, neg, disp, control_at);
-      CriticalPoint& cp = lc.point;
-      cp.step = step;
-      say(fmt::format("critical point ({}) at load factor {:.6g}, step {}", to_string(cp.type), cp.load_factor, step));
-      if (cp.type == CriticalPointType::Bifurcation && o.branch_switch && !switched &&
-          o.control == PathControl::ArcLength && lc.mode.size()) {
-        Converged cb;
-        double ds = 0.0;
-        Eigen::VectorXd db;
-        if (switch_branch(parts, lc.before, lc.mode, h, cb, ds, db, rep)) {
-          switched = true;
-          cp.branch_switched = true;
-          // Replace the primary-path step by the located point and the first secondary step.
-          res.steps.pop_back();
-          const double s_lo = s_end - std::abs(h) + lc.lo * std::abs(h);
-          record(res, o, original, P, stab, lc.before, step, s_lo, lc.lo * std::abs(h), o.control);
-          ++step;
-          control.path_length = s_lo + ds;
-          control.h = h < 0 ? -ds : ds;
-          neg = record(res, o, original, P, stab, cb, step, control.path_length, ds, o.control);
-          predictor.previous_direction = db;
-          cur = cb;
-          res.critical_points.push_back(cp);
-          say(fmt::format("branch switched onto the secondary path at load factor {:.6g}", cb.lambda));
-          if (stopped(res, o, original, cb, step)) break;
-          continue;
-        }
-        say("branch switching failed: " + rep);
-      }
-      res.critical_points.push_back(cp);
-    }
-
-    predictor.previous_direction = dir;
-    if (fall_back && control.resume_displacement(cur, next))
-      say(fmt::format("step {}: the controlled DOF moves toward its target again: displacement control", step));
-    else
-      control.adapt(adapt_count(next));
-    cur = next;
-    cuts = 0;
-    if (stopped(res, o, original, next, step)) break;
-  }
-  res.factorizations = kin.factorizations() + P.tangent_factorizations();
-  res.symbolic_analyses = kin.symbolic_analyses() + P.tangent_symbolic_analyses();
-  res.chord_steps = P.chord_steps();
-  res.chord_fallbacks = P.chord_fallbacks();
+  PathRun path(original, o, sys, factors, kin, start.state, ds0, res);
+  path.run();
+  res.factorizations = kin.factorizations() + factors.factorizations();
+  res.symbolic_analyses = kin.symbolic_analyses() + factors.symbolic_analyses();
+  res.chord_steps = path.corrector().chord_steps();
+  res.chord_fallbacks = path.corrector().chord_fallbacks();
   return res;
 }
 

@@ -37,12 +37,17 @@
 //
 // The parts, one job each (solvers/path/):
 //   path_types        options, per-step records, critical points, result (PathTermination)
-//   equilibrium       the bordered equilibrium system of a step, its Newton solve and tangent
+//   equilibrium       the bordered equilibrium system of a step (PathSystem): an immutable description
+//                     of the structure, its numbering, constraints and scales
+//   factor_cache      the mutable half: the converged state's evaluation, tangent and factorisation
+//   corrector         a step's solve: chord iterations on that factor, then full Newton (KINSOL)
 //   step_control      what a step prescribes, its size, cuts and adaptation
 //   predictor         the initial guess of a step along the tangent (or a given direction)
 //   stability         inertia, lowest eigenvalue, loaded Cartesian stiffness of a node
 //   critical_points   detection, location by bisection, classification, branch switching
-// follow_path (solvers/path_following.cpp) is the loop that composes them.
+//   vibration         natural frequencies about a converged state
+// follow_path (solvers/path_following.cpp) is the loop that composes them: each part receives the
+// const system and, where it factorises or solves, the factor cache.
 #include "core/model.hpp"
 #include "solvers/path/path_types.hpp"
 #include "solvers/path/stability.hpp"

@@ -17,8 +17,9 @@
 #include <functional>
 #include <string>
 
-#include "solvers/kinsol_solver.hpp"
+#include "solvers/path/corrector.hpp"
 #include "solvers/path/equilibrium.hpp"
+#include "solvers/path/factor_cache.hpp"
 #include "solvers/path/path_types.hpp"
 #include "solvers/path/predictor.hpp"
 #include "solvers/path/stability.hpp"
@@ -30,13 +31,16 @@ inline constexpr double kLimitLoadWork = 1e-3;
 // At most this many bisections (the tolerance usually stops them first: 2^-10 < 1e-3).
 inline constexpr int kMaxBisections = 40;
 
-// The parts a critical-point search works with.
+// The parts a critical-point search works with: the options and the system (read), the factor cache
+// (tangents of the bracketing states), the corrector (trial states), the stability analysis and the
+// predictor (trial steps).
 struct CriticalPointParts {
   const PathOptions& options;
-  const PathEquilibrium& eq;
-  KinsolSolver& kin;
+  const PathSystem& system;
+  FactorCache& factors;
+  Corrector& corrector;
   StabilityAnalyzer& stability;
-  const Predictor& predictor;
+  Predictor& predictor;
 };
 
 // A critical point between two converged states, located and classified.
@@ -48,15 +52,15 @@ struct LocatedCriticalPoint {
 };
 
 // cur -> next: the step of signed size h (direction dir under arc length); neg_before/after the
-// negative-eigenvalue counts at cur and next; with_control: the controlled DOF is held (displacement
-// control). control_at(c, fraction): the path's control value of a state at that fraction of the step.
+// negative-eigenvalue counts at cur and next; control: whether the controlled DOF is held
+// (displacement control). control_at(c, fraction): the path's control value of a state at that fraction of the step.
 LocatedCriticalPoint locate_critical_point(const CriticalPointParts& parts, const Converged& cur, const Converged& next,
                                            double h, const Eigen::VectorXd& dir, int neg_before, int neg_after,
-                                           bool with_control,
+                                           ControlDof control,
                                            const std::function<double(const Converged&, double)>& control_at);
 
 // Displacement control: an extremum of the load factor (or, for imposed motion, of the controlled
-// DOF's reaction) between cur and next, where PathEquilibrium::conjugate_slope changes sign
+// DOF's reaction) between cur and next, where conjugate_slope (solvers/path/factor_cache.hpp) changes sign
 // (slope_before its value at cur). Located by bisection on the sign of the slope; a limit point; the
 // counts and the mode are those of the structure with the controlled DOF released (the structure
 // under its load, whose inertia changes there).
@@ -64,10 +68,19 @@ LocatedCriticalPoint locate_extremum(const CriticalPointParts& parts, const Conv
                                      double h, double slope_before,
                                      const std::function<double(const Converged&, double)>& control_at);
 
+// The outcome of a branch switch: the first state on the secondary branch, the arc length of that
+// step and its direction [Delta_f, dlambda]; or the last solver report when no fraction converged.
+struct BranchSwitch {
+  bool switched = false;
+  Converged state;
+  double ds = 0.0;
+  Eigen::VectorXd direction;
+  std::string report;
+};
+
 // Branch switching from the last stable state `from` along `mode` (free coordinates) with the arc
-// length |h| (or a fraction of it). On success, `out` is the first state on the secondary branch,
-// `ds` the arc length used and `dir` the direction of that step.
-bool switch_branch(const CriticalPointParts& parts, const Converged& from, const Eigen::VectorXd& mode, double h,
-                   Converged& out, double& ds, Eigen::VectorXd& dir, std::string& report);
+// length |h| (or a fraction of it).
+BranchSwitch switch_branch(const CriticalPointParts& parts, const Converged& from, const Eigen::VectorXd& mode,
+                           double h);
 
 }  // namespace beamfea

@@ -22,9 +22,10 @@
 //               ds_auto = dlambda_0 sqrt(|t|_W^2 + psi^2).
 //   F_ref       the force scale of the convergence test: the reference load at lambda_ref
 //               (max |f_ext| lambda_ref, moments divided by L), with a floor for round-off
-//               (PathEquilibrium's F_floor).
+//               (PathSystem's round-off floor).
 #include "core/model.hpp"
 #include "solvers/path/equilibrium.hpp"
+#include "solvers/path/factor_cache.hpp"
 
 namespace beamfea {
 
@@ -43,7 +44,9 @@ struct PathScales {
   double ds_auto = 0.0;
 };
 
-// with_buckling: solve the linearised buckling problem for lambda_cr (once per path).
-PathScales path_scales(const Model& model, const PathEquilibrium& eq, const Converged& start, bool with_buckling);
+// The scales of the path from `start` (its tangent factorised in `factors`). A model with loads
+// solves the linearised buckling problem for lambda_cr (once per path); one without (an imposed
+// motion) has none of these scales (all zero).
+PathScales path_scales(const Model& model, const PathSystem& sys, FactorCache& factors, const Converged& start);
 
 }  // namespace beamfea

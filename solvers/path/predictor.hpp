@@ -1,6 +1,6 @@
 #pragma once
 // The predictor of a path step: the step's specification (StepSpec) and the initial guess of its
-// unknowns, from the tangent at the start state (solvers/path/equilibrium.hpp's tangent()).
+// unknowns, from the tangent at the start state (solvers/path/factor_cache.hpp's tangent()).
 //
 //   load factor    u = start + h t (t: tangent per unit load factor);
 //   displacement   dlambda = h / (dU_c/dlambda), u = start + dlambda [t; 1] (with loads), or
@@ -12,26 +12,36 @@
 #include <Eigen/Core>
 
 #include "solvers/path/equilibrium.hpp"
+#include "solvers/path/factor_cache.hpp"
 #include "solvers/path/path_types.hpp"
 
 namespace beamfea {
 
+// A step's specification and the initial guess of its unknowns.
+struct StepPrediction {
+  StepSpec spec;
+  Eigen::VectorXd u;
+};
+
 class Predictor {
  public:
-  Predictor(PathControl c, const PathEquilibrium& eq) : control(c), eq_(eq) {}
-  // The spec and predictor of a step of size hh from c. dir: an imposed arc-length direction
-  // [Delta_f (nf), dlambda] (a bisection along the last step, a branch switch); none: the tangent.
-  void make_step(const Converged& c, double hh, StepSpec& s, Eigen::VectorXd& u, const Eigen::VectorXd* dir = nullptr) const;
-  // The direction [Delta_f, dlambda] of a converged step from a to b.
-  Eigen::VectorXd direction(const Converged& a, const Converged& b) const;
-  // Dot product of two directions in the arc-length metric (W on Delta, psi^2 on dlambda).
-  double arc_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const;
+  Predictor(const PathSystem& sys, FactorCache& factors) : sys_(sys), factors_(factors) {}
+  // The step of kind `control` and size h from c, along the tangent (factorised at c here).
+  StepPrediction predict(const Converged& c, PathControl control, double h);
+  // An arc-length step of size h from c along an imposed direction [Delta_f (nf), dlambda] (a
+  // bisection along the last step, a branch switch).
+  StepPrediction predict_along(const Converged& c, double h, const Eigen::VectorXd& direction);
 
-  Eigen::VectorXd previous_direction;  // [Delta_f, dlambda] of the last accepted step (empty at first)
-  PathControl control;                 // the kind of step made (the step control's current mode)
+  // [Delta_f, dlambda] of the last accepted step (empty at first): the orientation of the next
+  // arc-length predictor, and the secant where the tangent is singular.
+  const Eigen::VectorXd& previous_direction() const { return previous_; }
+  void accept(const Eigen::VectorXd& direction) { previous_ = direction; }
 
  private:
-  const PathEquilibrium& eq_;
+  StepPrediction arc_step(const Converged& c, double h, const Eigen::VectorXd& t, const Eigen::VectorXd* direction) const;
+  const PathSystem& sys_;
+  FactorCache& factors_;
+  Eigen::VectorXd previous_;
 };
 
 }  // namespace beamfea

@@ -64,23 +64,25 @@ SparseMatrix null_space(const Eigen::MatrixXd& C0, int n) {
   return Z;
 }
 
-StabilityAnalysis constrained_tangent(const PathEquilibrium& P, const Converged& c, bool with_control) {
+StabilityAnalysis constrained_tangent(const PathSystem& P, FactorCache& factors, const Converged& c,
+                                      ControlDof control) {
   StabilityAnalysis out;
   // The tangent at the state, as the predictor sees it (evaluated once per state).
-  const NonlinearStructure::Evaluation& ev = P.evaluation_at(c);
-  // Restriction to the free coordinates, column by column: gen_to_free is increasing on the free
+  const NonlinearStructure::Evaluation& ev = factors.evaluation_at(P, c);
+  // Restriction to the free coordinates, column by column: the free index is increasing on the free
   // gens, so the rows and columns stay in order (no triplets, no sort).
-  SparseMatrix Kff(P.nf, P.nf);
+  const int nf = P.nf();
+  SparseMatrix Kff(nf, nf);
   Kff.reserve(ev.tangent.nonZeros());
   for (int j = 0; j < ev.tangent.outerSize(); ++j) {
-    if (P.gen_to_free[j] < 0) continue;
-    Kff.startVec(P.gen_to_free[j]);
+    if (P.free_index(j) < 0) continue;
+    Kff.startVec(P.free_index(j));
     for (SparseMatrix::InnerIterator it(ev.tangent, j); it; ++it)
-      if (P.gen_to_free[it.row()] >= 0) Kff.insertBack(P.gen_to_free[it.row()], P.gen_to_free[j]) = it.value();
+      if (P.free_index(it.row()) >= 0) Kff.insertBack(P.free_index(it.row()), P.free_index(j)) = it.value();
   }
   Kff.finalize();
-  const Eigen::MatrixXd C = P.constraint_matrix(c.state, with_control);
-  out.Z = null_space(C, P.nf);
+  const Eigen::MatrixXd C = P.constraint_matrix(c.state, control);
+  out.Z = null_space(C, nf);
   if (C.rows() == 0) {  // Z = I
     out.K = std::move(Kff);
     out.p = P.load_pattern(c.state);
@@ -91,21 +93,22 @@ StabilityAnalysis constrained_tangent(const PathEquilibrium& P, const Converged&
   return out;
 }
 
-StabilityAnalyzer::StabilityAnalyzer(const PathEquilibrium& eq, int dense_limit)
-    : eq_(eq), dense_limit_(dense_limit) {}
+StabilityAnalyzer::StabilityAnalyzer(const PathSystem& sys, FactorCache& factors, int dense_limit)
+    : sys_(sys), factors_(factors), dense_limit_(dense_limit) {}
 
-StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_control, bool want_mode) {
-  StabilityAnalysis out = constrained_tangent(eq_, c, with_control);
+StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, const StabilityRequest& request) {
+  const bool want_mode = request.mode == CriticalMode::Wanted;
+  StabilityAnalysis out = constrained_tangent(sys_, factors_, c, request.control);
   const int n = static_cast<int>(out.K.rows());
   if (n == 0) return out;
   const bool large = n > dense_limit_;
   // No constraint row (Z = I): the matrix is the symmetric part of the tangent system itself, which
-  // PathEquilibrium factorises by LL^T where it can (tangent_is_cholesky): that factor, shared with
+  // the factor cache factorises by LL^T where it can (is_cholesky): that factor, shared with
   // the next predictor and the chord iterations, decides the inertia and gives the lowest
   // eigenvalue; no factorisation here.
-  const bool unconstrained = out.Z.rows() == out.Z.cols() && n == eq_.nf;
-  if (large && unconstrained && !last_indefinite_ && n > kSymmetricTangentMinDofs) eq_.tangent(c);
-  const bool shared = large && unconstrained && eq_.tangent_is_cholesky(c);
+  const bool unconstrained = out.Z.rows() == out.Z.cols() && n == sys_.nf();
+  if (large && unconstrained && !last_indefinite_ && n > kSymmetricTangentMinDofs) factors_.tangent(sys_, c);
+  const bool shared = large && unconstrained && factors_.is_cholesky(c);
   // The symmetrised matrix, made only where something here factorises or reads it.
   SparseMatrix S;
   const auto symmetrised = [&]() -> const SparseMatrix& {
@@ -128,7 +131,13 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_contr
   const Eigen::VectorXd sc = (d.array() > 0.0).select(d.cwiseSqrt().cwiseInverse(), Eigen::VectorXd::Ones(n));
   // The lowest eigenvalue from the factorisation just made, no shifted one (see lowest_from_factor).
   // The dense solve up to dense_limit_, the critical mode, and what that fails to settle, as before.
-  if (large && out.info.negative >= 0 && !want_mode && lowest_from_factor(sc, cholesky, shared, out.info)) return out;
+  if (large && out.info.negative >= 0 && !want_mode) {
+    const InertiaFactor factor = shared ? InertiaFactor::SharedLlt : cholesky ? InertiaFactor::OwnLlt : InertiaFactor::Ldlt;
+    if (const std::optional<double> lowest = lowest_from_factor(sc, factor, out.info.negative)) {
+      out.info.min_eigenvalue = *lowest;
+      return out;
+    }
+  }
   const SparseMatrix A = SparseMatrix(sc.asDiagonal() * symmetrised() * sc.asDiagonal());
   const auto gershgorin_shift = [&] {  // below the Gershgorin lower bound of the spectrum
     double g = 0.0;
@@ -188,50 +197,53 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, bool with_contr
 // inertia's factorisation gives, for the negative count plus one of them. When the negative ones
 // found are as many as the inertia counts (Sylvester), they are all of A's negative eigenvalues and
 // the least found is the lowest; a stable state needs only the one nearest zero, its lowest.
-bool StabilityAnalyzer::lowest_from_factor(const Eigen::VectorXd& sc, bool cholesky, bool shared, StabilityInfo& info) {
+std::optional<double> StabilityAnalyzer::lowest_from_factor(const Eigen::VectorXd& sc, InertiaFactor factor,
+                                                            int negative) {
   const auto& ldlt = inertia_ldlt_.solver();
-  if (!cholesky && !(ldlt.vectorD().array() != 0.0).all()) return false;  // a zero pivot: singular
+  if (factor == InertiaFactor::Ldlt && !(ldlt.vectorD().array() != 0.0).all()) return std::nullopt;  // singular
   const Eigen::Index n = sc.size();
   // A = Sc S Sc (Jacobi-scaled), so A^-1 x = Sc^-1 S^-1 Sc^-1 x with S's factorisation.
   const Eigen::VectorXd inv_sc = sc.cwiseInverse();
   work_.resize(n);
   const InverseOp inverse = [&](const double* x, double* y) {
     work_ = inv_sc.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(x, n));
-    if (shared) eq_.solve_with_symmetric_tangent(work_, z_);
-    else if (cholesky) z_ = llt_.solver().solve(work_);
-    else z_ = ldlt.solve(work_);
+    switch (factor) {
+      case InertiaFactor::SharedLlt: z_ = factors_.solve_symmetric(work_); break;
+      case InertiaFactor::OwnLlt: z_ = llt_.solver().solve(work_); break;
+      case InertiaFactor::Ldlt: z_ = ldlt.solve(work_); break;
+    }
     Eigen::Map<Eigen::VectorXd>(y, n) = inv_sc.cwiseProduct(z_);
   };
-  const int want = info.negative == 0 ? 1 : info.negative + 1;
+  const int want = negative == 0 ? 1 : negative + 1;
   try {
     const EigenPairs ep =
         lowest_eigenpairs_of_inverse(n, inverse, want, last_vector_.size() == n ? &last_vector_ : nullptr);
-    if (!ep.converged || ep.values.size() == 0) return false;
-    if ((ep.values.array() < 0.0).count() != info.negative) return false;
-    if (info.negative == 0 && !(ep.values[0] > 0.0)) return false;
-    info.min_eigenvalue = last_min_ = ep.values[0];
+    if (!ep.converged || ep.values.size() == 0) return std::nullopt;
+    if ((ep.values.array() < 0.0).count() != negative) return std::nullopt;
+    if (negative == 0 && !(ep.values[0] > 0.0)) return std::nullopt;
+    last_min_ = ep.values[0];
     last_vector_ = ep.vectors.col(0);
-    return true;
+    return last_min_;
   } catch (const Error&) {
-    return false;
+    return std::nullopt;
   }
 }
 
 CondensedStiffness StabilityAnalyzer::node_stiffness(const Converged& c, const StabilityAnalysis& st, int node) const {
-  const PathEquilibrium& P = eq_;
-  const auto tw = P.ns.twists(c.state);
+  const PathSystem& P = sys_;
+  const auto tw = P.structure().twists(c.state);
   const int n = static_cast<int>(st.K.rows());
   // The node's six rows over the constrained coordinates: T_n Z.
   Eigen::MatrixXd Tn = Eigen::MatrixXd::Zero(6, n);
   for (int k = 0; k < 6 && n > 0; ++k) {
-    Eigen::VectorXd r = Eigen::VectorXd::Zero(P.nf);
-    for (const auto& [g, v] : P.ns.raw_row(c.state, tw, node, k))
-      if (P.gen_to_free[g] >= 0) r[P.gen_to_free[g]] += v;
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(P.nf());
+    for (const auto& [g, v] : P.structure().raw_row(c.state, tw, node, k))
+      if (P.free_index(g) >= 0) r[P.free_index(g)] += v;
     Tn.row(k) = (st.Z.transpose() * r).transpose();
   }
   // The coordinates of Z mix translations and rotations: no per-column scale (the range of T_n Z,
   // what the node can move, does not depend on it).
-  return node_compliance(st.K, Tn, Eigen::VectorXd::Ones(n), P.L);
+  return node_compliance(st.K, Tn, Eigen::VectorXd::Ones(n), P.length_scale());
 }
 
 }  // namespace beamfea

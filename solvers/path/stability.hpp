@@ -21,6 +21,7 @@
 
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/path/equilibrium.hpp"
+#include "solvers/path/factor_cache.hpp"
 #include "solvers/pattern_factor.hpp"
 
 namespace beamfea {
@@ -45,33 +46,45 @@ SparseMatrix null_space(const Eigen::MatrixXd& C, int n);
 // The converged tangent restricted to the admissible variations (eqs. 19-21): Z, Z^T K_ff Z (not
 // symmetrised) and Z^T p_free, at the state's load factor (closures' multipliers included). What
 // the stability analysis and the frequencies along a path (solvers/path/vibration.hpp) work on.
-// with_control: the controlled DOF is held too.
-StabilityAnalysis constrained_tangent(const PathEquilibrium& P, const Converged& c, bool with_control);
+// control: whether the controlled DOF is held too. The tangent is the evaluation `factors` keeps.
+StabilityAnalysis constrained_tangent(const PathSystem& sys, FactorCache& factors, const Converged& c,
+                                      ControlDof control);
 
 // Up to this size the lowest eigenpairs of the stability matrix are computed densely (a few
 // milliseconds, and no Lanczos restarts on the clustered lowest eigenvalues of slender structures).
 inline constexpr int kStabilityDenseLimit = 400;
 
+// What a stability analysis is asked: whether the controlled DOF is held too (displacement control),
+// and whether the critical mode (the eigenvector of the eigenvalue nearest zero) is wanted in
+// info.mode.
+enum class CriticalMode { NotWanted, Wanted };
+struct StabilityRequest {
+  ControlDof control = ControlDof::Free;
+  CriticalMode mode = CriticalMode::NotWanted;
+};
+
 class StabilityAnalyzer {
  public:
   // dense_limit: the size up to which the inertia is an LDL^T and the lowest eigenvalue dense;
   // above it, CHOLMOD's supernodal LL^T first (tests lower it to compare both on small models).
-  explicit StabilityAnalyzer(const PathEquilibrium& eq, int dense_limit = kStabilityDenseLimit);
+  // factors: the path's factor cache, whose LL^T of the tangent it shares where it can.
+  StabilityAnalyzer(const PathSystem& sys, FactorCache& factors, int dense_limit = kStabilityDenseLimit);
   StabilityAnalyzer(const StabilityAnalyzer&) = delete;
   StabilityAnalyzer& operator=(const StabilityAnalyzer&) = delete;
-  // with_control: the controlled DOF is held too (displacement control). want_mode: the critical
-  // mode (the eigenvector of the eigenvalue nearest zero) is returned in info.mode.
-  StabilityAnalysis analyse(const Converged& c, bool with_control, bool want_mode);
+  StabilityAnalysis analyse(const Converged& c, const StabilityRequest& request = {});
   // Loaded Cartesian stiffness and compliance of a node (not ok when holding it leaves a mechanism).
   CondensedStiffness node_stiffness(const Converged& c, const StabilityAnalysis& st, int node) const;
 
  private:
-  const PathEquilibrium& eq_;
-  // The lowest eigenpair of a positive definite state from the factorisation that decided its
-  // inertia (false when the Lanczos iterations did not converge: the caller falls back to a shifted
-  // solve).
-  // shared: the factor is the path tangent's LL^T (PathEquilibrium::tangent_is_cholesky).
-  bool lowest_from_factor(const Eigen::VectorXd& sc, bool cholesky, bool shared, StabilityInfo& info);
+  // The factorisation that decided a state's inertia: the path tangent's LL^T (FactorCache::
+  // is_cholesky), this analyser's own LL^T, or its LDL^T.
+  enum class InertiaFactor { SharedLlt, OwnLlt, Ldlt };
+  // The lowest eigenvalue of a state with `negative` negative eigenvalues from the factorisation
+  // that decided its inertia (none when the Lanczos iterations did not converge or disagree with the
+  // inertia: the caller falls back to a shifted solve).
+  std::optional<double> lowest_from_factor(const Eigen::VectorXd& sc, InertiaFactor factor, int negative);
+  const PathSystem& sys_;
+  FactorCache& factors_;
   const int dense_limit_;
   LltFactor llt_;                   // CHOLMOD's supernodal LL^T, symbolic analysis kept
   bool last_indefinite_ = false;    // the last state had a negative eigenvalue: LDL^T directly

@@ -48,7 +48,7 @@ double adapt_count(const Converged& c);
 class StepControl {
  public:
   // ds0: the first arc length (the user's, or the automatic one of solvers/path/path_scales.hpp).
-  StepControl(const PathOptions& o, const PathEquilibrium& eq, const Converged& start, double ds0);
+  StepControl(const PathOptions& o, const PathSystem& sys, const Converged& start, double ds0);
 
   // The path's control value at a state: lambda, the controlled DOF, or the path length so far.
   double value(const Converged& c) const;
@@ -58,7 +58,13 @@ class StepControl {
   // Halves the step; false when it falls below the minimum.
   bool cut();
   // A step of size h was accepted: the path length grows by |h|.
-  void advance() { path_length += std::abs(h); }
+  void advance() { path_length_ += std::abs(h_); }
+  // A branch switch replaced the last step: the path length at the first secondary state, and the
+  // arc length ds of the step onto it (the next step's size, with the current direction's sign).
+  void restart_at(double path_length, double ds) {
+    path_length_ = path_length;
+    h_ = h_ < 0 ? -ds : ds;
+  }
   // Adapts h to the iteration count of the last converged step, within [hmin, hmax].
   void adapt(double iterations);
 
@@ -70,14 +76,17 @@ class StepControl {
   // After an accepted step from prev to next: true when displacement control resumes.
   bool resume_displacement(const Converged& prev, const Converged& next);
 
-  PathControl mode;        // the control of the next step (o.control, or ArcLength in a fall-back)
-  double h = 0.0;          // signed step (load factor, control value or arc length)
-  double h0 = 0.0, hmin = 0.0, hmax = 0.0;
-  double path_length = 0.0;  // arc length: sum of the accepted |h|
+  PathControl mode() const { return mode_; }  // the control of the next step (o.control, or ArcLength in a fall-back)
+  double h() const { return h_; }             // signed step (load factor, control value or arc length)
+  double path_length() const { return path_length_; }  // arc length: sum of the accepted |h|
 
  private:
+  PathControl mode_;
+  double h_ = 0.0;
+  double h0_ = 0.0, hmin_ = 0.0, hmax_ = 0.0;
+  double path_length_ = 0.0;
   const PathOptions& o_;
-  const PathEquilibrium& eq_;
+  const PathSystem& sys_;
   // Fall-back state: the displacement step and bounds to restore, the direction of the target,
   // whether the controlled DOF has moved away from it yet.
   double h_disp_ = 0.0, hmin_disp_ = 0.0, hmax_disp_ = 0.0;

@@ -53,10 +53,10 @@ SparseMatrix deformed_raw_mass(const NonlinearStructure& ns, const NonlinearStat
   return M;
 }
 
-PathFrequencies path_frequencies(const PathEquilibrium& P, const Converged& c, const StabilityAnalysis& tangent,
+PathFrequencies path_frequencies(const PathSystem& P, const Converged& c, const StabilityAnalysis& tangent,
                                  const PathFrequencyOptions& options) {
   PathFrequencies out;
-  const NonlinearStructure& ns = P.ns;
+  const NonlinearStructure& ns = P.structure();
   const auto nn = static_cast<int>(ns.model().nodes.size());
   const int n = static_cast<int>(tangent.K.rows());
   if (n == 0) {
@@ -69,8 +69,8 @@ PathFrequencies path_frequencies(const PathEquilibrium& P, const Converged& c, c
   for (int node = 0; node < nn; ++node)
     for (int k = 0; k < 6; ++k)
       for (const auto& [g, v] : ns.raw_row(c.state, tw, node, k))
-        if (P.gen_to_free[g] >= 0) t.emplace_back(6 * node + k, P.gen_to_free[g], v);
-  SparseMatrix T(6 * nn, P.nf);
+        if (P.free_index(g) >= 0) t.emplace_back(6 * node + k, P.free_index(g), v);
+  SparseMatrix T(6 * nn, P.nf());
   T.setFromTriplets(t.begin(), t.end());
   const SparseMatrix TZ = T * tangent.Z;
   const SparseMatrix Mraw = deformed_raw_mass(ns, c.state, options.mass);

@@ -49,9 +49,9 @@ struct PathFrequencies {
 // The mass over the nodes' raw DOFs (6 per node, DofMap numbering) in the configuration of `state`.
 SparseMatrix deformed_raw_mass(const NonlinearStructure& ns, const NonlinearState& state, MassKind kind);
 
-// The lowest frequencies about converged state c. `tangent`: constrained_tangent(P, c, hold) with
-// hold = the controlled DOF is held (imposed motion).
-PathFrequencies path_frequencies(const PathEquilibrium& P, const Converged& c, const StabilityAnalysis& tangent,
+// The lowest frequencies about converged state c. `tangent`: constrained_tangent(sys, factors, c,
+// control) with the controlled DOF held under an imposed motion.
+PathFrequencies path_frequencies(const PathSystem& sys, const Converged& c, const StabilityAnalysis& tangent,
                                  const PathFrequencyOptions& options);
 
 }  // namespace beamfea

@@ -13,6 +13,7 @@
 
 #include "path_models.hpp"
 #include "solvers/path/equilibrium.hpp"
+#include "solvers/path/factor_cache.hpp"
 #include "solvers/path/stability.hpp"
 #include "solvers/path_following.hpp"
 
@@ -40,17 +41,18 @@ TEST(PathStability, LargeModelAnalysisAgreesWithDenseThroughALimitPoint) {
   ASSERT_TRUE(r.completed) << r.brief_report();
   ASSERT_GT(r.free_dofs, 200);
 
-  const PathEquilibrium P(m, o);
-  ASSERT_EQ(P.nc, 0);  // supports on master nodes only: a state is its positions and load factor
-  StabilityAnalyzer dense(P), large(P, 0);
+  const PathSystem P(m, o);
+  ASSERT_EQ(P.nc(), 0);  // supports on master nodes only: a state is its positions and load factor
+  FactorCache factors;
+  StabilityAnalyzer dense(P, factors), large(P, factors, 0);
   int stable = 0, unstable = 0;
   for (const PathStep& s : r.steps) {
     Converged c;
     c.state = s.state;
     c.lambda = s.load_factor;
-    c.mu = Eigen::VectorXd::Zero(P.nc);
-    const StabilityInfo a = dense.analyse(c, false, false).info;
-    const StabilityInfo b = large.analyse(c, false, false).info;
+    c.mu = Eigen::VectorXd::Zero(P.nc());
+    const StabilityInfo a = dense.analyse(c).info;
+    const StabilityInfo b = large.analyse(c).info;
     EXPECT_EQ(a.negative, s.negative_eigenvalues) << "step " << s.step;
     EXPECT_EQ(b.negative, a.negative) << "step " << s.step;
     EXPECT_NEAR(a.min_eigenvalue, s.min_eigenvalue, kAbsolute) << "step " << s.step;
@@ -64,7 +66,7 @@ TEST(PathStability, LargeModelAnalysisAgreesWithDenseThroughALimitPoint) {
 }
 
 // Above kSymmetricTangentMinDofs free coordinates a symmetric tangent is factorised once per state by
-// LL^T (PathEquilibrium::tangent_is_cholesky), and that factor serves the tangent direction, the
+// LL^T (FactorCache::is_cholesky), and that factor serves the tangent direction, the
 // chord iterations and the stability analysis. The deep arch of 140 elements (417 free DOFs), through
 // its first limit point: at every recorded state the inertia and the lowest eigenvalue equal the
 // dense analysis' (no shared factor: the dense limit above the size), the tangent direction and a
@@ -80,9 +82,10 @@ TEST(PathStability, TheTangentsLLtServesTheStepsAndTheStabilityOfALargeSymmetric
   ASSERT_GT(r.free_dofs, kSymmetricTangentMinDofs);
   ASSERT_GE(r.steps.size(), 10u) << r.brief_report();
 
-  const PathEquilibrium P(m, o);
-  ASSERT_EQ(P.nc, 0);
-  StabilityAnalyzer reference(P, 1 << 30);  // dense, its own matrices
+  const PathSystem P(m, o);
+  ASSERT_EQ(P.nc(), 0);
+  FactorCache factors;
+  StabilityAnalyzer reference(P, factors, 1 << 30);  // dense, its own matrices
   std::mt19937 rng(7);
   std::normal_distribution<double> normal;
   int first_unstable = r.steps.back().step;
@@ -97,8 +100,8 @@ TEST(PathStability, TheTangentsLLtServesTheStepsAndTheStabilityOfALargeSymmetric
     Converged c;
     c.state = s.state;
     c.lambda = s.load_factor;
-    c.mu = Eigen::VectorXd::Zero(P.nc);
-    const StabilityInfo a = reference.analyse(c, false, false).info;
+    c.mu = Eigen::VectorXd::Zero(P.nc());
+    const StabilityInfo a = reference.analyse(c).info;
     EXPECT_EQ(s.negative_eigenvalues, a.negative) << "step " << s.step;
     EXPECT_NEAR(s.min_eigenvalue, a.min_eigenvalue, kRelative * std::abs(a.min_eigenvalue) + kAbsolute) << "step " << s.step;
     // The tangent direction and a solve balance the tangent as assembled (unsymmetrised) to
@@ -106,21 +109,21 @@ TEST(PathStability, TheTangentsLLtServesTheStepsAndTheStabilityOfALargeSymmetric
     // kBackward (a few hundred times eps: a skew part dropped by the symmetrisation would show far
     // above it). This arch's slender members make K ill-conditioned, about 1e12: a forward
     // comparison with another solver would measure that, not the factor.
-    const Eigen::VectorXd& t = P.tangent(c);
-    ASSERT_EQ(t.size(), P.nf) << "step " << s.step;
-    const StabilityAnalysis k = constrained_tangent(P, c, false);
-    const double norm_K = (SparseMatrix(k.K.cwiseAbs()) * Eigen::VectorXd::Ones(P.nf)).maxCoeff();
+    const Eigen::VectorXd& t = factors.tangent(P, c);
+    ASSERT_EQ(t.size(), P.nf()) << "step " << s.step;
+    const StabilityAnalysis k = constrained_tangent(P, factors, c, ControlDof::Free);
+    const double norm_K = (SparseMatrix(k.K.cwiseAbs()) * Eigen::VectorXd::Ones(P.nf())).maxCoeff();
     const auto backward = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& rhs) {
       return (k.K * x - rhs).cwiseAbs().maxCoeff() / (norm_K * x.cwiseAbs().maxCoeff() + rhs.cwiseAbs().maxCoeff());
     };
     EXPECT_LE(backward(t, k.p), kBackward) << "step " << s.step;
-    Eigen::VectorXd b(P.nf);
-    for (int i = 0; i < P.nf; ++i) b[i] = normal(rng);
-    EXPECT_LE(backward(P.solve_with_tangent_factor(b), b), kBackward) << "step " << s.step;
-    worst = std::max({worst, backward(t, k.p), backward(P.solve_with_tangent_factor(b), b)});
+    Eigen::VectorXd b(P.nf());
+    for (int i = 0; i < P.nf(); ++i) b[i] = normal(rng);
+    EXPECT_LE(backward(factors.solve(b), b), kBackward) << "step " << s.step;
+    worst = std::max({worst, backward(t, k.p), backward(factors.solve(b), b)});
     // LL^T exactly where the state is stable (positive definite), the LU past the critical point.
-    EXPECT_EQ(P.tangent_is_cholesky(c), a.negative == 0) << "step " << s.step;
-    shared += P.tangent_is_cholesky(c);
+    EXPECT_EQ(factors.is_cholesky(c), a.negative == 0) << "step " << s.step;
+    shared += factors.is_cholesky(c);
     ++compared;
     unstable += a.negative > 0;
   }
@@ -143,15 +146,16 @@ TEST(PathStability, AnAppliedMomentsSkewTangentKeepsTheLu) {
   const PathResult r = follow_path(m, o);
   ASSERT_TRUE(r.completed) << r.brief_report();
   ASSERT_GT(r.free_dofs, kSymmetricTangentMinDofs);
-  const PathEquilibrium P(m, o);
+  const PathSystem P(m, o);
+  FactorCache factors;
   const PathStep& s = r.steps.back();
   ASSERT_GT(s.load_factor, 0.0);
   Converged c;
   c.state = s.state;
   c.lambda = s.load_factor;
-  c.mu = Eigen::VectorXd::Zero(P.nc);
-  ASSERT_EQ(P.tangent(c).size(), P.nf);
-  EXPECT_FALSE(P.tangent_is_cholesky(c));
+  c.mu = Eigen::VectorXd::Zero(P.nc());
+  ASSERT_EQ(factors.tangent(P, c).size(), P.nf());
+  EXPECT_FALSE(factors.is_cholesky(c));
   EXPECT_EQ(s.negative_eigenvalues, 0);
 }
 
