@@ -14,7 +14,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <fstream>
 #include <map>
 #include <stdexcept>
@@ -29,6 +28,7 @@
 #include "solvers/linear_static.hpp"
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
+#include "bench_timing.hpp"
 #include "frame_models.hpp"
 
 namespace beamfea::bench::frame_solve {
@@ -39,21 +39,8 @@ inline double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// CPU time of the whole process (all threads), seconds.
-inline double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-// Wall-clock and process CPU time of a stage. On a shared machine the CPU time of a
-// single-threaded stage is the better measure of its cost; wall time is what a user waits.
-struct Stopwatch {
-  Clock::time_point wall0 = Clock::now();
-  double cpu0 = cpu_seconds();
-  double wall() const { return seconds_since(wall0); }
-  double cpu() const { return cpu_seconds() - cpu0; }
-};
+// The wall-clock and process CPU time of a stage (bench_timing.hpp).
+using beamfea::bench::Stopwatch;
 
 // A field of /proc/self/status or /proc/meminfo, in kB (-1 if absent).
 inline long proc_kb(const char* file, const char* key) {
