@@ -1,10 +1,11 @@
 // Timing helpers of the benchmarks (bench_small_models, bench_chain_rate, bench_path_step,
-// bench_frame_solve).
+// bench_frame_solve, bench_modal_solve).
 #pragma once
 
 #include <time.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -25,6 +26,22 @@ inline double thread_cpu_s() {
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
+
+// CPU seconds of the whole process (all threads).
+inline double process_cpu_s() {
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// Wall-clock and process CPU seconds since construction. On a shared machine the CPU time of a
+// single-threaded stage is the better measure of its cost; wall time is what a user waits.
+struct Stopwatch {
+  std::chrono::steady_clock::time_point wall0 = std::chrono::steady_clock::now();
+  double cpu0 = process_cpu_s();
+  double wall() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count(); }
+  double cpu() const { return process_cpu_s() - cpu0; }
+};
 
 // CPU seconds per call of each function: batches of calls sized to about budget / 5 seconds, the
 // functions interleaved batch by batch (so a slow phase of the machine slows all of them), the

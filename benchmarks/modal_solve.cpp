@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "bench_blas.hpp"
+#include "bench_timing.hpp"
 #include "frame_models.hpp"
 #include "core/model.hpp"
 #include "solvers/linear_static.hpp"
@@ -31,20 +32,7 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-struct Stopwatch {
-  Clock::time_point wall0 = Clock::now();
-  double cpu0 = cpu_seconds();
-  double wall() const { return std::chrono::duration<double>(Clock::now() - wall0).count(); }
-  double cpu() const { return cpu_seconds() - cpu0; }
-};
+using beamfea::bench::Stopwatch;
 
 double load_average() {
   std::ifstream in("/proc/loadavg");

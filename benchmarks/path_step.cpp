@@ -196,6 +196,97 @@ void classic(const char* name, const Model& m, const char* track, double P, int 
   std::fflush(stdout);
 }
 
+// --classic: the deep arch and Lee's frame to their critical points (options --arc, --max-steps,
+// --arch-elements read from the whole command line).
+int run_classic(int argc, char** argv) {
+  bool autostep = true;
+  double ds = 0.0;
+  int max_steps = 500, arch_elements = 80;
+  for (int k = 1; k < argc; ++k) {
+    if (!std::strcmp(argv[k], "--arc") && k + 1 < argc) {
+      autostep = !std::strcmp(argv[k + 1], "auto");
+      if (!autostep) ds = std::atof(argv[k + 1]);
+    }
+    if (!std::strcmp(argv[k], "--max-steps") && k + 1 < argc) max_steps = std::atoi(argv[k + 1]);
+    if (!std::strcmp(argv[k], "--arch-elements") && k + 1 < argc) arch_elements = std::atoi(argv[k + 1]);
+  }
+  fmt::print("| benchmark | arc_length | step of the critical point | P there | CPU [s] |\n|---|---|---|---|---|\n");
+  classic("deep arch, 1st limit", read_model(test::deep_arch(arch_elements, 1.0)), "apex", 1.0, 1, autostep, ds, max_steps);
+  classic("Lee's frame, 2nd limit", read_model(test::lees_frame(1.0)), "P", 1.0, 2, autostep, ds, max_steps);
+  return 0;
+}
+
+// One row of the table: the frame of n x n bays and `storeys` storeys, its stages timed `reps`
+// times at the reference state, then two paths of `steps` steps (with and without stability).
+void run_size(int n, int storeys, int steps, int reps) {
+  const Model m = frame(n, storeys);
+  const NonlinearStructure ns(m);
+  const NonlinearState s0 = ns.reference_state();
+  const Eigen::VectorXd f = Eigen::VectorXd::Zero(ns.reference_map().raw_size());
+  std::vector<int> free;
+  std::vector<int> g2f(ns.size(), -1);
+  for (int i = 0; i < ns.size(); ++i)
+    if (ns.reference_map().prescribed_index(ns.gens()[i].raw) < 0) {
+      g2f[i] = static_cast<int>(free.size());
+      free.push_back(i);
+    }
+  std::vector<double> t_asm, t_lu, t_ldl, t_eig;
+  SparseMatrix K;
+  Eigen::UmfPackLU<SparseMatrix> lu;
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
+  // K = the tangent restricted to the free coordinates (g2f: generalised -> free index or -1).
+  const auto restrict_to_free = [&](const SparseMatrix& tangent) {
+    std::vector<Eigen::Triplet<double>> t;
+    for (int j = 0; j < tangent.outerSize(); ++j)
+      if (g2f[j] >= 0)
+        for (SparseMatrix::InnerIterator it(tangent, j); it; ++it)
+          if (g2f[it.row()] >= 0) t.emplace_back(g2f[it.row()], g2f[j], it.value());
+    K.resize(static_cast<int>(free.size()), static_cast<int>(free.size()));
+    K.setFromTriplets(t.begin(), t.end());
+  };
+  int negative = 0;
+  for (int r = 0; r < reps; ++r) {
+    double t0 = thread_cpu();
+    const auto ev = ns.evaluate(s0, f, true);
+    restrict_to_free(ev.tangent);
+    t_asm.push_back(thread_cpu() - t0);
+    if (r == 0) {
+      lu.analyzePattern(K);
+      ldlt.analyzePattern(K);
+    }
+    t0 = thread_cpu();
+    lu.factorize(K);
+    t_lu.push_back(thread_cpu() - t0);
+    t0 = thread_cpu();
+    const SparseMatrix S = SparseMatrix(0.5 * (K + SparseMatrix(K.transpose())));
+    ldlt.factorize(S);
+    negative = static_cast<int>((ldlt.vectorD().array() < 0).count());
+    t_ldl.push_back(thread_cpu() - t0);
+    const Eigen::VectorXd sc = S.diagonal().cwiseAbs().cwiseSqrt().cwiseInverse();
+    const SparseMatrix A = SparseMatrix(sc.asDiagonal() * S * sc.asDiagonal());
+    t0 = thread_cpu();
+    const EigenPairs ep = lowest_eigenpairs(A, 1, -1e-6);
+    t_eig.push_back(thread_cpu() - t0);
+    (void)ep;
+  }
+  const double a = least(t_asm), l = least(t_lu);
+  // One assembly and one LU, as the stages above (paired with each path step).
+  const auto reference = [&] {
+    const double t0 = thread_cpu();
+    const auto ev = ns.evaluate(s0, f, true);
+    restrict_to_free(ev.tangent);
+    lu.factorize(K);
+    return thread_cpu() - t0;
+  };
+  const PathRun with = time_path(m, steps, true, reference), without = time_path(m, steps, false, reference);
+  fmt::print("| {}x{} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.1f} + {:.1f} | {:.2f} |\n", n,
+             n, storeys, free.size(), 1e3 * a, 1e3 * l, 1e3 * least(t_ldl), 1e3 * least(t_eig), 1e3 * with.step,
+             1e3 * without.step, with.ratio, without.ratio, with.iterations, with.chord_iterations,
+             (with.process + without.process) / (with.thread + without.thread));
+  std::fflush(stdout);
+  if (negative != 0) fmt::print(stderr, "warning: {} negative eigenvalues at the reference state\n", negative);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -203,23 +294,7 @@ int main(int argc, char** argv) {
   fmt::print(stderr, "BLAS: {}\n", bench::choose_libraries_as_the_program());
   app::install_openblas_threads_hook();
   for (int i = 1; i < argc; ++i)
-    if (!std::strcmp(argv[i], "--classic")) {
-      bool autostep = true;
-      double ds = 0.0;
-      int max_steps = 500, arch_elements = 80;
-      for (int k = 1; k < argc; ++k) {
-        if (!std::strcmp(argv[k], "--arc") && k + 1 < argc) {
-          autostep = !std::strcmp(argv[k + 1], "auto");
-          if (!autostep) ds = std::atof(argv[k + 1]);
-        }
-        if (!std::strcmp(argv[k], "--max-steps") && k + 1 < argc) max_steps = std::atoi(argv[k + 1]);
-        if (!std::strcmp(argv[k], "--arch-elements") && k + 1 < argc) arch_elements = std::atoi(argv[k + 1]);
-      }
-      fmt::print("| benchmark | arc_length | step of the critical point | P there | CPU [s] |\n|---|---|---|---|---|\n");
-      classic("deep arch, 1st limit", read_model(test::deep_arch(arch_elements, 1.0)), "apex", 1.0, 1, autostep, ds, max_steps);
-      classic("Lee's frame, 2nd limit", read_model(test::lees_frame(1.0)), "P", 1.0, 2, autostep, ds, max_steps);
-      return 0;
-    }
+    if (!std::strcmp(argv[i], "--classic")) return run_classic(argc, argv);
   std::vector<int> sizes{2, 4, 8, 12};
   int storeys = 3, steps = 6, reps = 5;
   for (int i = 1; i < argc; ++i) {
@@ -239,73 +314,6 @@ int main(int argc, char** argv) {
   fmt::print("| bays | storeys | free DOFs | assembly [ms] | LU factor [ms] | LDL' inertia [ms] | min eig [ms] | step [ms] | "
              "step, no stab. [ms] | step / (asm + LU) | no stab. / (asm + LU) | Newton + chord it./step | process / thread CPU |\n");
   fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  for (int n : sizes) {
-    const Model m = frame(n, storeys);
-    const NonlinearStructure ns(m);
-    const NonlinearState s0 = ns.reference_state();
-    const Eigen::VectorXd f = Eigen::VectorXd::Zero(ns.reference_map().raw_size());
-    std::vector<int> free;
-    std::vector<int> g2f(ns.size(), -1);
-    for (int i = 0; i < ns.size(); ++i)
-      if (ns.reference_map().prescribed_index(ns.gens()[i].raw) < 0) {
-        g2f[i] = static_cast<int>(free.size());
-        free.push_back(i);
-      }
-    std::vector<double> t_asm, t_lu, t_ldl, t_eig;
-    SparseMatrix K;
-    Eigen::UmfPackLU<SparseMatrix> lu;
-    Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
-    // K = the tangent restricted to the free coordinates (g2f: generalised -> free index or -1).
-    const auto restrict_to_free = [&](const SparseMatrix& tangent) {
-      std::vector<Eigen::Triplet<double>> t;
-      for (int j = 0; j < tangent.outerSize(); ++j)
-        if (g2f[j] >= 0)
-          for (SparseMatrix::InnerIterator it(tangent, j); it; ++it)
-            if (g2f[it.row()] >= 0) t.emplace_back(g2f[it.row()], g2f[j], it.value());
-      K.resize(static_cast<int>(free.size()), static_cast<int>(free.size()));
-      K.setFromTriplets(t.begin(), t.end());
-    };
-    int negative = 0;
-    for (int r = 0; r < reps; ++r) {
-      double t0 = thread_cpu();
-      const auto ev = ns.evaluate(s0, f, true);
-      restrict_to_free(ev.tangent);
-      t_asm.push_back(thread_cpu() - t0);
-      if (r == 0) {
-        lu.analyzePattern(K);
-        ldlt.analyzePattern(K);
-      }
-      t0 = thread_cpu();
-      lu.factorize(K);
-      t_lu.push_back(thread_cpu() - t0);
-      t0 = thread_cpu();
-      const SparseMatrix S = SparseMatrix(0.5 * (K + SparseMatrix(K.transpose())));
-      ldlt.factorize(S);
-      negative = static_cast<int>((ldlt.vectorD().array() < 0).count());
-      t_ldl.push_back(thread_cpu() - t0);
-      const Eigen::VectorXd sc = S.diagonal().cwiseAbs().cwiseSqrt().cwiseInverse();
-      const SparseMatrix A = SparseMatrix(sc.asDiagonal() * S * sc.asDiagonal());
-      t0 = thread_cpu();
-      const EigenPairs ep = lowest_eigenpairs(A, 1, -1e-6);
-      t_eig.push_back(thread_cpu() - t0);
-      (void)ep;
-    }
-    const double a = least(t_asm), l = least(t_lu);
-    // One assembly and one LU, as the stages above (paired with each path step).
-    const auto reference = [&] {
-      const double t0 = thread_cpu();
-      const auto ev = ns.evaluate(s0, f, true);
-      restrict_to_free(ev.tangent);
-      lu.factorize(K);
-      return thread_cpu() - t0;
-    };
-    const PathRun with = time_path(m, steps, true, reference), without = time_path(m, steps, false, reference);
-    fmt::print("| {}x{} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {:.1f} | {:.2f} | {:.2f} | {:.1f} + {:.1f} | {:.2f} |\n", n,
-               n, storeys, free.size(), 1e3 * a, 1e3 * l, 1e3 * least(t_ldl), 1e3 * least(t_eig), 1e3 * with.step,
-               1e3 * without.step, with.ratio, without.ratio, with.iterations, with.chord_iterations,
-               (with.process + without.process) / (with.thread + without.thread));
-    std::fflush(stdout);
-    if (negative != 0) fmt::print(stderr, "warning: {} negative eigenvalues at the reference state\n", negative);
-  }
+  for (int n : sizes) run_size(n, storeys, steps, reps);
   return 0;
 }

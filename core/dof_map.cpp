@@ -1,10 +1,8 @@
 #include "core/dof_map.hpp"
 
-#include <Eigen/QR>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 
 #include "core/errors.hpp"
 #include "core/sparse_row.hpp"
@@ -29,6 +27,9 @@ void reference_configuration(const Model& m, Configuration& c) {
 namespace {
 
 using Expr = SparseRow;
+
+// The key of prescribed value p in an elimination's expressions (free DOFs have keys >= 0).
+constexpr int prescribed_key(int p) { return -1 - p; }
 
 double max_abs(const Expr& e) {
   double m = 0.0;
@@ -253,20 +254,27 @@ void DofMap::build_extra_rows(const Model& m, const Configuration& c) {
     }
 }
 
-// Gauss-Jordan elimination of the extra constraints on the independent DOFs; prescribed
-// independent DOFs are known values, encoded as keys -1 - p in the expressions.
 void DofMap::eliminate(const Model& m) {
-  auto presc_key = [](int p) { return -1 - p; };
-  // ind -> expression over free ind (keys >= 0) and prescribed: the expression of a dependent
-  // DOF d is dependent[dependent_slot[d]] (slots in the order of elimination).
+  eliminate_extra_rows(m);
+  number_free_dofs();
+  build_transforms();
+}
+
+const SparseRow* DofMap::dependent_expr(int ind) const {
+  const int slot = scratch_.dependent_slot[ind];
+  return slot >= 0 ? &scratch_.dependent[slot] : nullptr;
+}
+
+// Gauss-Jordan elimination of the extra constraints on the independent DOFs; prescribed
+// independent DOFs are known values, encoded as keys prescribed_key(p) = -1 - p in the expressions.
+// The expression of a dependent DOF d over free independent DOFs (keys >= 0) and prescribed values
+// is scratch_.dependent[scratch_.dependent_slot[d]] (slots in the order of elimination).
+void DofMap::eliminate_extra_rows(const Model& m) {
   std::vector<Expr>& dependent = scratch_.dependent;
   std::vector<int>& dependent_slot = scratch_.dependent_slot;
   std::vector<int>& dependent_ind = scratch_.dependent_ind;
   dependent_slot.assign(n_ind_, -1);
   dependent_ind.clear();
-  auto dependent_expr = [&](int k) -> Expr* {
-    return dependent_slot[k] >= 0 ? &dependent[dependent_slot[k]] : nullptr;
-  };
   // The redundant rows and their names are written over the last build's (n_names, n_rows of
   // them), and the vectors cut to size at the end: a rebuild with the same redundancy allocates
   // nothing for them.
@@ -281,7 +289,7 @@ void DofMap::eliminate(const Model& m) {
     for (const auto& t : x.raw)
       for (SparseRowMatrix::InnerIterator it(Tind_, t.ind); it; ++it) row[static_cast<int>(it.col())] += t.coef * it.value();
     extra_ind_[xi] = row;  // copy-assigned into the last build's storage
-    for (const auto& t : x.rhs) row[presc_key(t.ind)] -= t.coef;
+    for (const auto& t : x.rhs) row[prescribed_key(t.ind)] -= t.coef;
     const double scale = max_abs(row);
     // Known values and earlier eliminations.
     e.clear();
@@ -289,7 +297,7 @@ void DofMap::eliminate(const Model& m) {
       if (k < 0) {
         e[k] += v;
       } else if (ind_prescribed_[k] >= 0) {
-        e[presc_key(ind_prescribed_[k])] += v;
+        e[prescribed_key(ind_prescribed_[k])] += v;
       } else if (const Expr* d = dependent_expr(k)) {
         add_scaled(e, *d, v);
       } else {
@@ -304,18 +312,7 @@ void DofMap::eliminate(const Model& m) {
         pivot = k;
       }
     if (pivot < 0) {
-      if (n_names == redundant_names_.size()) redundant_names_.emplace_back();
-      std::string& name = redundant_names_[n_names++];
-      describe_extra(m, x, name);
-      if (n_rows == redundant_.size()) {
-        redundant_.emplace_back();
-        redundant_what_.emplace_back();
-      }
-      Row& r = redundant_[n_rows];
-      r.clear();
-      for (const auto& [k, v] : e)
-        if (k < 0 && std::abs(v) > 1e-10 * scale) r.push_back({-1 - k, v});
-      if (!r.empty()) redundant_what_[n_rows++] = name;
+      add_redundant_row(m, x, e, scale, n_names, n_rows);
       continue;
     }
     const double cp = e[pivot];
@@ -343,23 +340,47 @@ void DofMap::eliminate(const Model& m) {
   redundant_names_.resize(n_names);
   redundant_.resize(n_rows);
   redundant_what_.resize(n_rows);
+}
 
+// Extra row `x` reduced to `e`, with no free DOF left: it is named, and where it still involves
+// prescribed values, kept as a row those values must satisfy (check_consistency).
+void DofMap::add_redundant_row(const Model& m, const ExtraRow& x, const SparseRow& e, double scale, std::size_t& n_names,
+                               std::size_t& n_rows) {
+  if (n_names == redundant_names_.size()) redundant_names_.emplace_back();
+  std::string& name = redundant_names_[n_names++];
+  describe_extra(m, x, name);
+  if (n_rows == redundant_.size()) {
+    redundant_.emplace_back();
+    redundant_what_.emplace_back();
+  }
+  Row& r = redundant_[n_rows];
+  r.clear();
+  for (const auto& [k, v] : e)
+    if (k < 0 && std::abs(v) > 1e-10 * scale) r.push_back({-1 - k, v});
+  if (!r.empty()) redundant_what_[n_rows++] = name;
+}
+
+// The free DOFs: the independent ones neither prescribed nor eliminated.
+void DofMap::number_free_dofs() {
   raw_to_free_.assign(n_raw_, -1);
   std::vector<int>& ind_to_free = scratch_.ind_to_free;
   ind_to_free.assign(n_ind_, -1);
   free_refs_.clear();
   free_refs_.reserve(n_ind_);
   for (int i = 0; i < n_ind_; ++i) {
-    if (ind_prescribed_[i] >= 0 || dependent_slot[i] >= 0) continue;
+    if (ind_prescribed_[i] >= 0 || scratch_.dependent_slot[i] >= 0) continue;
     ind_to_free[i] = n_free_++;
     raw_to_free_[ind_to_raw_[i]] = ind_to_free[i];
     free_refs_.push_back(raw_ref(ind_to_raw_[i]));
   }
   ind_dependent_.assign(n_ind_, 0);
-  for (const int d : dependent_ind) ind_dependent_[d] = 1;
+  for (const int d : scratch_.dependent_ind) ind_dependent_[d] = 1;
+}
 
-  // Tf_ and Tp_ row by row: a row's terms in the order they are produced, then sorted, duplicates
-  // summed and zeros dropped (append_row).
+// Tf_ and Tp_ row by row: a row's terms in the order they are produced, then sorted, duplicates
+// summed and zeros dropped (append_row).
+void DofMap::build_transforms() {
+  const std::vector<int>& ind_to_free = scratch_.ind_to_free;
   std::vector<SparseRow::Term>& tf = scratch_.tf;
   std::vector<SparseRow::Term>& tp = scratch_.tp;
   tf.clear();
@@ -378,7 +399,7 @@ void DofMap::eliminate(const Model& m) {
     for (SparseRowMatrix::InnerIterator it(Tind_, r); it; ++it) {
       const int ind = static_cast<int>(it.col());
       if (ind_prescribed_[ind] >= 0) {
-        emit(presc_key(ind_prescribed_[ind]), it.value());
+        emit(prescribed_key(ind_prescribed_[ind]), it.value());
       } else if (const Expr* d = dependent_expr(ind)) {
         for (const auto& [k, v] : *d) emit(k, it.value() * v);
       } else {
@@ -390,7 +411,6 @@ void DofMap::eliminate(const Model& m) {
   }
   Tf_.finalize();
   Tp_.finalize();
-  (void)m;
 }
 
 void DofMap::describe_extra(const Model& m, const ExtraRow& x, std::string& out) const {
@@ -425,87 +445,6 @@ void DofMap::expand(const Eigen::VectorXd& u_free, const Eigen::VectorXd& u_pres
   // Row-major rows: each entry is its row's sum added once, with or without a temporary.
   u.noalias() = Tf_ * u_free;
   if (prescribed_size() > 0) u.noalias() += Tp_ * u_prescribed;
-}
-
-std::string DofMap::check_consistency(const Eigen::VectorXd& u_prescribed) const {
-  for (std::size_t ri = 0; ri < redundant_.size(); ++ri) {
-    const auto& r = redundant_[ri];
-    double s = 0.0, mag = 0.0;
-    for (const auto& t : r) {
-      s += t.coef * u_prescribed[t.ind];
-      mag += std::abs(t.coef * u_prescribed[t.ind]);
-    }
-    if (std::abs(s) > 1e-9 * mag + 1e-300 && std::abs(s) > 0.0) {
-      std::string names;
-      for (const auto& t : r) names += (names.empty() ? "" : ", ") + model_->describe(prescribed_[t.ind].dof);
-      return redundant_what_[ri] + ": the constraints cannot be satisfied (a loop that cannot close, or supports "
-             "or prescribed values on one rigid body that disagree): " + names;
-    }
-  }
-  return "";
-}
-
-DofMap::ConstraintForces DofMap::constraint_forces(const Eigen::VectorXd& r_raw) const {
-  ConstraintForces out;
-  ConstraintForceScratch scratch;
-  constraint_forces(r_raw, out, scratch);
-  return out;
-}
-
-void DofMap::constraint_forces(const Eigen::VectorXd& r_raw, ConstraintForces& out, ConstraintForceScratch& scratch) const {
-  std::vector<Vec6>& acc = scratch.node;
-  Eigen::VectorXd& r_ind = scratch.r_ind;
-  r_ind.noalias() = Tind_.transpose() * r_raw;
-  const int m = static_cast<int>(extra_.size());
-
-  // Multipliers of the extra constraints: sum_k lambda_k C_k = r_ind on the unprescribed DOFs.
-  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m);
-  if (m > 0) {
-    std::map<int, int> rows;  // ind -> equation
-    for (const auto& row : extra_ind_)
-      for (const auto& [k, v] : row)
-        if (ind_prescribed_[k] < 0 && !rows.count(k)) rows.emplace(k, static_cast<int>(rows.size()));
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), m);
-    Eigen::VectorXd b(static_cast<Eigen::Index>(rows.size()));
-    for (const auto& [k, i] : rows) b[i] = r_ind[k];
-    for (int c = 0; c < m; ++c)
-      for (const auto& [k, v] : extra_ind_[c])
-        if (auto it = rows.find(k); it != rows.end()) A(it->second, c) += v;
-    if (A.rows() > 0) lambda = A.completeOrthogonalDecomposition().solve(b);
-  }
-
-  out.prescribed.assign(prescribed_.size(), 0.0);
-  for (int i = 0; i < n_ind_; ++i) {
-    const int p = ind_prescribed_[i];
-    if (p < 0) continue;
-    double v = r_ind[i];
-    for (int c = 0; c < m; ++c)
-      if (auto it = extra_ind_[c].find(i); it != extra_ind_[c].end()) v -= lambda[c] * it->second;
-    out.prescribed[p] = v;
-  }
-  for (int c = 0; c < m; ++c)
-    if (extra_[c].prescribed >= 0) out.prescribed[extra_[c].prescribed] = lambda[c];
-
-  // Forces carried by the tree edges: accumulate the residual from the leaves to the roots.
-  Eigen::VectorXd& r = scratch.r;
-  r = r_raw;
-  for (int c = 0; c < m; ++c)
-    for (const auto& t : extra_[c].raw) r[t.ind] -= lambda[c] * t.coef;
-  acc.resize(n_nodes_);
-  for (int n = 0; n < n_nodes_; ++n) acc[n] = r.segment<6>(6 * n);
-  out.joint.assign(model_->joints.size(), Vec6::Zero());
-  for (auto it = tree_order_.rbegin(); it != tree_order_.rend(); ++it) {
-    const auto& e = tree_edges_[*it];
-    const Vec6& a = acc[e.child];
-    if (e.kind == ConstraintEdge::Kind::Joint) out.joint[e.index] = e.forward ? a : Vec6(-a);
-    acc[e.parent].head<3>() += a.head<3>();
-    acc[e.parent].tail<3>() += a.tail<3>() + (x_[e.child] - x_[e.parent]).cross(a.head<3>());
-  }
-  out.loop.assign(loop_edges_.size(), Vec6::Zero());
-  for (int c = 0; c < m; ++c) {
-    if (extra_[c].joint >= 0) out.joint[extra_[c].joint][extra_[c].joint_row] = lambda[c];
-    if (extra_[c].loop >= 0) out.loop[extra_[c].loop][extra_[c].joint_row] = lambda[c];
-  }
 }
 
 }  // namespace beamfea

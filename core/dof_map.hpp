@@ -156,10 +156,21 @@ class DofMap {
     double coef;
   };
   using Row = std::vector<Term>;
+  // The forest (build_forest): adjacency lists, the candidate roots ranked, a breadth-first search.
   void build_forest(const Model& m);
+  void build_adjacency(const Model& m);
+  void rank_roots(const Model& m);
+  void search_forest(const Model& m);
   void build_tree_rows(const Model& m, const Configuration& c);
   void build_extra_rows(const Model& m, const Configuration& c);
+  // The extra rows eliminated (eliminate_extra_rows), the free DOFs numbered (number_free_dofs),
+  // then Tf_ and Tp_ (build_transforms).
   void eliminate(const Model& m);
+  void eliminate_extra_rows(const Model& m);
+  void number_free_dofs();
+  void build_transforms();
+  // The expression of dependent independent DOF `ind` from the last elimination, or null.
+  const SparseRow* dependent_expr(int ind) const;
   // Row k of loop edge `e` over raw DOFs, written over `row`.
   void edge_row_raw(const Model& m, const Configuration& c, const ConstraintEdge& e, int k, Row& row) const;
 
@@ -186,6 +197,10 @@ class DofMap {
   std::vector<ExtraRow> extra_;  // resized, not cleared, by a rebuild: each row keeps its storage
   // The link, joint or DOF an extra row came from, written over `out` (its storage kept).
   void describe_extra(const Model& m, const ExtraRow& x, std::string& out) const;
+  // Extra row `x`, reduced to `e` with no free DOF left, recorded as redundant (the n_names-th
+  // name, and the n_rows-th row where prescribed values remain; both counts advanced).
+  void add_redundant_row(const Model& m, const ExtraRow& x, const SparseRow& e, double scale, std::size_t& n_names,
+                         std::size_t& n_rows);
   std::vector<int> ind_prescribed_;         // per independent DOF: prescribed index or -1
   std::vector<PrescribedValue> prescribed_;
   std::vector<int> raw_prescribed_;         // per raw DOF: prescribed index or -1

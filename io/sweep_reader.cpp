@@ -250,12 +250,11 @@ json Sweep::document(std::size_t index) const {
   return doc;
 }
 
-Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
-  Sweep s;
-  if (!doc.is_object()) throw InputError("", "a sweep must be a JSON object");
-  json_in::expect_keys(doc, "", {"base", "model", "grid", "cases", "outputs", "analyses", "description", "title"});
+namespace {
 
-  // The base model, parsed once.
+// The base model, parsed once and checked: "base" names a file (relative to `directory`), or
+// "model" holds it inline.
+void read_base(const json& doc, const std::filesystem::path& directory, Sweep& s) {
   if (doc.contains("base") == doc.contains("model"))
     throw InputError("/base", "name the base model: \"base\": \"model.json\" (or an inline \"model\": {...}), not both");
   if (doc.contains("base")) {
@@ -275,137 +274,156 @@ Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
   } catch (const Error& e) {
     throw InputError(base_ptr, std::string("the base model is invalid: ") + e.what());
   }
-  std::set<std::string> analysis_ids;
-  if (auto it = s.base.find("analyses"); it != s.base.end())
-    for (const auto& a : *it) analysis_ids.insert(json_in::id(a.at("id"), "", "analysis"));
+}
 
-  // The base, changed in place to check each patch and put back (one copy, made at the first patch).
-  std::optional<EditableDocument> edits;
-  auto editable = [&]() -> EditableDocument& { return edits ? *edits : edits.emplace(s.base); };
+// The base, changed in place to check each patch and put back (one copy, made at the first patch).
+class PatchChecker {
+ public:
+  explicit PatchChecker(const json& base) : base_(base) {}
+  EditableDocument& editable() { return edits_ ? *edits_ : edits_.emplace(base_); }
 
-  // Cases.
-  if (doc.contains("grid") == doc.contains("cases"))
-    throw InputError("/grid", "give the cases either as a \"grid\" or as a \"cases\" list (exactly one)");
-  if (doc.contains("grid")) {
-    const auto& g = json_in::array(doc["grid"], "/grid", "grid");
-    if (g.empty()) throw InputError("/grid", "empty grid: no axes");
-    long double n = 1;
-    for (std::size_t a = 0; a < g.size(); ++a) {
-      const json_in::Pointer p = child("/grid", a);
-      const auto& ax = json_in::object(g[a], p, "grid axis");
-      json_in::expect_keys(ax, p, {"name", "pointer", "values", "patches"});
-      SweepAxis axis;
-      if (ax.contains("patches")) {
-        if (ax.contains("pointer")) throw InputError(child(p, "pointer"), "a grid axis has \"pointer\" or \"patches\", not both");
-        const auto& ps = json_in::array(ax["patches"], child(p, "patches"), "grid axis patches");
-        if (ps.empty()) throw InputError(child(p, "patches"), "empty grid axis: no patches");
-        for (std::size_t k = 0; k < ps.size(); ++k) {
-          check_patch(editable(), ps[k], child(child(p, "patches"), k));
-          axis.patches.push_back(ps[k]);
-        }
-        if (ax.contains("values")) {
-          const auto& vs = json_in::array(ax["values"], child(p, "values"), "grid axis values");
-          if (vs.size() != ps.size())
-            throw InputError(child(p, "values"), "expected one value (label) per patch: " + std::to_string(ps.size()));
-          axis.values.assign(vs.begin(), vs.end());
-        } else {
-          for (std::size_t k = 0; k < ps.size(); ++k) axis.values.emplace_back(k);
-        }
-        if (!ax.contains("name")) throw InputError(child(p, "name"), "a grid axis of patches needs a \"name\"");
-      } else {
-        axis.pointers = read_pointers(s.base, json_in::require(ax, p, "pointer", "grid axis"), child(p, "pointer"));
-        const auto& vs = json_in::array(json_in::require(ax, p, "values", "grid axis"), child(p, "values"), "grid axis values");
-        if (vs.empty()) throw InputError(child(p, "values"), "empty grid axis: no values");
-        for (std::size_t k = 0; k < vs.size(); ++k) {
-          for (const auto& ptr : axis.pointers) check_value(s.base, ptr, vs[k], child(child(p, "values"), k));
-          axis.values.push_back(vs[k]);
-        }
-      }
-      axis.name = ax.contains("name") ? json_in::string(ax["name"], child(p, "name"), "grid axis name")
-                                      : axis.pointers.front().to_string();
-      n *= axis.values.size();
-      if (n > 1e9) throw InputError(p, "the grid has more than 1e9 cases");
-      s.parameter_names.push_back(axis.name);
-      s.grid.push_back(std::move(axis));
+ private:
+  const json& base_;
+  std::optional<EditableDocument> edits_;
+};
+
+// One axis of a grid, at `p`: a pointer with values, or patches with optional labels.
+SweepAxis read_grid_axis(const json& value, const json_in::Pointer& p, const json& base, PatchChecker& patches) {
+  const auto& ax = json_in::object(value, p, "grid axis");
+  json_in::expect_keys(ax, p, {"name", "pointer", "values", "patches"});
+  SweepAxis axis;
+  if (ax.contains("patches")) {
+    if (ax.contains("pointer")) throw InputError(child(p, "pointer"), "a grid axis has \"pointer\" or \"patches\", not both");
+    const auto& ps = json_in::array(ax["patches"], child(p, "patches"), "grid axis patches");
+    if (ps.empty()) throw InputError(child(p, "patches"), "empty grid axis: no patches");
+    for (std::size_t k = 0; k < ps.size(); ++k) {
+      check_patch(patches.editable(), ps[k], child(child(p, "patches"), k));
+      axis.patches.push_back(ps[k]);
     }
+    if (ax.contains("values")) {
+      const auto& vs = json_in::array(ax["values"], child(p, "values"), "grid axis values");
+      if (vs.size() != ps.size())
+        throw InputError(child(p, "values"), "expected one value (label) per patch: " + std::to_string(ps.size()));
+      axis.values.assign(vs.begin(), vs.end());
+    } else {
+      for (std::size_t k = 0; k < ps.size(); ++k) axis.values.emplace_back(k);
+    }
+    if (!ax.contains("name")) throw InputError(child(p, "name"), "a grid axis of patches needs a \"name\"");
   } else {
-    const auto& cs = json_in::array(doc["cases"], "/cases", "cases");
-    if (cs.empty()) throw InputError("/cases", "empty list of cases");
-    std::set<std::string> ids;
-    for (std::size_t i = 0; i < cs.size(); ++i) {
-      const json_in::Pointer p = child("/cases", i);
-      const auto& c = json_in::object(cs[i], p, "case");
-      json_in::expect_keys(c, p, {"id", "parameters", "set", "patch"});
-      SweepListCase lc;
-      lc.id = c.contains("id") ? json_in::id(c["id"], child(p, "id"), "case") : std::to_string(i);
-      if (lc.id.empty() || lc.id == "." || lc.id == ".." ||
-          lc.id.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.+-=") != std::string::npos)
-        throw InputError(child(p, "id"), "case id '" + lc.id + "': use letters, digits and _ . + - = only (it names a folder)");
-      if (!ids.insert(lc.id).second) throw InputError(child(p, "id"), "duplicate case id '" + lc.id + "'");
-      json implicit_parameters = json::object();
-      if (c.contains("set")) {
-        const auto& set = json_in::object(c["set"], child(p, "set"), "case set");
-        for (const auto& [k, v] : set.items()) {
-          const json_in::Pointer where = child(child(p, "set"), k);
-          const auto ptr = read_pointer(json(k), where);
-          check_exists(s.base, ptr, where);
-          check_value(s.base, ptr, v, where);
-          lc.changes.push_back({{ptr}, v, json()});
-          implicit_parameters[k] = v;
-        }
-      }
-      if (c.contains("patch")) {
-        // Checked on the base with this case's "set" changes applied (each pointer exists: checked above).
-        EditableDocument& b = editable();
-        for (const auto& ch : lc.changes) b.set(ch.pointers[0], ch.value);
-        check_patch(b, c["patch"], child(p, "patch"));
-        b.restore();
-        lc.changes.push_back({{}, json(), c["patch"]});
-      }
-      lc.parameters = c.contains("parameters") ? json_in::object(c["parameters"], child(p, "parameters"), "case parameters")
-                                               : implicit_parameters;
-      for (const auto& [k, v] : lc.parameters.items())
-        if (std::find(s.parameter_names.begin(), s.parameter_names.end(), k) == s.parameter_names.end())
-          s.parameter_names.push_back(k);
-      s.list.push_back(std::move(lc));
+    axis.pointers = read_pointers(base, json_in::require(ax, p, "pointer", "grid axis"), child(p, "pointer"));
+    const auto& vs = json_in::array(json_in::require(ax, p, "values", "grid axis"), child(p, "values"), "grid axis values");
+    if (vs.empty()) throw InputError(child(p, "values"), "empty grid axis: no values");
+    for (std::size_t k = 0; k < vs.size(); ++k) {
+      for (const auto& ptr : axis.pointers) check_value(base, ptr, vs[k], child(child(p, "values"), k));
+      axis.values.push_back(vs[k]);
     }
   }
+  axis.name = ax.contains("name") ? json_in::string(ax["name"], child(p, "name"), "grid axis name")
+                                  : axis.pointers.front().to_string();
+  return axis;
+}
 
-  // Analyses to run.
-  if (doc.contains("analyses")) {
-    const auto& as = json_in::array(doc["analyses"], "/analyses", "analyses");
-    for (std::size_t i = 0; i < as.size(); ++i) {
-      const std::string id = json_in::id(as[i], child("/analyses", i), "analysis id");
-      if (!analysis_ids.count(id)) throw InputError(child("/analyses", i), "no analysis '" + id + "' in the base model");
-      s.analyses.push_back(id);
+void read_grid(const json& doc, Sweep& s, PatchChecker& patches) {
+  const auto& g = json_in::array(doc["grid"], "/grid", "grid");
+  if (g.empty()) throw InputError("/grid", "empty grid: no axes");
+  long double n = 1;
+  for (std::size_t a = 0; a < g.size(); ++a) {
+    const json_in::Pointer p = child("/grid", a);
+    SweepAxis axis = read_grid_axis(g[a], p, s.base, patches);
+    n *= axis.values.size();
+    if (n > 1e9) throw InputError(p, "the grid has more than 1e9 cases");
+    s.parameter_names.push_back(axis.name);
+    s.grid.push_back(std::move(axis));
+  }
+}
+
+// Case i of a "cases" list, at `p`; `ids` collects the ids so far (they must differ).
+SweepListCase read_list_case(const json& value, std::size_t i, const json_in::Pointer& p, const json& base,
+                             PatchChecker& patches, std::set<std::string>& ids) {
+  const auto& c = json_in::object(value, p, "case");
+  json_in::expect_keys(c, p, {"id", "parameters", "set", "patch"});
+  SweepListCase lc;
+  lc.id = c.contains("id") ? json_in::id(c["id"], child(p, "id"), "case") : std::to_string(i);
+  if (lc.id.empty() || lc.id == "." || lc.id == ".." ||
+      lc.id.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.+-=") != std::string::npos)
+    throw InputError(child(p, "id"), "case id '" + lc.id + "': use letters, digits and _ . + - = only (it names a folder)");
+  if (!ids.insert(lc.id).second) throw InputError(child(p, "id"), "duplicate case id '" + lc.id + "'");
+  json implicit_parameters = json::object();
+  if (c.contains("set")) {
+    const auto& set = json_in::object(c["set"], child(p, "set"), "case set");
+    for (const auto& [k, v] : set.items()) {
+      const json_in::Pointer where = child(child(p, "set"), k);
+      const auto ptr = read_pointer(json(k), where);
+      check_exists(base, ptr, where);
+      check_value(base, ptr, v, where);
+      lc.changes.push_back({{ptr}, v, json()});
+      implicit_parameters[k] = v;
     }
   }
+  if (c.contains("patch")) {
+    // Checked on the base with this case's "set" changes applied (each pointer exists: checked above).
+    EditableDocument& b = patches.editable();
+    for (const auto& ch : lc.changes) b.set(ch.pointers[0], ch.value);
+    check_patch(b, c["patch"], child(p, "patch"));
+    b.restore();
+    lc.changes.push_back({{}, json(), c["patch"]});
+  }
+  lc.parameters = c.contains("parameters") ? json_in::object(c["parameters"], child(p, "parameters"), "case parameters")
+                                           : implicit_parameters;
+  return lc;
+}
 
-  // Outputs.
-  if (doc.contains("outputs")) {
-    const auto& os = json_in::array(doc["outputs"], "/outputs", "outputs");
-    for (std::size_t i = 0; i < os.size(); ++i) {
-      const json_in::Pointer p = child("/outputs", i);
-      SweepOutput o = read_output(os[i], p);
-      const auto& t = o.path;
-      if (t.empty() || (t[0].key != "analyses" && t[0].key != "model"))
-        throw InputError(p, "output '" + o.name + "': a path into the results starts with 'analyses.<id>' or 'model'");
-      if (t[0].key == "analyses") {
-        if (t.size() < 2 || !analysis_ids.count(t[1].key)) {
-          std::string known;
-          for (const auto& a : analysis_ids) known += (known.empty() ? "" : ", ") + a;
-          throw InputError(p, "output '" + o.name + "': no analysis '" + (t.size() < 2 ? "" : t[1].key) +
-                                  "' in the base model (analyses: " + known + ")");
-        }
-        if (!s.analyses.empty() && std::find(s.analyses.begin(), s.analyses.end(), t[1].key) == s.analyses.end())
-          throw InputError(p, "output '" + o.name + "': analysis '" + t[1].key + "' is not among \"analyses\"");
+void read_list(const json& doc, Sweep& s, PatchChecker& patches) {
+  const auto& cs = json_in::array(doc["cases"], "/cases", "cases");
+  if (cs.empty()) throw InputError("/cases", "empty list of cases");
+  std::set<std::string> ids;
+  for (std::size_t i = 0; i < cs.size(); ++i) {
+    SweepListCase lc = read_list_case(cs[i], i, child("/cases", i), s.base, patches, ids);
+    for (const auto& [k, v] : lc.parameters.items())
+      if (std::find(s.parameter_names.begin(), s.parameter_names.end(), k) == s.parameter_names.end())
+        s.parameter_names.push_back(k);
+    s.list.push_back(std::move(lc));
+  }
+}
+
+// "analyses": the ids of the base model's analyses to run (all where absent).
+void read_analyses(const json& doc, const std::set<std::string>& analysis_ids, Sweep& s) {
+  if (!doc.contains("analyses")) return;
+  const auto& as = json_in::array(doc["analyses"], "/analyses", "analyses");
+  for (std::size_t i = 0; i < as.size(); ++i) {
+    const std::string id = json_in::id(as[i], child("/analyses", i), "analysis id");
+    if (!analysis_ids.count(id)) throw InputError(child("/analyses", i), "no analysis '" + id + "' in the base model");
+    s.analyses.push_back(id);
+  }
+}
+
+// "outputs": paths into the results, each starting at 'analyses.<id>' (one that runs) or 'model'.
+void read_outputs(const json& doc, const std::set<std::string>& analysis_ids, Sweep& s) {
+  if (!doc.contains("outputs")) return;
+  const auto& os = json_in::array(doc["outputs"], "/outputs", "outputs");
+  for (std::size_t i = 0; i < os.size(); ++i) {
+    const json_in::Pointer p = child("/outputs", i);
+    SweepOutput o = read_output(os[i], p);
+    const auto& t = o.path;
+    if (t.empty() || (t[0].key != "analyses" && t[0].key != "model"))
+      throw InputError(p, "output '" + o.name + "': a path into the results starts with 'analyses.<id>' or 'model'");
+    if (t[0].key == "analyses") {
+      if (t.size() < 2 || !analysis_ids.count(t[1].key)) {
+        std::string known;
+        for (const auto& a : analysis_ids) known += (known.empty() ? "" : ", ") + a;
+        throw InputError(p, "output '" + o.name + "': no analysis '" + (t.size() < 2 ? "" : t[1].key) +
+                                "' in the base model (analyses: " + known + ")");
       }
-      s.outputs.push_back(std::move(o));
+      if (!s.analyses.empty() && std::find(s.analyses.begin(), s.analyses.end(), t[1].key) == s.analyses.end())
+        throw InputError(p, "output '" + o.name + "': analysis '" + t[1].key + "' is not among \"analyses\"");
     }
+    s.outputs.push_back(std::move(o));
   }
+}
 
-  // Column names must be unique, and one line each in the table's header (read back line by
-  // line by --resume): no control characters.
+// Column names must be unique, and one line each in the table's header (read back line by
+// line by --resume): no control characters.
+void check_column_names(const Sweep& s) {
   auto one_line = [](const std::string& name) {
     return std::none_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; });
   };
@@ -424,6 +442,29 @@ Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
   for (std::size_t i = 0; i < s.outputs.size(); ++i)
     if (!names.insert(s.outputs[i].name).second)
       throw InputError(child("/outputs", i), "output name '" + s.outputs[i].name + "' is used twice or clashes with a column");
+}
+
+}  // namespace
+
+Sweep read_sweep(const json& doc, const std::filesystem::path& directory) {
+  Sweep s;
+  if (!doc.is_object()) throw InputError("", "a sweep must be a JSON object");
+  json_in::expect_keys(doc, "", {"base", "model", "grid", "cases", "outputs", "analyses", "description", "title"});
+  read_base(doc, directory, s);
+  std::set<std::string> analysis_ids;
+  if (auto it = s.base.find("analyses"); it != s.base.end())
+    for (const auto& a : *it) analysis_ids.insert(json_in::id(a.at("id"), "", "analysis"));
+
+  PatchChecker patches(s.base);
+  if (doc.contains("grid") == doc.contains("cases"))
+    throw InputError("/grid", "give the cases either as a \"grid\" or as a \"cases\" list (exactly one)");
+  if (doc.contains("grid"))
+    read_grid(doc, s, patches);
+  else
+    read_list(doc, s, patches);
+  read_analyses(doc, analysis_ids, s);
+  read_outputs(doc, analysis_ids, s);
+  check_column_names(s);
   return s;
 }
 

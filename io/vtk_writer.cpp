@@ -12,7 +12,11 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
+#include <algorithm>
+#include <map>
+#include <optional>
 #include <sstream>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
@@ -26,160 +30,201 @@ Vec12 section_forces(const Vec12& f) {
   return s;
 }
 
-void write_vtu(const std::string& path, const Model& model, const VtkFrame& frame) {
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkCellArray> cells;
-  vtkNew<vtkDoubleArray> disp, rot, secf, N, T, My, Mz;
-  disp->SetName("displacement");
-  disp->SetNumberOfComponents(3);
-  rot->SetName("rotation");
-  rot->SetNumberOfComponents(3);
-  secf->SetName("section_forces");
-  secf->SetNumberOfComponents(6);
-  const char* comp_names[6] = {"N", "Vy", "Vz", "T", "My", "Mz"};
-  for (int k = 0; k < 6; ++k) secf->SetComponentName(k, comp_names[k]);
-  N->SetName("N");
-  T->SetName("T");
-  My->SetName("My");
-  Mz->SetName("Mz");
-  vtkNew<vtkIntArray> kind, member_index, element_index;
-  kind->SetName("kind");
-  member_index->SetName("member_index");
-  element_index->SetName("element_index");
-  vtkNew<vtkStringArray> ids;
-  ids->SetName("id");
-  std::vector<int> cell_types;
-  // Diagrams (point data; only with frame.section_forces).
-  const bool diagrams = static_cast<bool>(frame.section_forces);
-  const char* diagram_names[6] = {"diagram_N", "diagram_Vy", "diagram_Vz", "diagram_T", "diagram_My", "diagram_Mz"};
-  const int diagram_axis[6] = {1, 1, 2, 1, 2, 1};  // local axis across which each is drawn
-  vtkNew<vtkDoubleArray> psecf;
-  psecf->SetName("section_forces");
-  psecf->SetNumberOfComponents(6);
-  for (int k = 0; k < 6; ++k) psecf->SetComponentName(k, comp_names[k]);
-  std::vector<vtkSmartPointer<vtkDoubleArray>> diag;
+namespace {
+
+const char* const kSectionForceNames[6] = {"N", "Vy", "Vz", "T", "My", "Mz"};
+const char* const kDiagramNames[6] = {"diagram_N", "diagram_Vy", "diagram_Vz", "diagram_T", "diagram_My", "diagram_Mz"};
+const int kDiagramAxis[6] = {1, 1, 2, 1, 2, 1};  // local axis across which each diagram is drawn
+
+// The points, cells and arrays of one .vtu, filled element by element and joint by joint, then
+// put together into a vtkUnstructuredGrid.
+class VtuBuilder {
+ public:
+  VtuBuilder(const Model& model, const VtkFrame& frame);
+
+  // A beam as `frame.segments` line cells along its deformed shape, a rigid link as one.
+  void add_element(int e);
+  // A joint as a vertex cell at its second node.
+  void add_joint(const Joint& j);
+  void fill(vtkUnstructuredGrid& grid);
+
+ private:
+  vtkIdType add_point(const Vec3& x, const Vec3& u, const Vec3& r, int node);
+  // Point values of the section forces and the diagrams (only with frame.section_forces); R null
+  // for points that are not on a beam (rigid links, joints).
+  void add_point_forces(const Vec6& f, const Mat3* R);
+  void add_cell_data(int kind, int member, int element, const std::string& id, const Vec6& s);
+
+  const Model& model_;
+  const VtkFrame& frame_;
+  const bool diagrams_;     // frame.section_forces given
+  const bool have_forces_;  // frame.end_forces given, one per element
+  vtkNew<vtkPoints> points_;
+  vtkNew<vtkCellArray> cells_;
+  std::vector<int> cell_types_;
+  vtkNew<vtkDoubleArray> disp_, rot_, secf_, N_, T_, My_, Mz_;
+  vtkNew<vtkIntArray> kind_, member_index_, element_index_;
+  vtkNew<vtkStringArray> ids_;
+  vtkNew<vtkDoubleArray> psecf_;
+  std::vector<vtkSmartPointer<vtkDoubleArray>> diag_;
+  std::map<std::string, vtkSmartPointer<vtkDoubleArray>> extra_;
+};
+
+VtuBuilder::VtuBuilder(const Model& model, const VtkFrame& frame)
+    : model_(model),
+      frame_(frame),
+      diagrams_(static_cast<bool>(frame.section_forces)),
+      have_forces_(frame.end_forces.size() == model.elements.size()) {
+  points_->SetDataTypeToDouble();
+  disp_->SetName("displacement");
+  disp_->SetNumberOfComponents(3);
+  rot_->SetName("rotation");
+  rot_->SetNumberOfComponents(3);
+  secf_->SetName("section_forces");
+  secf_->SetNumberOfComponents(6);
+  for (int k = 0; k < 6; ++k) secf_->SetComponentName(k, kSectionForceNames[k]);
+  N_->SetName("N");
+  T_->SetName("T");
+  My_->SetName("My");
+  Mz_->SetName("Mz");
+  kind_->SetName("kind");
+  member_index_->SetName("member_index");
+  element_index_->SetName("element_index");
+  ids_->SetName("id");
+  psecf_->SetName("section_forces");
+  psecf_->SetNumberOfComponents(6);
+  for (int k = 0; k < 6; ++k) psecf_->SetComponentName(k, kSectionForceNames[k]);
   for (int k = 0; k < 6; ++k) {
-    diag.push_back(vtkSmartPointer<vtkDoubleArray>::New());
-    diag.back()->SetName(diagram_names[k]);
-    diag.back()->SetNumberOfComponents(3);
+    diag_.push_back(vtkSmartPointer<vtkDoubleArray>::New());
+    diag_.back()->SetName(kDiagramNames[k]);
+    diag_.back()->SetNumberOfComponents(3);
   }
-  // Point values for points that are not on a beam (rigid links, joints).
-  auto add_point_forces = [&](const Vec6& f, const Mat3* R) {
-    if (!diagrams) return;
-    psecf->InsertNextTuple(f.data());
-    for (int k = 0; k < 6; ++k) {
-      const Vec3 v = R ? Vec3(f[k] * R->row(diagram_axis[k]).transpose()) : Vec3::Zero();
-      diag[k]->InsertNextTuple3(v.x(), v.y(), v.z());
-    }
-  };
-  std::map<std::string, vtkSmartPointer<vtkDoubleArray>> extra;
   for (const auto& [name, values] : frame.node_scalars) {
     auto a = vtkSmartPointer<vtkDoubleArray>::New();
     a->SetName(name.c_str());
-    extra[name] = a;
+    extra_[name] = a;
   }
+}
 
-  auto add_point = [&](const Vec3& x, const Vec3& u, const Vec3& r, int node) {
-    const vtkIdType id = points->InsertNextPoint(x.x(), x.y(), x.z());
-    disp->InsertNextTuple3(u.x(), u.y(), u.z());
-    rot->InsertNextTuple3(r.x(), r.y(), r.z());
-    for (const auto& [name, values] : frame.node_scalars)
-      extra[name]->InsertNextValue(node >= 0 && node < static_cast<int>(values.size()) ? values[node] : 0.0);
-    return id;
-  };
-  const bool have_forces = frame.end_forces.size() == model.elements.size();
-  auto add_cell_data = [&](int k, int member, int element, const std::string& id, const Vec6& s) {
-    kind->InsertNextValue(k);
-    member_index->InsertNextValue(member);
-    element_index->InsertNextValue(element);
-    ids->InsertNextValue(id);
-    secf->InsertNextTuple(s.data());
-    N->InsertNextValue(s[0]);
-    T->InsertNextValue(s[3]);
-    My->InsertNextValue(s[4]);
-    Mz->InsertNextValue(s[5]);
-  };
+vtkIdType VtuBuilder::add_point(const Vec3& x, const Vec3& u, const Vec3& r, int node) {
+  const vtkIdType id = points_->InsertNextPoint(x.x(), x.y(), x.z());
+  disp_->InsertNextTuple3(u.x(), u.y(), u.z());
+  rot_->InsertNextTuple3(r.x(), r.y(), r.z());
+  for (const auto& [name, values] : frame_.node_scalars)
+    extra_.at(name)->InsertNextValue(node >= 0 && node < static_cast<int>(values.size()) ? values[node] : 0.0);
+  return id;
+}
 
-  const int segs = std::max(1, frame.segments);
-  for (int e = 0; e < static_cast<int>(model.elements.size()); ++e) {
-    const auto& el = model.elements[e];
-    const int a = el.nodes[0], b = el.nodes[1];
-    const Vec3 Xa = model.nodes[a].x, Xb = model.nodes[b].x;
-    const std::string id = el.member >= 0 ? model.members[el.member].id : el.id;
-    const Vec12 sf = have_forces ? section_forces(frame.end_forces[e]) : Vec12::Zero();
-    const int n = el.type == MemberType::Beam ? segs : 1;
-    std::optional<Mat3> R;
-    Vec12 ue;
-    if (el.type == MemberType::Beam && !frame.shape) {
-      R = beam_local_axes(Xa, Xb, el.orientation);
-      ue << frame.displacement[a], frame.rotation[a], frame.displacement[b], frame.rotation[b];
+void VtuBuilder::add_point_forces(const Vec6& f, const Mat3* R) {
+  if (!diagrams_) return;
+  psecf_->InsertNextTuple(f.data());
+  for (int k = 0; k < 6; ++k) {
+    const Vec3 v = R ? Vec3(f[k] * R->row(kDiagramAxis[k]).transpose()) : Vec3::Zero();
+    diag_[k]->InsertNextTuple3(v.x(), v.y(), v.z());
+  }
+}
+
+void VtuBuilder::add_cell_data(int kind, int member, int element, const std::string& id, const Vec6& s) {
+  kind_->InsertNextValue(kind);
+  member_index_->InsertNextValue(member);
+  element_index_->InsertNextValue(element);
+  ids_->InsertNextValue(id);
+  secf_->InsertNextTuple(s.data());
+  N_->InsertNextValue(s[0]);
+  T_->InsertNextValue(s[3]);
+  My_->InsertNextValue(s[4]);
+  Mz_->InsertNextValue(s[5]);
+}
+
+void VtuBuilder::add_element(int e) {
+  const auto& el = model_.elements[e];
+  const int a = el.nodes[0], b = el.nodes[1];
+  const Vec3 Xa = model_.nodes[a].x, Xb = model_.nodes[b].x;
+  const std::string id = el.member >= 0 ? model_.members[el.member].id : el.id;
+  const Vec12 sf = have_forces_ ? section_forces(frame_.end_forces[e]) : Vec12::Zero();
+  const int n = el.type == MemberType::Beam ? std::max(1, frame_.segments) : 1;
+  std::optional<Mat3> R;
+  Vec12 ue;
+  if (el.type == MemberType::Beam && !frame_.shape) {
+    R = beam_local_axes(Xa, Xb, el.orientation);
+    ue << frame_.displacement[a], frame_.rotation[a], frame_.displacement[b], frame_.rotation[b];
+  }
+  vtkIdType prev = -1;
+  for (int k = 0; k <= n; ++k) {
+    const double xi = static_cast<double>(k) / n;
+    const Vec3 X = (1 - xi) * Xa + xi * Xb;
+    Vec3 u;
+    if (k == 0) u = frame_.displacement[a];
+    else if (k == n) u = frame_.displacement[b];
+    else if (frame_.shape) u = frame_.shape(e, xi);
+    else if (R) u = beam_displacement_at(*R, (Xb - Xa).norm(), ue, xi);
+    else u = (1 - xi) * frame_.displacement[a] + xi * frame_.displacement[b];
+    const Vec3 r = (1 - xi) * frame_.rotation[a] + xi * frame_.rotation[b];
+    const vtkIdType id_pt = add_point(X, u, r, k == 0 ? a : (k == n ? b : -1));
+    const bool beam_forces = diagrams_ && el.type == MemberType::Beam;
+    if (beam_forces) {
+      const Mat3 Rl = beam_local_axes(Xa, Xb, el.orientation);
+      add_point_forces(frame_.section_forces(e, xi), &Rl);
+    } else {
+      add_point_forces(Vec6::Zero(), nullptr);
     }
-    vtkIdType prev = -1;
-    for (int k = 0; k <= n; ++k) {
-      const double xi = static_cast<double>(k) / n;
-      const Vec3 X = (1 - xi) * Xa + xi * Xb;
-      Vec3 u;
-      if (k == 0) u = frame.displacement[a];
-      else if (k == n) u = frame.displacement[b];
-      else if (frame.shape) u = frame.shape(e, xi);
-      else if (R) u = beam_displacement_at(*R, (Xb - Xa).norm(), ue, xi);
-      else u = (1 - xi) * frame.displacement[a] + xi * frame.displacement[b];
-      const Vec3 r = (1 - xi) * frame.rotation[a] + xi * frame.rotation[b];
-      const vtkIdType id_pt = add_point(X, u, r, k == 0 ? a : (k == n ? b : -1));
-      const bool beam_forces = diagrams && el.type == MemberType::Beam;
-      if (beam_forces) {
-        const Mat3 Rl = beam_local_axes(Xa, Xb, el.orientation);
-        add_point_forces(frame.section_forces(e, xi), &Rl);
-      } else {
-        add_point_forces(Vec6::Zero(), nullptr);
-      }
-      if (k > 0) {
-        const vtkIdType line[2] = {prev, id_pt};
-        cells->InsertNextCell(2, line);
-        cell_types.push_back(3);  // VTK_LINE
-        const double xm = (k - 0.5) / n;
-        const Vec6 s = beam_forces ? frame.section_forces(e, xm) : Vec6((1 - xm) * sf.head<6>() + xm * sf.tail<6>());
-        add_cell_data(el.type == MemberType::Beam ? 0 : 1, el.member, e, id, s);
-      }
-      prev = id_pt;
+    if (k > 0) {
+      const vtkIdType line[2] = {prev, id_pt};
+      cells_->InsertNextCell(2, line);
+      cell_types_.push_back(3);  // VTK_LINE
+      const double xm = (k - 0.5) / n;
+      const Vec6 s = beam_forces ? frame_.section_forces(e, xm) : Vec6((1 - xm) * sf.head<6>() + xm * sf.tail<6>());
+      add_cell_data(el.type == MemberType::Beam ? 0 : 1, el.member, e, id, s);
     }
+    prev = id_pt;
   }
-  for (const auto& j : model.joints) {
-    const int a = j.nodes[1];
-    const vtkIdType id_pt = add_point(model.nodes[a].x, frame.displacement[a], frame.rotation[a], a);
-    add_point_forces(Vec6::Zero(), nullptr);
-    cells->InsertNextCell(1, &id_pt);
-    cell_types.push_back(1);  // VTK_VERTEX
-    add_cell_data(2, -1, -1, j.id, Vec6::Zero());
-  }
+}
 
-  vtkNew<vtkUnstructuredGrid> grid;
-  grid->SetPoints(points);
-  grid->SetCells(cell_types.data(), cells);
-  grid->GetPointData()->AddArray(disp);
-  grid->GetPointData()->SetVectors(disp);
-  grid->GetPointData()->AddArray(rot);
-  for (auto& [name, a] : extra) grid->GetPointData()->AddArray(a);
-  if (diagrams) {
-    grid->GetPointData()->AddArray(psecf);
-    for (auto& d : diag) grid->GetPointData()->AddArray(d);
+void VtuBuilder::add_joint(const Joint& j) {
+  const int a = j.nodes[1];
+  const vtkIdType id_pt = add_point(model_.nodes[a].x, frame_.displacement[a], frame_.rotation[a], a);
+  add_point_forces(Vec6::Zero(), nullptr);
+  cells_->InsertNextCell(1, &id_pt);
+  cell_types_.push_back(1);  // VTK_VERTEX
+  add_cell_data(2, -1, -1, j.id, Vec6::Zero());
+}
+
+void VtuBuilder::fill(vtkUnstructuredGrid& grid) {
+  grid.SetPoints(points_);
+  grid.SetCells(cell_types_.data(), cells_);
+  grid.GetPointData()->AddArray(disp_);
+  grid.GetPointData()->SetVectors(disp_);
+  grid.GetPointData()->AddArray(rot_);
+  for (auto& [name, a] : extra_) grid.GetPointData()->AddArray(a);
+  if (diagrams_) {
+    grid.GetPointData()->AddArray(psecf_);
+    for (auto& d : diag_) grid.GetPointData()->AddArray(d);
   }
-  grid->GetCellData()->AddArray(secf);
-  grid->GetCellData()->AddArray(N);
-  grid->GetCellData()->AddArray(T);
-  grid->GetCellData()->AddArray(My);
-  grid->GetCellData()->AddArray(Mz);
-  grid->GetCellData()->AddArray(kind);
-  grid->GetCellData()->AddArray(member_index);
-  grid->GetCellData()->AddArray(element_index);
-  grid->GetCellData()->AddArray(ids);
-  for (const auto& [name, value] : frame.field_data) {
+  grid.GetCellData()->AddArray(secf_);
+  grid.GetCellData()->AddArray(N_);
+  grid.GetCellData()->AddArray(T_);
+  grid.GetCellData()->AddArray(My_);
+  grid.GetCellData()->AddArray(Mz_);
+  grid.GetCellData()->AddArray(kind_);
+  grid.GetCellData()->AddArray(member_index_);
+  grid.GetCellData()->AddArray(element_index_);
+  grid.GetCellData()->AddArray(ids_);
+  for (const auto& [name, value] : frame_.field_data) {
     vtkNew<vtkDoubleArray> f;
     f->SetName(name.c_str());
     f->InsertNextValue(value);
-    grid->GetFieldData()->AddArray(f);
+    grid.GetFieldData()->AddArray(f);
   }
+}
+
+}  // namespace
+
+void write_vtu(const std::string& path, const Model& model, const VtkFrame& frame) {
+  VtuBuilder builder(model, frame);
+  for (int e = 0; e < static_cast<int>(model.elements.size()); ++e) builder.add_element(e);
+  for (const auto& j : model.joints) builder.add_joint(j);
+  vtkNew<vtkUnstructuredGrid> grid;
+  builder.fill(*grid);
 
   write_atomic(path, [&](const std::filesystem::path& tmp) {
     vtkNew<vtkXMLUnstructuredGridWriter> w;

@@ -20,12 +20,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // A cantilever A-B of length 2 (A fixed), a tip load, one linear analysis.
-json base() {
-  json d = test::cantilever(2.0, 2.1e11, 8.1e10, 1e-3, 2e-6, 3e-6, 1e-6);
-  d["loads"] = {{{"node", "B"}, {"force", {0, -1000, 0}}}};
-  d["analyses"] = {{{"id", "lin"}, {"type", "linear_static"}}};
-  return d;
-}
+json base() { return test::linear_cantilever(-1000.0); }
 
 using Run = test::CliCase;
 
@@ -44,11 +39,6 @@ void expect_bad_in_check_and_run(const std::string& name, const json& d, const s
   expect_bad(run(name + "_run", d), fragments);
 }
 
-json read_results(const fs::path& dir) {
-  std::ifstream in(dir / "out" / "results.json");
-  return json::parse(in);
-}
-
 // A model whose every DOF is supported.
 json all_held() {
   json d = base();
@@ -63,7 +53,7 @@ json all_held() {
 TEST(ZeroFreeDofs, LinearStaticGivesTheReactions) {
   const auto r = run("zero_linear", all_held());
   ASSERT_EQ(r.code, 0) << r.message;
-  const json res = read_results(r.dir);
+  const json res = r.results();
   EXPECT_EQ(res["analyses"]["lin"]["free_dofs"], 0);
   // The whole load goes into the support at B: reaction = -load (statics).
   EXPECT_DOUBLE_EQ(res["analyses"]["lin"]["nodes"]["B"]["reaction"][1].get<double>(), 1000.0);
@@ -74,7 +64,7 @@ TEST(ZeroFreeDofs, BucklingReportsThatNothingCanBuckle) {
   d["analyses"] = {{{"id", "b"}, {"type", "buckling"}}};
   const auto r = run("zero_buckling", d);
   ASSERT_EQ(r.code, 0) << r.message;
-  const json b = read_results(r.dir)["analyses"]["b"];
+  const json b = r.results()["analyses"]["b"];
   EXPECT_EQ(b["status"], "no buckling");
   EXPECT_EQ(b["free_dofs"], 0);
   EXPECT_TRUE(b["load_factors"].empty());
@@ -85,7 +75,7 @@ TEST(ZeroFreeDofs, PathEndsCleanly) {
   d["analyses"] = {{{"id", "p"}, {"type", "path"}, {"control", {{"load_factor", 1.0}, {"increments", 2}}}}};
   const auto r = run("zero_path", d);
   ASSERT_EQ(r.code, 1) << r.message;  // a clean failure, not a crash
-  const json p = read_results(r.dir)["analyses"]["p"];
+  const json p = r.results()["analyses"]["p"];
   EXPECT_EQ(p["status"], "failed");
   EXPECT_NE(p["termination"].get<std::string>().find("no free DOF"), std::string::npos) << p.dump();
 }
@@ -156,7 +146,7 @@ TEST(ValidateFirst, StiffnessAtASupportedNodeIsAZeroCompliance) {
   d["analyses"].push_back({{"id", "K"}, {"type", "stiffness"}, {"node", "A"}});
   const auto r = run("stiff_supported", d);
   ASSERT_EQ(r.code, 0) << r.message;
-  const json k = read_results(r.dir)["analyses"]["K"];
+  const json k = r.results()["analyses"]["K"];
   EXPECT_EQ(k["rank"], 0);
   EXPECT_EQ(k["rigid_directions"].size(), 6u);
   for (const auto& row : k["compliance"])
@@ -170,7 +160,7 @@ TEST(ValidateFirst, StiffnessAtANodeHeldByARigidLinkIsAZeroCompliance) {
   d["analyses"].push_back({{"id", "K"}, {"type", "stiffness"}, {"node", "C"}});
   const auto r = run("stiff_rigid", d);
   ASSERT_EQ(r.code, 0) << r.message;
-  const json k = read_results(r.dir)["analyses"]["K"];
+  const json k = r.results()["analyses"]["K"];
   EXPECT_EQ(k["rank"], 0);
   EXPECT_EQ(k["rigid_directions"].size(), 6u);
 }
@@ -224,7 +214,7 @@ TEST(StagedOutputs, AFailedAnalysisKeepsResultsAndTheOthersFiles) {
   EXPECT_TRUE(fs::exists(r.dir / "out" / "old.txt"));
   for (const auto& e : fs::directory_iterator(r.dir / "out"))
     EXPECT_EQ(e.path().filename().string().find(".beamfea-staging"), std::string::npos) << e.path();
-  const json res = read_results(r.dir);
+  const json res = r.results();
   EXPECT_EQ(res["analyses"]["lin"]["status"], "ok");
   EXPECT_EQ(res["analyses"]["p"]["status"], "failed");
 }
@@ -260,7 +250,7 @@ TEST(SilentAcceptance, NonFiniteResultIsAnAnalysisFailure) {
   d["analyses"] = {{{"id", "lin"}, {"type", "linear_static"}}};
   const auto r = run("nonfinite", d);
   ASSERT_EQ(r.code, 1) << r.message;
-  const json lin = read_results(r.dir)["analyses"]["lin"];
+  const json lin = r.results()["analyses"]["lin"];
   EXPECT_NE(lin["status"], "ok") << lin.dump();
 }
 

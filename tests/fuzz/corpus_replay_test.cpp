@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "io/sweep.hpp"
+#include "support/files.hpp"
 #include "support/models.hpp"
 #include "support/sweep_util.hpp"
 
@@ -22,11 +23,7 @@ using nlohmann::json;
 namespace {
 
 std::vector<fs::path> corpus(const std::string& folder = "corpus") {
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(fs::path(BEAMFEA_SOURCE_DIR) / "tests" / "fuzz" / folder))
-    if (e.is_regular_file()) files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  return files;
+  return beamfea::test::files_in(beamfea::test::source_path("tests/fuzz/" + folder));
 }
 
 // Seconds one case may take (the corpus holds small models; more is a hang).

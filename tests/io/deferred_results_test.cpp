@@ -6,9 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <iterator>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
@@ -19,6 +17,7 @@
 #include "io/json_util.hpp"
 #include "io/json_writer.hpp"
 #include "io/run.hpp"
+#include "support/files.hpp"
 #include "support/models.hpp"
 #include "support/parallel_hooks.hpp"
 
@@ -34,11 +33,8 @@ using beamfea::ParallelTasks;
 // Every task on a thread of its own, and the tasks last first (tests/support/parallel_hooks.hpp).
 const ParallelTasks thread_per_task = beamfea::test::ThreadPerTask{};
 using beamfea::test::last_first;
-
-std::string read_text(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
+using beamfea::test::read_json;
+using beamfea::test::read_text;
 
 // Run `doc` with results.json written; the analyses' measured wall_time_s (the one value that
 // differs from run to run) set to 0 in the text.
@@ -60,11 +56,6 @@ Written run(const json& doc, bool in_memory, const ParallelTasks& parallel, cons
   r.text = std::regex_replace(read_text(dir / "results.json"), wall_time, "\"wall_time_s\": 0");
   std::filesystem::remove_all(dir);
   return r;
-}
-
-json read_json(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  return json::parse(in);
 }
 
 // A frame of (nx+1)(ny+1)(nz+1) nodes with what a member's output can hold: columns in two
@@ -148,7 +139,7 @@ TEST(DeferredResults, ALargeFrameIsWrittenByteForByteAsFromTheTree) {
 
 TEST(DeferredResults, TheExamplesAreWrittenByteForByteAsFromTheTree) {
   for (const char* example : {"01_space_frame", "04_load_sweep", "09_robot_arm_self_weight"}) {
-    const json doc = read_json(std::filesystem::path(BEAMFEA_SOURCE_DIR) / "examples" / example / "model.json");
+    const json doc = read_json(beamfea::test::source_path("examples") / example / "model.json");
     const Written tree = run(doc, true, {}, example);
     const Written deferred = run(doc, false, thread_per_task, example);
     EXPECT_EQ(deferred.text, tree.text) << example;

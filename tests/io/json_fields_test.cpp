@@ -12,6 +12,7 @@
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
 #include "io/json_util.hpp"
+#include "support/errors.hpp"
 
 namespace beamfea::json_in::json_fields_test {
 namespace {
@@ -19,12 +20,8 @@ namespace {
 // The InputError `f` throws, as "pointer | message" ("" when it throws none).
 template <class F>
 std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.pointer() + " | " + e.what();
-  }
-  return "";
+  const auto e = beamfea::test::thrown<InputError>(std::forward<F>(f));
+  return e ? e->pointer() + " | " + e->what() : "";
 }
 
 TEST(JsonFields, FindsTheKnownFieldsAndSkipsTheFreeOnes) {

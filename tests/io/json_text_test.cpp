@@ -2,11 +2,11 @@
 // parsing, and the same document as nlohmann's own parser.
 #include <gtest/gtest.h>
 
-#include <fstream>
-#include <sstream>
 
 #include "core/errors.hpp"
 #include "io/model_reader.hpp"
+#include "support/errors.hpp"
+#include "support/files.hpp"
 
 namespace json_text_test {
 
@@ -19,12 +19,8 @@ namespace {
 std::string nested(int containers) { return std::string(containers, '[') + std::string(containers, ']'); }
 
 std::string message_of(const std::string& text) {
-  try {
-    parse_json_text(text, "t.json");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  const auto e = beamfea::test::thrown<InputError>([&] { parse_json_text(text, "t.json"); });
+  return e ? e->what() : "";
 }
 
 }  // namespace
@@ -47,11 +43,9 @@ TEST(JsonText, MalformedTextIsAnInputErrorWithItsByte) {
 // The document is nlohmann's: the same values as json::parse on a model of the repository and on
 // an array of many objects (the shape that a parse callback made quadratic).
 TEST(JsonText, SameDocumentAsNlohmannsParser) {
-  std::ifstream in(std::string(BEAMFEA_SOURCE_DIR) + "/examples/01_space_frame/model.json");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  ASSERT_FALSE(ss.str().empty());
-  EXPECT_EQ(parse_json_text(ss.str(), "m"), json::parse(ss.str()));
+  const std::string text = beamfea::test::read_text(beamfea::test::source_path("examples/01_space_frame/model.json"));
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(parse_json_text(text, "m"), json::parse(text));
 
   std::string many = "[";
   for (int i = 0; i < 20000; ++i) {

@@ -23,6 +23,7 @@
 
 #include "core/errors.hpp"
 #include "io/json_writer.hpp"
+#include "support/files.hpp"
 #include "support/parallel_hooks.hpp"
 
 namespace json_writer_test {
@@ -204,11 +205,6 @@ std::filesystem::path temp_file(const std::string& stem) {
   return std::filesystem::temp_directory_path() / (stem + "_" + std::to_string(::getpid()) + ".json");
 }
 
-std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 }  // namespace
 
 TEST(JsonWriter, ALargeResultOnThreadsIsByteForByteTheSerialText) {
@@ -230,7 +226,7 @@ TEST(JsonWriter, ALargeResultOnThreadsIsByteForByteTheSerialText) {
 
   const auto path = temp_file("json_writer_threads");
   write_results_json_file(r, path, threads);
-  const std::string file = read_file(path);
+  const std::string file = beamfea::test::read_text(path);
   std::filesystem::remove(path);
   EXPECT_TRUE(file == serial + "\n");
 }

@@ -3,9 +3,8 @@
 // exits 2 naming the field.
 #include <gtest/gtest.h>
 
-#include <fstream>
-
 #include "solvers/condensed_stiffness.hpp"
+#include "support/cli_case.hpp"
 #include "support/models.hpp"
 
 namespace modal_input_test {
@@ -24,24 +23,11 @@ json rect_cantilever(int divisions = 1) {
   return d;
 }
 
-struct Outcome {
-  int code;
-  std::string message;
-  bool results_written;
-};
+using Outcome = test::CliCase;
 
-Outcome run_doc(const std::string& name, const json& d) {
-  const auto dir = test::temp_dir(name);
-  test::write_file(dir / "model.json", d.dump());
-  const auto r = test::run_cli("run " + (dir / "model.json").string() + " --out " + (dir / "out").string() + " -q");
-  return {r.exit_code, r.output, std::filesystem::exists(dir / "out" / "results.json")};
-}
+Outcome run_doc(const std::string& name, const json& d) { return test::run_model(name, d); }
 
-void expect_bad(const Outcome& o, const std::vector<std::string>& fragments) {
-  EXPECT_EQ(o.code, 2) << o.message;
-  EXPECT_FALSE(o.results_written);
-  for (const auto& f : fragments) EXPECT_NE(o.message.find(f), std::string::npos) << "missing '" << f << "' in: " << o.message;
-}
+void expect_bad(const Outcome& o, const std::vector<std::string>& fragments) { test::expect_bad_input(o, fragments); }
 
 }  // namespace
 
@@ -122,13 +108,10 @@ TEST(ModalInput, UnknownModalKeyAndMassKindAreRejected) {
 TEST(ModalInput, ModelWithoutMassFailsWithAReason) {
   json d = rect_cantilever(2);
   d["analyses"] = {{{"id", "m"}, {"type", "modal"}, {"modes", 2}}};
-  const auto dir = test::temp_dir("no_mass");
-  test::write_file(dir / "model.json", d.dump());
-  const auto r = test::run_cli("run " + (dir / "model.json").string() + " --out " + (dir / "out").string() + " -q");
-  EXPECT_EQ(r.exit_code, 1) << r.output;
-  std::ifstream in(dir / "out" / "results.json");
-  ASSERT_TRUE(in.good());
-  const json res = json::parse(in);
+  const Outcome r = run_doc("no_mass", d);
+  EXPECT_EQ(r.code, 1) << r.message;
+  ASSERT_TRUE(r.results_written());
+  const json res = r.results();
   EXPECT_EQ(res["analyses"]["m"]["status"], "no mass");
   EXPECT_TRUE(res["analyses"]["m"]["frequencies"].empty());
 }

@@ -15,6 +15,7 @@
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
 #include "pashkevich_vjm.hpp"
+#include "support/files.hpp"
 
 namespace pashkevich_chain_test {
 
@@ -24,7 +25,7 @@ using nlohmann::json;
 constexpr double kPi = std::numbers::pi;
 
 std::string example(const std::string& name) {
-  return std::string(BEAMFEA_SOURCE_DIR) + "/examples/05_pashkevich_chain/models/" + name;
+  return beamfea::test::source_path("examples/05_pashkevich_chain/models/" + name).string();
 }
 
 bool have(const char* type) { return beamfea::find_analysis_type(type) != nullptr; }
@@ -65,7 +66,7 @@ Path run_path(const std::string& file, double to, const json& patch = json::obje
 
 // Lowest load factor of the "buckling" analysis of a model file (S posture: the straight chain).
 double buckling_load(const std::string& file, const std::string& dir = "models/") {
-  json doc = beamfea::read_json_file(std::string(BEAMFEA_SOURCE_DIR) + "/examples/05_pashkevich_chain/" + dir + file);
+  json doc = beamfea::read_json_file(beamfea::test::source_path("examples/05_pashkevich_chain/" + dir + file).string());
   json b;
   for (const auto& a : doc["analyses"])
     if (a["type"] == "buckling") b = a;

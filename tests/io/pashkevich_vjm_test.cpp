@@ -13,6 +13,7 @@
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
 #include "pashkevich_vjm.hpp"
+#include "support/files.hpp"
 #include "solvers/condensed_stiffness.hpp"
 
 namespace pashkevich_vjm_test {
@@ -24,7 +25,7 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
 
 std::string example(const std::string& name) {
-  return std::string(BEAMFEA_SOURCE_DIR) + "/examples/05_pashkevich_chain/models/" + name;
+  return beamfea::test::source_path("examples/05_pashkevich_chain/models/" + name).string();
 }
 
 // The example model with the end node E released (no supports, no load): its condensed

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "support/cli_case.hpp"
 #include "support/models.hpp"
 
 namespace path_frequencies_cli_test {
@@ -29,24 +30,8 @@ json column() {
   return d;
 }
 
-struct CliRun {
-  int code;
-  std::string output;
-  std::filesystem::path out;
-};
-
-CliRun run_doc(const std::string& name, const json& d) {
-  const auto dir = test::temp_dir(name);
-  test::write_file(dir / "model.json", d.dump());
-  const auto r = test::run_cli("run " + (dir / "model.json").string() + " --out " + (dir / "out").string() + " -q");
-  return {r.exit_code, r.output, dir / "out"};
-}
-
 void expect_bad(const json& d, const std::string& name, const std::vector<std::string>& fragments) {
-  const CliRun r = run_doc(name, d);
-  EXPECT_EQ(r.code, 2) << r.output;
-  EXPECT_FALSE(std::filesystem::exists(r.out / "results.json"));
-  for (const auto& f : fragments) EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
+  test::expect_bad_input(test::run_model(name, d), fragments);
 }
 
 }  // namespace
@@ -59,10 +44,9 @@ TEST(PathFrequenciesCli, ColumnFrequenciesInResultsAndCsvFollowTheClosedForm) {
   json d = column();
   d["analyses"] = {{{"id", "p"}, {"type", "path"}, {"control", {{"load_factor", 0.8}, {"increments", 4}}},
                     {"frequencies", {{"modes", 2}, {"mass", "consistent"}}}}};
-  const CliRun r = run_doc("path_freq_ok", d);
-  ASSERT_EQ(r.code, 0) << r.output;
-  std::ifstream in(r.out / "results.json");
-  const json res = json::parse(in);
+  const test::CliCase r = test::run_model("path_freq_ok", d);
+  ASSERT_EQ(r.code, 0) << r.message;
+  const json res = r.results();
   const json& steps = res["analyses"]["p"]["steps"];
   ASSERT_GE(steps.size(), 3u);
   const double f0 = pi * pi * std::sqrt(E * I / (rho * A * std::pow(L, 4))) / (2 * pi);
@@ -80,7 +64,7 @@ TEST(PathFrequenciesCli, ColumnFrequenciesInResultsAndCsvFollowTheClosedForm) {
   }
   EXPECT_NEAR(steps.back()["load_factor"].get<double>(), 0.8, 1e-12);
   // The CSV: columns f1, f2 at the end of each row.
-  std::ifstream csv(r.out / "p.csv");
+  std::ifstream csv(r.out() / "p.csv");
   std::string header, row, last;
   std::getline(csv, header);
   EXPECT_NE(header.find(",f1,f2"), std::string::npos) << header;

@@ -15,6 +15,7 @@
 #include "core/errors.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
+#include "support/files.hpp"
 #include "support/models.hpp"
 
 namespace reused_storage_test {
@@ -28,12 +29,8 @@ namespace {
 // The parsed documents of the fuzz corpus, by file name (malformed JSON left out: it never
 // reaches a reader).
 std::vector<std::pair<std::string, json>> corpus() {
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(fs::path(BEAMFEA_SOURCE_DIR) / "tests" / "fuzz" / "corpus"))
-    if (e.path().extension() == ".json") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
   std::vector<std::pair<std::string, json>> docs;
-  for (const auto& f : files) {
+  for (const auto& f : test::files_in(test::source_path("tests/fuzz/corpus"), ".json")) {
     try {
       docs.emplace_back(f.filename().string(), read_json_file(f.string()));
     } catch (const InputError&) {

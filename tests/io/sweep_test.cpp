@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "io/sweep_table.hpp"
+#include "support/errors.hpp"
 #include "support/sweep_util.hpp"
 
 namespace sweep_test {
@@ -22,12 +23,8 @@ using beamfea::SweepCaseResult;
 namespace {
 
 std::string pointer_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.pointer();
-  }
-  return "(no error)";
+  const auto e = beamfea::test::thrown<InputError>(f);
+  return e ? e->pointer() : "(no error)";
 }
 
 // Three list cases on the cantilever: two tip loads and one with an unknown section.

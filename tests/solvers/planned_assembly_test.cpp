@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,6 +14,7 @@
 #include "solvers/linear_static.hpp"
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
+#include "support/files.hpp"
 #include "support/models.hpp"
 #include "support/parallel_hooks.hpp"
 
@@ -68,12 +68,6 @@ json frame(int nx, int ny, int nz) {
           {"prescribed", {{{"node", id(nx, ny, nz)}, {"dof", "ux"}, {"value", 1e-3}}}}};
 }
 
-json read_json(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  if (!in) throw std::runtime_error("cannot open " + p.string());
-  return json::parse(in);
-}
-
 struct Assembled {
   SparseMatrix Kff, Kfp;
 };
@@ -115,13 +109,13 @@ TEST(PlannedAssembly, ThePlannedPatternIsTheTripletsPatternOnEveryKindOfMap) {
   expect_same_assembly(test::model_from(frame(3, 2, 2)), "frame");
   // The examples' models: meshed members, the five-bar's closed loop (redundant rows) beam and
   // lumped (rigid links and joint springs only), the robot arm.
-  const std::filesystem::path ex = std::filesystem::path(BEAMFEA_SOURCE_DIR) / "examples";
+  const std::filesystem::path ex = test::source_path("examples");
   for (const char* file : {"01_space_frame/model.json", "03_workspace_stiffness_map/model.json", "04_load_sweep/model.json",
                            "06_lees_frame/model.json", "08_five_bar_lumped_vs_beam/models/beam.json",
                            "08_five_bar_lumped_vs_beam/models/lumped.json", "09_robot_arm_self_weight/model.json"})
-    expect_same_assembly(read_model(read_json(ex / file)), file);
-  for (const auto& entry : std::filesystem::directory_iterator(ex / "05_pashkevich_chain" / "models"))
-    if (entry.path().extension() == ".json") expect_same_assembly(read_model(read_json(entry.path())), entry.path().filename().string());
+    expect_same_assembly(read_model(test::read_json(ex / file)), file);
+  for (const auto& file : test::files_in(ex / "05_pashkevich_chain" / "models", ".json"))
+    expect_same_assembly(read_model(test::read_json(file)), file.filename().string());
 }
 
 TEST(PlannedAssembly, AFrameWithoutConstraintsGetsTheTripletsValuesBitForBit) {

@@ -1,6 +1,7 @@
 #pragma once
 // One model file through the program, for the tests of exit codes, messages and outputs
-// (tests/cli/bad_input_test.cpp, trust_test.cpp): the text is written to <tmp>/model.json and
+// (tests/cli/bad_input_test.cpp, trust_test.cpp, tests/io/modal_input_test.cpp,
+// path_frequencies_cli_test.cpp): the text is written to <tmp>/model.json and
 // `beamfea run <it> --out <tmp>/out -q` (or `check`) is run; the exit code, stdout and stderr
 // together, and the folder come back.
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "support/files.hpp"
 #include "support/models.hpp"
 
 namespace beamfea::test {
@@ -20,6 +22,8 @@ struct CliCase {
   std::filesystem::path dir;   // the test's folder; --out is dir / "out"
   std::filesystem::path out() const { return dir / "out"; }
   bool results_written() const { return std::filesystem::exists(out() / "results.json"); }
+  // The run's results.json (throws where there is none).
+  nlohmann::json results() const { return read_json(out() / "results.json"); }
 };
 
 // `verb` "run" or "check"; keep_out: --out exists beforehand and holds old.txt (a run's outputs

@@ -1,13 +1,15 @@
 #pragma once
-// Small helpers shared by the tests: build models from JSON text and run the CLI.
+// Small helpers shared by the tests: build models from JSON text and run the CLI (the files of
+// the tests: support/files.hpp).
+#include <sys/wait.h>
+
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/model.hpp"
 #include "io/model_reader.hpp"
+#include "support/files.hpp"
 
 namespace beamfea::test {
 
@@ -35,19 +37,6 @@ inline CliResult run_cli_with_prefix(const std::string& prefix, const std::strin
 // Runs the beamfea executable with `args` and returns its exit code and output.
 inline CliResult run_cli(const std::string& args) { return run_cli_with_prefix("", args); }
 
-// A fresh temporary folder for one test.
-inline std::filesystem::path temp_dir(const std::string& name) {
-  auto d = std::filesystem::temp_directory_path() / ("beamfea_test_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
-}
-
-inline void write_file(const std::filesystem::path& p, const std::string& text) {
-  std::ofstream out(p);
-  out << text;
-}
-
 // A cantilever along +x from node "A" (fixed) to node "B", with `divisions` elements.
 inline nlohmann::json cantilever(double L, double E, double G, double A, double Iy, double Iz, double J, int divisions = 1) {
   using nlohmann::json;
@@ -58,6 +47,16 @@ inline nlohmann::json cantilever(double L, double E, double G, double A, double 
                                          {"section", "s"}, {"orientation", {0, 0, 1}}, {"divisions", divisions}}})},
               {"supports", json::array({{{"node", "A"}, {"fix", "all"}}})},
               {"loads", json::array()}};
+}
+
+// A steel cantilever A-B of length 2 (A fixed) in `divisions` elements, the tip force (0, Py, 0)
+// at B and one linear analysis "lin": the small model of the tests of the program's input and
+// output.
+inline nlohmann::json linear_cantilever(double Py, int divisions = 1) {
+  nlohmann::json d = cantilever(2.0, 2.1e11, 8.1e10, 1e-3, 2e-6, 3e-6, 1e-6, divisions);
+  d["loads"] = {{{"node", "B"}, {"force", {0, Py, 0}}}};
+  d["analyses"] = {{{"id", "lin"}, {"type", "linear_static"}}};
+  return d;
 }
 
 }  // namespace beamfea::test

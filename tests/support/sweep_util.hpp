@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "io/sweep_table.hpp"
+#include "support/files.hpp"
 
 namespace sweep_test {
 
@@ -51,12 +52,7 @@ inline void write(const fs::path& p, const std::string& text) {
   out << text;
 }
 
-inline std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+inline std::string read(const fs::path& p) { return beamfea::test::read_text(p); }
 
 struct Csv {
   std::vector<std::string> header;
