@@ -31,7 +31,16 @@ namespace {
 // prescribed displacement (K_fp).
 json frame(int nx, int ny, int nz) {
   json nodes = json::array(), elements = json::array(), supports = json::array(), loads = json::array();
-  const auto id = [](int i, int j, int k) { return "n" + std::to_string(i) + "_" + std::to_string(j) + "_" + std::to_string(k); };
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "n" + std::string inlined here.
+  const auto id = [](int i, int j, int k) {
+    std::string s = "n";
+    s += std::to_string(i);
+    s += '_';
+    s += std::to_string(j);
+    s += '_';
+    s += std::to_string(k);
+    return s;
+  };
   for (int k = 0; k <= nz; ++k)
     for (int j = 0; j <= ny; ++j)
       for (int i = 0; i <= nx; ++i) {
