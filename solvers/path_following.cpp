@@ -176,7 +176,8 @@ bool PathRun::cut(PathTermination why, const std::string& what) {
   const Eigen::VectorXd& d = predictor_.previous_direction();
   if (sys_.has_loads() && d.size() && control_.fall_back_to_arc_length(cur_, std::sqrt(sys_.arc_dot(d, d)))) {
     cuts_ = 0;
-    say(fmt::format("step {}: the controlled DOF turns back: arc length from here (ds {:.4g})", step_ + 1, control_.h()));
+    say(fmt::format("step {}: the controlled DOF turns back: arc length from here (ds {:.4g})", step_ + 1,
+                    control_.h()));
     return true;
   }
   res_.finish(why, cur_.lambda, cuts_, report_);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <utility>
 
 #include "core/errors.hpp"
 
@@ -19,8 +20,10 @@ double scaled_norm(const Eigen::VectorXd& F, const Eigen::VectorXd& fscale) {
 }  // namespace
 
 ChordOutcome chord_correct(const PathSystem& sys, FactorCache& factors, const Converged& start, const StepSpec& s,
-                           Eigen::VectorXd& u, double tolerance) {
+                           Eigen::VectorXd u0, double tolerance) {
   ChordOutcome out;
+  Eigen::VectorXd& u = out.u;  // the iterate
+  u = std::move(u0);
   const int m = factors.factor_rows(start);
   if (m < 0) {
     out.why = "no factor of the start state's tangent";
@@ -130,13 +133,12 @@ StepSolution Corrector::solve(const Converged& start, const StepSpec& s, Eigen::
   };
   long chord_its = 0;
   if (chord_ == ChordIterations::On && factors_.factor_rows(start) >= 0) {
-    Eigen::VectorXd uc = u;
-    const ChordOutcome co = chord_correct(sys_, factors_, start, s, uc, kin_.options().function_tolerance);
+    const ChordOutcome co = chord_correct(sys_, factors_, start, s, u, kin_.options().function_tolerance);
     chord_its = co.iterations;
     if (co.converged) {
       ++chord_steps_;
       out.report = fmt::format("chord: converged after {} iterations, |F| = {:.3e}", chord_its, co.residual_norm);
-      Converged& c = finish(uc);
+      Converged& c = finish(co.u);
       c.iterations = 0;
       c.chord_iterations = chord_its;
       c.by_chord = true;

@@ -5,8 +5,8 @@
 // tangent is not updated within the step).
 //
 // The predictor of every step comes from the converged start state's tangent system, assembled and
-// factorised once (FactorCache::tangent, solvers/path/factor_cache.hpp; shared with the stability analysis and the record of
-// the step). The chord iterations solve with that same factor, so a step that converges here costs
+// factorised once (FactorCache::tangent, solvers/path/factor_cache.hpp; shared with the stability
+// analysis and the record of the step). The chord iterations solve with that same factor, so a step that converges here costs
 // no factorisation: per iteration one residual evaluation and one or two triangular solves.
 //
 //   load control, imposed motion   J0 du = -F                 (the factor is of the step's system)
@@ -49,13 +49,13 @@ struct ChordOutcome {
   int iterations = 0;            // chord iterations made (residual evaluations after the predictor's)
   double residual_norm = 0.0;    // scaled max norm at the last iterate
   std::string why;               // why the chord gave up (empty when converged)
+  Eigen::VectorXd u;             // the last iterate (the solution when converged)
 };
 
-// Chord iterations from the predictor u (overwritten with the last iterate) of step s from start,
-// on the factor that `factors` keeps of start's tangent. tolerance: KINSOL's function tolerance (on
-// the scaled max norm).
+// Chord iterations from the predictor u0 of step s from start, on the factor that `factors` keeps of
+// start's tangent. tolerance: KINSOL's function tolerance (on the scaled max norm).
 ChordOutcome chord_correct(const PathSystem& sys, FactorCache& factors, const Converged& start, const StepSpec& s,
-                           Eigen::VectorXd& u, double tolerance);
+                           Eigen::VectorXd u0, double tolerance);
 
 // Whether a step tries the chord iterations before full Newton (PathOptions::chord_corrector).
 enum class ChordIterations { Off, On };

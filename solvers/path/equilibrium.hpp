@@ -13,7 +13,7 @@
 //               (imposed motion, no loads);
 //     Arc       Crisfield's spherical constraint (Crisfield 1981; Crisfield 1991, vol. 1, eq. 9.13)
 //               (|Delta|_W^2 + psi^2 dlambda^2 - ds^2) / (2 ds) = 0, W: 1 on translations, L^2 on
-//               rotations; psi^2 is set by the step control (solvers/path/step_control.hpp).
+//               rotations; psi^2 is the path's own scale (PathSystem::with_scales, solvers/path/path_scales.hpp).
 // Closed loops (solvers/nonlinear_structure.hpp, "Closed loops"): the closures' rows c(x) = 0 join the
 // slave constraints, with multipliers mu_l; the residual gains B^T mu_l and the tangent the closure
 // curvature contracted with mu_l. Redundant rows among the slave constraints and the closures (a

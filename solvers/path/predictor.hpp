@@ -38,7 +38,9 @@ class Predictor {
   void accept(const Eigen::VectorXd& direction) { previous_ = direction; }
 
  private:
-  StepPrediction arc_step(const Converged& c, double h, const Eigen::VectorXd& t, const Eigen::VectorXd* direction) const;
+  // An arc-length step along `direction`, or (none) along the tangent t oriented by the previous step.
+  StepPrediction arc_step(const Converged& c, double h, const Eigen::VectorXd& t,
+                          const Eigen::VectorXd* direction) const;
   const PathSystem& sys_;
   FactorCache& factors_;
   Eigen::VectorXd previous_;

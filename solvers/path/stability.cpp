@@ -132,7 +132,8 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, const Stability
   // The lowest eigenvalue from the factorisation just made, no shifted one (see lowest_from_factor).
   // The dense solve up to dense_limit_, the critical mode, and what that fails to settle, as before.
   if (large && out.info.negative >= 0 && !want_mode) {
-    const InertiaFactor factor = shared ? InertiaFactor::SharedLlt : cholesky ? InertiaFactor::OwnLlt : InertiaFactor::Ldlt;
+    const InertiaFactor factor =
+        shared ? InertiaFactor::SharedLlt : (cholesky ? InertiaFactor::OwnLlt : InertiaFactor::Ldlt);
     if (const std::optional<double> lowest = lowest_from_factor(sc, factor, out.info.negative)) {
       out.info.min_eigenvalue = *lowest;
       return out;

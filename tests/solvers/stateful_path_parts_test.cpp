@@ -13,7 +13,7 @@
 #include "solvers/path/predictor.hpp"
 #include "solvers/path/stability.hpp"
 
-namespace path_parts_test {
+namespace stateful_path_parts_test {
 
 using namespace beamfea;
 using namespace beamfea::test;
@@ -137,4 +137,4 @@ TEST(PathParts, ABranchSwitchReturnsTheSecondaryStateItsArcLengthAndDirection) {
   EXPECT_NEAR(bs.state.lambda, std::pow(2 * std::comp_ellint_1(k) / pi, 2), 2e-3);
 }
 
-}  // namespace path_parts_test
+}  // namespace stateful_path_parts_test
