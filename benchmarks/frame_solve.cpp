@@ -384,7 +384,7 @@ int run_single(long target, const Options& o) {
       const auto& dof = map.prescribed()[p].dof;
       if (dof.owner == DofRef::Owner::Node && dof.comp < 3) reaction[dof.comp] += cf.prescribed[p];
     }
-    for (const auto& l : model.loads) load += l.force;
+    for (const auto& l : model.default_case.nodal) load += l.force;
     put("reaction_err", (reaction + load).norm() / load.norm());
     put("max_u", u.cwiseAbs().maxCoeff());
   }

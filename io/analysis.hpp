@@ -1,10 +1,12 @@
 #pragma once
 // Analyses read from "analyses": [{"id": ..., "type": ...}, ...].
 //
-// Each type registers a `check` (validates its spec against the model: InputError with the
-// JSON pointer) and a `run` (returns the JSON object stored at analyses.<id> in results.json and
-// writes its own files into the output folder, each atomically). The registry is in
-// io/analysis_registry.cpp: one line per analysis type.
+// Each type registers a `check` (reads its spec, validated against the model, into the type's own
+// Spec struct: InputError with the JSON pointer) and a `run` (receives that Spec, never the raw
+// JSON; returns the JSON object stored at analyses.<id> in results.json and writes its own files
+// into the output folder, each atomically). The registry is in io/analysis_registry.cpp: one line
+// per analysis type, made by register_analysis<Spec>.
+#include <any>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -38,7 +40,6 @@ using MessageSink = std::function<void(const std::string&)>;
 // and of the last node stiffness (its directions and names).
 struct RunWorkspace {
   LinearSystemCache systems;
-  LoadSet loads;
   LinearStaticResult linear;
   LinearSolveScratch linear_scratch;
   std::vector<Station> stations;
@@ -55,8 +56,6 @@ struct RunCache {
 
 struct AnalysisContext {
   const Model& model;
-  const nlohmann::json& document;   // the whole input document
-  const nlohmann::json& spec;       // this analysis's object
   std::string pointer;              // "/analyses/<i>"
   std::string id;                   // a safe file-name stem (check_analyses: analysis_id)
   std::filesystem::path out_dir;    // empty: write no files (sweeps, tests); a staging folder
@@ -105,29 +104,52 @@ struct AnalysisOutcome {
 // The files an analysis may write into the output folder, named from its id: whole names
 // ("<id>.vtu", "<id>.pvd") and numbered families "<stem><k>.vtu" (k = 0, 1, 2 ... written
 // without leading zeros; the stem ends in a letter, "<id>_mode"). check_analyses rejects two
-// analyses whose files could have one name (issue 9: "a" buckling writes a_mode1.vtu, and so
+// analyses whose files could have one name ("a" buckling writes a_mode1.vtu, and so
 // would an analysis "a_mode1").
 struct AnalysisFiles {
   std::vector<std::string> names;
   std::vector<std::string> numbered_vtu_stems;
 };
 
+// What a type's check made of one analysis's spec: the type's own Spec struct (options, load case,
+// outputs), which its run receives. Held by the registry's callers between the two.
+using ParsedSpec = std::any;
+
 struct AnalysisType {
   std::string name;
-  // Validates the spec against the model, covering everything the run needs that input can
-  // decide without solving (InputError with the JSON pointer). `check` and `run` share it.
-  std::function<void(const Model&, const nlohmann::json& spec, const json_in::Pointer& pointer)> check;
-  std::function<AnalysisOutcome(const AnalysisContext&)> run;
+  // Reads and validates the spec against the model, covering everything the run needs that input
+  // can decide without solving (InputError with the JSON pointer).
+  std::function<ParsedSpec(const Model&, const nlohmann::json& spec, const json_in::Pointer& pointer)> check;
+  // Runs the analysis of the spec `check` returned.
+  std::function<AnalysisOutcome(const AnalysisContext&, const ParsedSpec&)> run;
   // Every file `run` may write for an analysis of this id (empty: it writes none).
   std::function<AnalysisFiles(const std::string& id)> files;
 };
 
+// An analysis type whose check reads a `Spec` and whose run takes it.
+template <class Spec>
+AnalysisType register_analysis(std::string name, Spec (*check)(const Model&, const nlohmann::json&, const json_in::Pointer&),
+                               AnalysisOutcome (*run)(const AnalysisContext&, const Spec&),
+                               std::function<AnalysisFiles(const std::string& id)> files) {
+  return {std::move(name),
+          [check](const Model& m, const nlohmann::json& spec, const json_in::Pointer& p) { return ParsedSpec(check(m, spec, p)); },
+          [run](const AnalysisContext& ctx, const ParsedSpec& spec) { return run(ctx, std::any_cast<const Spec&>(spec)); },
+          std::move(files)};
+}
+
 const std::vector<AnalysisType>& analysis_types();
 const AnalysisType* find_analysis_type(const std::string& name);
 
+// One analysis of a document, checked: its id, type, pointer and parsed spec.
+struct CheckedAnalysis {
+  std::string id;
+  std::string pointer;  // "/analyses/<i>"
+  const AnalysisType* type = nullptr;
+  ParsedSpec spec;
+};
 // Validates every analysis spec (at least one; ids unique and safe as file names, types known,
-// each type's check).
-void check_analyses(const Model& model, const nlohmann::json& document);
+// each type's check) and returns them in order, each parsed once.
+std::vector<CheckedAnalysis> check_analyses(const Model& model, const nlohmann::json& document);
 
 // Throws InputError at the later analysis's id when two analyses (id, pointer "/analyses/<i>",
 // type) could write files of one name, naming both pointers and the file.
