@@ -1,12 +1,11 @@
 #pragma once
 // Analyses read from "analyses": [{"id": ..., "type": ...}, ...].
 //
-// Each type registers a `check` (reads its spec, validated against the model, into the type's own
-// Spec struct: InputError with the JSON pointer) and a `run` (receives that Spec, never the raw
-// JSON; returns the JSON object stored at analyses.<id> in results.json and writes its own files
-// into the output folder, each atomically). The registry is in io/analysis_registry.cpp: one line
-// per analysis type, made by register_analysis<Spec>.
-#include <any>
+// Each type registers one reader of its spec into its own Spec struct (options, load case,
+// outputs; validated against the model: InputError with the JSON pointer) and a run function that
+// receives that Spec, never the raw JSON (it returns the JSON object stored at analyses.<id> in
+// results.json and writes its own files into the output folder, each atomically). The registry is
+// in io/analysis_registry.cpp: one line per analysis type, made by register_analysis<Spec>.
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -111,45 +110,37 @@ struct AnalysisFiles {
   std::vector<std::string> numbered_vtu_stems;
 };
 
-// What a type's check made of one analysis's spec: the type's own Spec struct (options, load case,
-// outputs), which its run receives. Held by the registry's callers between the two.
-using ParsedSpec = std::any;
-
 struct AnalysisType {
   std::string name;
-  // Reads and validates the spec against the model, covering everything the run needs that input
-  // can decide without solving (InputError with the JSON pointer).
-  std::function<ParsedSpec(const Model&, const nlohmann::json& spec, const json_in::Pointer& pointer)> check;
-  // Runs the analysis of the spec `check` returned.
-  std::function<AnalysisOutcome(const AnalysisContext&, const ParsedSpec&)> run;
+  // Validates the spec against the model, covering everything the run needs that input can decide
+  // without solving (InputError with the JSON pointer): the type's reader, its Spec discarded.
+  std::function<void(const Model&, const nlohmann::json& spec, const json_in::Pointer& pointer)> check;
+  // Reads the spec of a checked document with the same reader, on the stack (a sweep case allocates
+  // nothing for it), and runs the analysis of that Spec.
+  std::function<AnalysisOutcome(const AnalysisContext&, const nlohmann::json& spec)> run;
   // Every file `run` may write for an analysis of this id (empty: it writes none).
   std::function<AnalysisFiles(const std::string& id)> files;
 };
 
-// An analysis type whose check reads a `Spec` and whose run takes it.
+// An analysis type of one reader, `read` (the raw JSON into a Spec, validated), and one run
+// function, `run`, that takes the Spec.
 template <class Spec>
-AnalysisType register_analysis(std::string name, Spec (*check)(const Model&, const nlohmann::json&, const json_in::Pointer&),
+AnalysisType register_analysis(std::string name, Spec (*read)(const Model&, const nlohmann::json&, const json_in::Pointer&),
                                AnalysisOutcome (*run)(const AnalysisContext&, const Spec&),
                                std::function<AnalysisFiles(const std::string& id)> files) {
-  return {std::move(name),
-          [check](const Model& m, const nlohmann::json& spec, const json_in::Pointer& p) { return ParsedSpec(check(m, spec, p)); },
-          [run](const AnalysisContext& ctx, const ParsedSpec& spec) { return run(ctx, std::any_cast<const Spec&>(spec)); },
+  return {std::move(name), [read](const Model& m, const nlohmann::json& spec, const json_in::Pointer& p) { read(m, spec, p); },
+          [read, run](const AnalysisContext& ctx, const nlohmann::json& spec) {
+            return run(ctx, read(ctx.model, spec, ctx.pointer));
+          },
           std::move(files)};
 }
 
 const std::vector<AnalysisType>& analysis_types();
 const AnalysisType* find_analysis_type(const std::string& name);
 
-// One analysis of a document, checked: its id, type, pointer and parsed spec.
-struct CheckedAnalysis {
-  std::string id;
-  std::string pointer;  // "/analyses/<i>"
-  const AnalysisType* type = nullptr;
-  ParsedSpec spec;
-};
 // Validates every analysis spec (at least one; ids unique and safe as file names, types known,
-// each type's check) and returns them in order, each parsed once.
-std::vector<CheckedAnalysis> check_analyses(const Model& model, const nlohmann::json& document);
+// each type's check).
+void check_analyses(const Model& model, const nlohmann::json& document);
 
 // Throws InputError at the later analysis's id when two analyses (id, pointer "/analyses/<i>",
 // type) could write files of one name, naming both pointers and the file.

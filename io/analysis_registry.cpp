@@ -37,7 +37,7 @@ std::string analysis_id(const nlohmann::json& v, const json_in::Pointer& pointer
   return id;
 }
 
-std::vector<CheckedAnalysis> check_analyses(const Model& model, const nlohmann::json& document) {
+void check_analyses(const Model& model, const nlohmann::json& document) {
   auto it = document.find("analyses");
   if (it == document.end()) throw InputError("/analyses", "no analyses: nothing to run (add \"analyses\": [{\"id\": ..., \"type\": ...}])");
   json_in::array(*it, "/analyses", "analyses");
@@ -48,8 +48,6 @@ std::vector<CheckedAnalysis> check_analyses(const Model& model, const nlohmann::
   const bool several = it->size() > 1;
   std::vector<AnalysisFileOwner> owners;
   if (several) owners.reserve(it->size());
-  std::vector<CheckedAnalysis> checked;
-  checked.reserve(it->size());
   for (std::size_t i = 0; i < it->size(); ++i) {
     const json_in::Pointer p = json_in::child("/analyses", i);
     const auto& a = json_in::object((*it)[i], p, "analysis");
@@ -66,11 +64,10 @@ std::vector<CheckedAnalysis> check_analyses(const Model& model, const nlohmann::
       for (const auto& x : analysis_types()) known += (known.empty() ? "" : ", ") + x.name;
       throw InputError(json_in::child(p, "type"), "analysis '" + id + "': unknown type '" + type + "' (known: " + known + ")");
     }
-    checked.push_back({id, p.str(), t, t->check(model, a, p)});
+    t->check(model, a, p);
     if (several) owners.push_back({id, p, t});
   }
   if (several) check_file_clashes(owners);
-  return checked;
 }
 
 void check_nonlinear_model(const Model& model, const json_in::Pointer& p) {

@@ -40,7 +40,7 @@ namespace {
 
 // Runs one analysis; a ModelError or solver error raised while running (after validation) is
 // that analysis's failure, reported in results.json, not a crash of the run.
-AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx, const ParsedSpec& spec) {
+AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx, const nlohmann::json& spec) {
   AnalysisOutcome o;
   try {
     o = type.run(ctx, spec);
@@ -129,16 +129,13 @@ void run_into(const Model& model, const nlohmann::json& document, const RunOptio
     if (!options.only.empty() && std::find(options.only.begin(), options.only.end(), id) == options.only.end())
       continue;
     const AnalysisType* type = find_analysis_type(spec.at("type").get_ref<const std::string&>());
-    // The document is valid (load_and_check): its spec is read once more, here, into what the run takes.
-    const json_in::Pointer pointer = json_in::child("/analyses", i);
-    const ParsedSpec parsed = type->check(model, spec, pointer);
     ojson& result = analyses.slot(id);  // the last run's result of this id, or null
     std::string* previous_message = outcomes < report.outcomes.size() ? &report.outcomes[outcomes].second.message : nullptr;
-    AnalysisContext ctx{model, pointer.str(), id, staging ? staging->path() : std::filesystem::path(),
+    AnalysisContext ctx{model, json_in::child("/analyses", i), id, staging ? staging->path() : std::filesystem::path(),
                         options.write_vtk, {}, options.warning, &cache, &result, previous_message, defer, options.parallel};
     if (options.progress) ctx.progress = [&](const std::string& s) { options.progress("[" + id + "] " + s); };
     const auto t0 = std::chrono::steady_clock::now();
-    AnalysisOutcome o = run_one(*type, ctx, parsed);
+    AnalysisOutcome o = run_one(*type, ctx, spec);
     const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     o.result["wall_time_s"] = dt;
     if (options.progress) options.progress("[" + id + "] " + o.brief_report() + " (" + std::to_string(dt) + " s)");

@@ -95,20 +95,26 @@ TEST(LoadCaseSelection, DefaultGivesTheResultOfTheTopLevelLoadsInEveryAnalysisTy
     EXPECT_EQ(by_default["status"], "ok") << by_default.dump();
     // The same loads named "same": the same numbers, bit for bit (one computation).
     EXPECT_EQ(by_default, result_with(c, "same"));
-    if (!c.load_case_switches_mode) EXPECT_EQ(by_default, result_with(c, ""));
+    if (!c.load_case_switches_mode) {
+      EXPECT_EQ(by_default, result_with(c, ""));
+    }
   }
 }
 
 TEST(LoadCaseSelection, DefaultIsEchoedInTheResult) {
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.type);
+    if (std::string(c.type) == "path") continue;  // a path's result names no load case
     json doc = c.document;
     json spec = c.spec;
     spec["id"] = "a";
     spec["load_case"] = "default";
     doc["analyses"] = json::array({spec});
-    const RunReport report = run_document(load_and_check(doc), doc, RunOptions{});
-    EXPECT_EQ(report.results["analyses"]["a"]["load_case"], "default");
+    const Model m = load_and_check(doc);
+    const RunReport report = run_document(m, doc, RunOptions{});
+    const ojson& r = report.results.at("analyses").at("a");
+    ASSERT_TRUE(r.contains("load_case")) << r.dump();
+    EXPECT_EQ(r.at("load_case"), "default");
   }
 }
 
