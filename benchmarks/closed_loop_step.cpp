@@ -68,7 +68,7 @@ Model arch(int n, bool closed, double load) {
     tips.push_back(prev);
   }
   if (closed) joint("crown", tips[0], tips[1], 0.0);
-  m.loads.push_back({tips[0], load * Vec3(0.5, -1.0, 0.0), Vec3::Zero()});
+  m.default_case.nodal.push_back({tips[0], load * Vec3(0.5, -1.0, 0.0), Vec3::Zero()});
   return m;
 }
 

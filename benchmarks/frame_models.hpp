@@ -78,7 +78,7 @@ inline beamfea::Model make_frame(const Dims& d, double density = 0.0) {
       m.supports.push_back(s);
     }
   for (int n = (d.nx + 1) * (d.ny + 1); n < static_cast<int>(m.nodes.size()); ++n)
-    m.loads.push_back({n, kNodeForce, Vec3::Zero()});
+    m.default_case.nodal.push_back({n, kNodeForce, Vec3::Zero()});
   return m;
 }
 

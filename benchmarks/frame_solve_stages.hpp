@@ -307,7 +307,7 @@ inline void check_solution(const Model& model, const DofMap& map, const LinearSt
     const auto& dof = map.prescribed()[p].dof;
     if (dof.owner == DofRef::Owner::Node && dof.comp < 3) reaction[dof.comp] += cf.prescribed[p];
   }
-  for (const auto& l : model.loads) load += l.force;
+  for (const auto& l : model.default_case.nodal) load += l.force;
   rec.put("reaction_err", (reaction + load).norm() / load.norm());
   rec.put("max_u", u.cwiseAbs().maxCoeff());
 }

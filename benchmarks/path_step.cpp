@@ -86,7 +86,7 @@ Model frame(int n, int storeys) {
       for (int i = 0; i <= n; ++i) {
         if (i < n) add(id(i, j, k), id(i + 1, j, k), Vec3(0, 0, 1));
         if (j < n) add(id(i, j, k), id(i, j + 1, k), Vec3(0, 0, 1));
-        m.loads.push_back({id(i, j, k), Vec3(1e3, 0.5e3, -10e3), Vec3::Zero()});
+        m.default_case.nodal.push_back({id(i, j, k), Vec3(1e3, 0.5e3, -10e3), Vec3::Zero()});
       }
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {

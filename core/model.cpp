@@ -105,33 +105,29 @@ void LoadSet::add_scaled(const LoadSet& o, double k) {
   gravity += k * o.gravity;
 }
 
-LoadSet Model::default_loads() const {
-  LoadSet s;
-  default_loads(s);
+void Model::add_combination(Combination c) {
+  c.loads = LoadSet{};
+  for (const auto& [k, f] : c.factors) c.loads.add_scaled(load_cases.at(k).loads, f);
+  combinations.push_back(std::move(c));
+}
+
+const LoadSet* Model::find_loads(const std::string& id) const {
+  if (const int c = find_load_case(id); c >= 0) return &load_cases[c].loads;
+  if (const int k = find_combination(id); k >= 0) return &combinations[k].loads;
+  if (id.empty() || id == kDefaultLoadCase) return &default_case;
+  return nullptr;
+}
+
+const LoadSet& Model::loads_for(const std::string& id) const {
+  if (const LoadSet* s = find_loads(id)) return *s;
+  throw ModelError("load case '" + id + "'", "is neither a load case nor a combination (known: " + known_load_cases() + ")");
+}
+
+std::string Model::known_load_cases() const {
+  std::string s = kDefaultLoadCase;
+  for (const auto& c : load_cases) s += ", " + c.id;
+  for (const auto& c : combinations) s += ", " + c.id;
   return s;
-}
-
-void Model::default_loads(LoadSet& into) const {
-  into.nodal = loads;
-  into.joint = joint_loads;
-  into.member = member_loads;
-  into.gravity = gravity;
-}
-
-LoadSet Model::loads_of(const std::string& id) const {
-  if (const int c = find_load_case(id); c >= 0) return load_cases[c].loads;
-  const int k = find_combination(id);
-  if (k < 0) throw ModelError("load case '" + id + "'", "is neither a load case nor a combination");
-  LoadSet s;
-  for (const auto& [c, f] : combinations[k].factors) s.add_scaled(load_cases.at(c).loads, f);
-  return s;
-}
-
-void Model::set_default_loads(const LoadSet& s) {
-  loads = s.nodal;
-  joint_loads = s.joint;
-  member_loads = s.member;
-  gravity = s.gravity;
 }
 
 void Model::clear() {
@@ -143,11 +139,11 @@ void Model::clear() {
   joints.clear();
   supports.clear();
   prescribed.clear();
-  loads.clear();
-  joint_loads.clear();
   masses.clear();
-  member_loads.clear();
-  gravity = Vec3::Zero();
+  default_case.nodal.clear();
+  default_case.joint.clear();
+  default_case.member.clear();
+  default_case.gravity = Vec3::Zero();
   load_cases.clear();
   combinations.clear();
   node_index.clear();

@@ -249,6 +249,9 @@ struct LoadSet {
   void add_scaled(const LoadSet& other, double factor);
 };
 
+// The id of an analysis's "load_case" that selects the top-level loads and gravity.
+inline constexpr const char* kDefaultLoadCase = "default";
+
 struct LoadCase {
   std::string id;
   LoadSet loads;
@@ -258,6 +261,8 @@ struct LoadCase {
 struct Combination {
   std::string id;
   std::vector<std::pair<int, double>> factors;  // (index into Model::load_cases, factor)
+  // The sum itself, made once when the combination is added (Model::add_combination).
+  LoadSet loads;
 };
 
 struct Model {
@@ -269,13 +274,10 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<Support> supports;
   std::vector<Prescribed> prescribed;
-  std::vector<NodalLoad> loads;
-  std::vector<JointLoad> joint_loads;
   std::vector<PointMass> masses;
-  // The default load case is `loads`, `joint_loads`, `member_loads` and `gravity`; named cases
-  // and combinations are selected by an analysis's "load_case".
-  std::vector<MemberLoad> member_loads;
-  Vec3 gravity = Vec3::Zero();
+  // The default load case: the top-level loads and gravity. Named cases and combinations are
+  // selected by an analysis's "load_case" (loads_for).
+  LoadSet default_case;
   std::vector<LoadCase> load_cases;
   std::vector<Combination> combinations;
 
@@ -294,15 +296,20 @@ struct Model {
   int find_section(const std::string& id) const;   // -1 if absent
   int find_load_case(const std::string& id) const;    // -1 if absent
   int find_combination(const std::string& id) const;  // -1 if absent
-  // The default load case (top-level loads and gravity); the second form writes it over `into`,
-  // whose vectors keep their storage (a sweep worker's load set).
-  LoadSet default_loads() const;
-  void default_loads(LoadSet& into) const;
-  // The loads of a named case or combination (a combination: its cases' loads, factored);
-  // throws ModelError when the id names neither.
-  LoadSet loads_of(const std::string& case_or_combination) const;
+  // Appends a combination of the load cases already added, with its sum (Combination::loads).
+  void add_combination(Combination c);
+  // The default load case (top-level loads and gravity).
+  const LoadSet& default_loads() const { return default_case; }
+  // The loads an analysis's "load_case" selects: a named case, a combination (its cases' loads,
+  // factored), or the default case for "" and "default" (kDefaultLoadCase) unless a case or a
+  // combination has that id. find_loads returns null when `id` selects nothing; loads_for throws
+  // ModelError naming the id and the known ones.
+  const LoadSet* find_loads(const std::string& id) const;
+  const LoadSet& loads_for(const std::string& id) const;
+  // The ids loads_for accepts, as "default, dead, tool, uls" (a message's list).
+  std::string known_load_cases() const;
   // Replaces the default load case by `loads`.
-  void set_default_loads(const LoadSet& loads);
+  void set_default_loads(const LoadSet& loads) { default_case = loads; }
   // "node 'A' dof uz", "joint 'j1' coordinate 0"
   std::string describe(const DofRef& d) const;
   // Length scale of the model (bounding-box diagonal, at least 1e-300); used to make

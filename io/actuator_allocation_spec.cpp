@@ -17,19 +17,10 @@ using json = nlohmann::json;
 using namespace json_in;
 // More schemes than this must be listed explicitly ("schemes").
 constexpr std::size_t kMaxSchemes = 20000;
-}  // namespace
 
-Spec read_spec(const Model& model, const json& spec, const std::string& p) {
-  Spec s;
-  const std::string what = "actuator_allocation analysis";
+// "candidate_joints": joints, or {joint, coordinate} of a joint of several coordinates.
+void read_candidates(const Model& model, const json& spec, const json_in::Pointer& p, const std::string& what, Spec& s) {
   auto& o = s.options;
-  expect_keys(spec, p, {"id", "type", "description", "platform_node", "candidate_joints", "actuators",
-                        "actuator_stiffness", "directions", "structural_terms", "poses", "schemes", "rank_by",
-                        "load_case"});
-  check_load_case(model, spec, p);
-  if (spec.contains("load_case")) s.load_case = json_in::id(spec["load_case"], child(p, "load_case"), "load_case");
-  o.platform_node = node_ref(model, require(spec, p, "platform_node", what), child(p, "platform_node"));
-  // Candidates
   const json_in::Pointer pc = child(p, "candidate_joints");
   const auto& cands = array(require(spec, p, "candidate_joints", what), pc, what + " candidate_joints");
   if (cands.empty()) throw InputError(pc, what + ": no candidate joints");
@@ -54,14 +45,22 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
         throw InputError(pi, "joint '" + model.joints[c.joint].id + "' is a candidate twice");
     o.candidates.push_back(c);
   }
-  const int n_all = static_cast<int>(o.candidates.size());
-  // Number of actuators
+}
+
+// "actuators": how many of the candidates each scheme actuates.
+void read_actuator_count(const json& spec, const json_in::Pointer& p, const std::string& what, Spec& s) {
+  const int n_all = static_cast<int>(s.options.candidates.size());
   s.actuators = integer(require(spec, p, "actuators", what), child(p, "actuators"), what + " actuators");
   if (s.actuators < 1) throw InputError(child(p, "actuators"), what + ": the number of actuators must be at least 1");
   if (s.actuators > n_all)
     throw InputError(child(p, "actuators"), fmt::format("{}: {} actuators but only {} candidate joint(s)", what,
                                                         s.actuators, n_all));
-  // Stiffness
+}
+
+// "actuator_stiffness": one value for all candidates, or one per candidate.
+void read_actuator_stiffness(const json& spec, const json_in::Pointer& p, const std::string& what, Spec& s) {
+  auto& o = s.options;
+  const int n_all = static_cast<int>(s.options.candidates.size());
   const json_in::Pointer pk = child(p, "actuator_stiffness");
   const auto& k = require(spec, p, "actuator_stiffness", what);
   if (k.is_array()) {
@@ -74,19 +73,25 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
   } else {
     o.actuator_stiffness.assign(n_all, positive(k, pk, what + " actuator_stiffness"));
   }
-  // Directions
+}
+
+// "directions": the platform DOFs reported, in order.
+void read_directions(const json& spec, const json_in::Pointer& p, const std::string& what, Spec& s) {
+  auto& o = s.options;
   const json_in::Pointer pd = child(p, "directions");
   const auto& dirs = array(require(spec, p, "directions", what), pd, what + " directions");
   if (dirs.empty()) throw InputError(pd, what + ": no directions");
   for (std::size_t i = 0; i < dirs.size(); ++i) {
-    const std::string name = string(dirs[i], child(pd, i), "direction");
-    const int d = dof_index(name);
-    if (d < 0) throw InputError(child(pd, i), "unknown direction '" + name + "' (expected ux uy uz rx ry rz)");
+    const int d = dof_name(dirs[i], child(pd, i), "direction", "", "direction");
     for (int e : o.directions)
-      if (e == d) throw InputError(child(pd, i), "direction '" + name + "' repeated");
+      if (e == d) throw InputError(child(pd, i), "direction '" + std::string(kDofNames[d]) + "' repeated");
     o.directions.push_back(d);
   }
-  // Structural terms
+}
+
+// "structural_terms" (optional): the beam terms of the structural compliance.
+void read_structural_terms(const json& spec, const json_in::Pointer& p, const std::string& what, Spec& s) {
+  auto& o = s.options;
   if (spec.contains("structural_terms")) {
     const json_in::Pointer pt = child(p, "structural_terms");
     const auto& t = array(spec["structural_terms"], pt, what + " structural_terms");
@@ -103,7 +108,10 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
       if (!found) throw InputError(child(pt, i), "unknown structural term '" + name + "' (expected axial, shear, torsion, bending)");
     }
   }
-  // Poses
+}
+
+// "poses" (optional; one "reference" pose without): node positions, each a valid geometry.
+void read_poses(const Model& model, const json& spec, const json_in::Pointer& p, const std::string& what, Spec& s) {
   if (spec.contains("poses")) {
     const json_in::Pointer pp = child(p, "poses");
     const auto& poses = array(spec["poses"], pp, what + " poses");
@@ -148,7 +156,12 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
   } else {
     s.poses.push_back({"reference", {}});
   }
-  // Schemes
+}
+
+// "schemes" (optional; every combination of the candidates without).
+void read_schemes(const Model& model, const json& spec, const json_in::Pointer& p, const std::string& what, Spec& s) {
+  auto& o = s.options;
+  const int n_all = static_cast<int>(s.options.candidates.size());
   if (spec.contains("schemes")) {
     const json_in::Pointer ps = child(p, "schemes");
     const auto& sch = array(spec["schemes"], ps, what + " schemes");
@@ -182,7 +195,11 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
                                                                  what, count, kMaxSchemes));
     s.schemes = combinations(n_all, s.actuators);
   }
-  // Ranking
+}
+
+// "rank_by" (optional): the stiffness component and direction that rank the schemes.
+void read_ranking(const json& spec, const json_in::Pointer& p, const std::string& what, Spec& s) {
+  auto& o = s.options;
   s.rank_direction = 0;
   if (spec.contains("rank_by")) {
     const json_in::Pointer pr = child(p, "rank_by");
@@ -209,7 +226,27 @@ Spec read_spec(const Model& model, const json& spec, const std::string& p) {
       if (s.rank_direction < 0) throw InputError(child(pr, "direction"), "rank_by direction '" + d + "' is not among \"directions\"");
     }
   }
-  o.validate(model);
+}
+
+}  // namespace
+
+Spec read_spec(const Model& model, const json& spec, const json_in::Pointer& p) {
+  Spec s;
+  s.load_case = read_load_case(model, spec, p);
+  const std::string what = "actuator_allocation analysis";
+  expect_keys(spec, p, {"id", "type", "description", "platform_node", "candidate_joints", "actuators",
+                        "actuator_stiffness", "directions", "structural_terms", "poses", "schemes", "rank_by",
+                        "load_case"});
+  s.options.platform_node = node_ref(model, require(spec, p, "platform_node", what), child(p, "platform_node"));
+  read_candidates(model, spec, p, what, s);
+  read_actuator_count(spec, p, what, s);
+  read_actuator_stiffness(spec, p, what, s);
+  read_directions(spec, p, what, s);
+  read_structural_terms(spec, p, what, s);
+  read_poses(model, spec, p, what, s);
+  read_schemes(model, spec, p, what, s);
+  read_ranking(spec, p, what, s);
+  s.options.validate(model);
   return s;
 }
 

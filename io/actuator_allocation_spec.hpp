@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/model.hpp"
+#include "io/json_pointer.hpp"
 #include "solvers/actuator_allocation.hpp"
 
 namespace beamfea::allocation_spec {
@@ -35,6 +36,6 @@ struct Spec {
 };
 
 // The analysis's spec at JSON pointer `pointer`, checked against the model (InputError naming the field).
-Spec read_spec(const Model& model, const nlohmann::json& spec, const std::string& pointer);
+Spec read_spec(const Model& model, const nlohmann::json& spec, const json_in::Pointer& pointer);
 
 }  // namespace beamfea::allocation_spec

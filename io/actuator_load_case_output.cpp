@@ -1,10 +1,11 @@
 #include "io/actuator_load_case_output.hpp"
 
-#include <Eigen/LU>
 #include <fmt/format.h>
 
 #include <cmath>
 #include <limits>
+
+#include "solvers/scheme_ranking.hpp"
 
 namespace beamfea {
 
@@ -26,24 +27,6 @@ constexpr const char* kModels[] = {"actuated", "structural", "total"};
 
 }  // namespace
 
-std::array<Eigen::VectorXd, 3> loaded_components(const SchemeLoadResponse& r, int nd) {
-  std::array<Eigen::VectorXd, 3> c;
-  for (int w = 0; w < 3; ++w) {
-    c[w] = Eigen::VectorXd::Constant(nd, std::numeric_limits<double>::quiet_NaN());
-    const auto& m = model_of(r, w);
-    if (!m.stiffness_ok) continue;
-    if (w == 0) {
-      c[w] = m.K_loaded.diagonal();  // as the unloaded "actuated" component, K_A,dd
-      continue;
-    }
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(m.K_loaded);
-    if (!lu.isInvertible()) continue;
-    const Eigen::MatrixXd C = lu.inverse();
-    for (int d = 0; d < nd; ++d) c[w][d] = 1.0 / C(d, d);
-  }
-  return c;
-}
-
 void write_load_response(const Model& model, const AllocationOptions& o, const std::vector<int>& scheme,
                          const SchemeLoadResponse& r, ojson& po) {
   ojson eff = ojson::array();
@@ -64,7 +47,7 @@ void write_load_response(const Model& model, const AllocationOptions& o, const s
   disp["messages"] = msgs;
   po["platform_displacement"] = disp;
   const int nd = static_cast<int>(o.directions.size());
-  const auto comp = loaded_components(r, nd);
+  const auto comp = loaded_scheme_components(r, nd);
   ojson ks, kmsg, co;
   for (int w = 0; w < 3; ++w) {
     const auto& m = model_of(r, w);
@@ -93,7 +76,7 @@ std::string efforts_csv_rows(const Model& model, const AllocationOptions& o, con
 std::string load_case_csv_rows(const AllocationOptions& o, const std::string& name, const std::string& pose,
                                const SchemeLoadResponse& r) {
   const int nd = static_cast<int>(o.directions.size());
-  const auto comp = loaded_components(r, nd);
+  const auto comp = loaded_scheme_components(r, nd);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::string s;
   for (int d = 0; d < nd; ++d) {

@@ -11,10 +11,6 @@
 
 namespace beamfea {
 
-// Per direction of options.directions: loaded actuated K_dd, structural 1/C_dd, total 1/C_dd
-// (C = K^-1), as the unloaded components; NaN where absent.
-std::array<Eigen::VectorXd, 3> loaded_components(const SchemeLoadResponse& r, int directions);
-
 // The keys "actuator_efforts", "platform_displacement" and "loaded_stiffness" of one scheme at one pose.
 void write_load_response(const Model& model, const AllocationOptions& options, const std::vector<int>& scheme,
                          const SchemeLoadResponse& r, ojson& pose_result);

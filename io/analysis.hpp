@@ -1,10 +1,11 @@
 #pragma once
 // Analyses read from "analyses": [{"id": ..., "type": ...}, ...].
 //
-// Each type registers a `check` (validates its spec against the model: InputError with the
-// JSON pointer) and a `run` (returns the JSON object stored at analyses.<id> in results.json and
-// writes its own files into the output folder, each atomically). The registry is in
-// io/analysis_registry.cpp: one line per analysis type.
+// Each type registers one reader of its spec into its own Spec struct (options, load case,
+// outputs; validated against the model: InputError with the JSON pointer) and a run function that
+// receives that Spec, never the raw JSON (it returns the JSON object stored at analyses.<id> in
+// results.json and writes its own files into the output folder, each atomically). The registry is
+// in io/analysis_registry.cpp: one line per analysis type, made by register_analysis<Spec>.
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -38,7 +39,6 @@ using MessageSink = std::function<void(const std::string&)>;
 // and of the last node stiffness (its directions and names).
 struct RunWorkspace {
   LinearSystemCache systems;
-  LoadSet loads;
   LinearStaticResult linear;
   LinearSolveScratch linear_scratch;
   std::vector<Station> stations;
@@ -55,8 +55,6 @@ struct RunCache {
 
 struct AnalysisContext {
   const Model& model;
-  const nlohmann::json& document;   // the whole input document
-  const nlohmann::json& spec;       // this analysis's object
   std::string pointer;              // "/analyses/<i>"
   std::string id;                   // a safe file-name stem (check_analyses: analysis_id)
   std::filesystem::path out_dir;    // empty: write no files (sweeps, tests); a staging folder
@@ -105,7 +103,7 @@ struct AnalysisOutcome {
 // The files an analysis may write into the output folder, named from its id: whole names
 // ("<id>.vtu", "<id>.pvd") and numbered families "<stem><k>.vtu" (k = 0, 1, 2 ... written
 // without leading zeros; the stem ends in a letter, "<id>_mode"). check_analyses rejects two
-// analyses whose files could have one name (issue 9: "a" buckling writes a_mode1.vtu, and so
+// analyses whose files could have one name ("a" buckling writes a_mode1.vtu, and so
 // would an analysis "a_mode1").
 struct AnalysisFiles {
   std::vector<std::string> names;
@@ -114,13 +112,28 @@ struct AnalysisFiles {
 
 struct AnalysisType {
   std::string name;
-  // Validates the spec against the model, covering everything the run needs that input can
-  // decide without solving (InputError with the JSON pointer). `check` and `run` share it.
+  // Validates the spec against the model, covering everything the run needs that input can decide
+  // without solving (InputError with the JSON pointer): the type's reader, its Spec discarded.
   std::function<void(const Model&, const nlohmann::json& spec, const json_in::Pointer& pointer)> check;
-  std::function<AnalysisOutcome(const AnalysisContext&)> run;
+  // Reads the spec of a checked document with the same reader, on the stack (a sweep case allocates
+  // nothing for it), and runs the analysis of that Spec.
+  std::function<AnalysisOutcome(const AnalysisContext&, const nlohmann::json& spec)> run;
   // Every file `run` may write for an analysis of this id (empty: it writes none).
   std::function<AnalysisFiles(const std::string& id)> files;
 };
+
+// An analysis type of one reader, `read` (the raw JSON into a Spec, validated), and one run
+// function, `run`, that takes the Spec.
+template <class Spec>
+AnalysisType register_analysis(std::string name, Spec (*read)(const Model&, const nlohmann::json&, const json_in::Pointer&),
+                               AnalysisOutcome (*run)(const AnalysisContext&, const Spec&),
+                               std::function<AnalysisFiles(const std::string& id)> files) {
+  return {std::move(name), [read](const Model& m, const nlohmann::json& spec, const json_in::Pointer& p) { read(m, spec, p); },
+          [read, run](const AnalysisContext& ctx, const nlohmann::json& spec) {
+            return run(ctx, read(ctx.model, spec, ctx.pointer));
+          },
+          std::move(files)};
+}
 
 const std::vector<AnalysisType>& analysis_types();
 const AnalysisType* find_analysis_type(const std::string& name);

@@ -9,31 +9,39 @@
 #include "io/mode_shapes_vtk.hpp"
 #include "io/json_util.hpp"
 #include "io/load_reader.hpp"
+#include "io/result_status.hpp"
 #include "solvers/buckling.hpp"
 
 namespace beamfea {
 
 namespace {
 
-void check_buckling(const Model& model, const nlohmann::json& spec, const std::string& p) {
+struct BucklingSpec {
+  BucklingOptions options;
+  std::string load_case;  // "": the default loads
+};
+
+BucklingSpec check_buckling(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
+  BucklingSpec s;
+  s.load_case = read_load_case(model, spec, p);
   json_in::expect_keys(spec, p, {"id", "type", "description", "modes", "load_case"});
-  if (spec.contains("modes")) json_in::integer_in(spec["modes"], json_in::child(p, "modes"), "buckling modes", 1, kMaxModes);
+  if (const nlohmann::json* modes = json_in::field(spec, "modes"))
+    s.options.modes = json_in::integer_in(*modes, json_in::child(p, "modes"), "buckling modes", 1, kMaxModes);
   check_nonlinear_model(model, p);
+  return s;
 }
 
-AnalysisOutcome run_buckling(const AnalysisContext& ctx) {
+AnalysisOutcome run_buckling(const AnalysisContext& ctx, const BucklingSpec& spec) {
   const Model& model = ctx.model;
-  BucklingOptions opt;
-  if (ctx.spec.contains("modes")) opt.modes = ctx.spec["modes"].get<int>();
   // The reference load: the analysis's load case, or the default loads.
-  const BucklingResult r = solve_buckling(model_for_load_case(model, ctx.spec), opt);
+  const BucklingResult r = solve_buckling(model, model.loads_for(spec.load_case), spec.options);
   AnalysisOutcome out;
   // Room for every key (type, load_case, status, message, free_dofs, load_factors, modes, vtk,
   // vtk_scale, wall_time_s): an ordered_json object that grows deep copies what it holds.
   out.result = object_with_capacity(10);
   out.result["type"] = "buckling";
-  if (ctx.spec.contains("load_case")) out.result["load_case"] = json_in::id(ctx.spec["load_case"], "", "load_case");
-  out.result["status"] = to_string(r.status);
+  if (!spec.load_case.empty()) out.result["load_case"] = spec.load_case;
+  out.result["status"] = result_status(r.status);
   out.result["message"] = r.message;
   out.result["free_dofs"] = r.free_dofs;
   out.message = r.message;
@@ -66,8 +74,8 @@ AnalysisOutcome run_buckling(const AnalysisContext& ctx) {
 }  // namespace
 
 AnalysisType buckling_analysis() {
-  return {"buckling", check_buckling, run_buckling,
-          [](const std::string& id) { return AnalysisFiles{{id + ".pvd"}, {id + "_mode"}}; }};
+  return register_analysis<BucklingSpec>("buckling", check_buckling, run_buckling,
+                                         [](const std::string& id) { return AnalysisFiles{{id + ".pvd"}, {id + "_mode"}}; });
 }
 
 }  // namespace beamfea

@@ -11,6 +11,7 @@
 #include "io/model_check.hpp"
 #include "io/load_reader.hpp"
 #include "io/model_reader.hpp"
+#include "io/result_status.hpp"
 #include "io/vtk_writer.hpp"
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/linear_static.hpp"
@@ -170,60 +171,94 @@ void defer_members(DeferredParts& deferred, ojson& slot, const Model& model, std
 constexpr int kDefaultStations = 10;
 constexpr int kMaxStations = 10000;
 
-void check_linear_static(const Model&, const nlohmann::json& spec, const json_in::Pointer& p) {
+struct LinearStaticSpec {
+  std::string load_case;  // "": the default loads
+  int stations = kDefaultStations;
+};
+
+LinearStaticSpec check_linear_static(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
+  LinearStaticSpec s;
+  s.load_case = read_load_case(model, spec, p);
   json_in::expect_keys(spec, p, {"id", "type", "description", "load_case", "stations"});
-  if (spec.contains("stations")) {
-    const int n = json_in::integer_at_least(spec["stations"], json_in::child(p, "stations"), "linear_static stations", 0);
-    if (n > kMaxStations) throw InputError(json_in::child(p, "stations"), "linear_static: at most 10000 stations");
+  if (const nlohmann::json* stations = json_in::field(spec, "stations")) {
+    s.stations = json_in::integer_at_least(*stations, json_in::child(p, "stations"), "linear_static stations", 0);
+    if (s.stations > kMaxStations) throw InputError(json_in::child(p, "stations"), "linear_static: at most 10000 stations");
   }
+  return s;
+}
+
+// The linear system of the run (one factorisation for every linear case of the run): with a
+// workspace kept from the last run (a sweep worker's), the system of the last run when the
+// model's structure is the same (solvers/structure_cache.hpp).
+std::shared_ptr<const LinearSystem> run_linear_system(const AnalysisContext& ctx) {
+  if (ctx.cache && ctx.cache->linear) return ctx.cache->linear;
+  RunWorkspace* kept = ctx.cache ? ctx.cache->workspace : nullptr;
+  LinearStaticOptions options;
+  options.parallel = ctx.parallel;
+  std::shared_ptr<const LinearSystem> system =
+      kept ? kept->systems.get(ctx.model) : std::make_shared<const LinearSystem>(ctx.model, options);
+  if (ctx.cache) ctx.cache->linear = system;
+  return system;
+}
+
+// The displaced shape and the section forces, as DIR/<id>.vtu.
+void write_linear_vtu(const AnalysisContext& ctx, const LinearStaticResult& r, const std::string& file) {
+  const Model& model = ctx.model;
+  VtkFrame f;
+  for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+    f.displacement.push_back(r.u.segment<3>(6 * n));
+    f.rotation.push_back(r.u.segment<3>(6 * n + 3));
+  }
+  f.end_forces = r.end_forces;
+  // Diagrams follow the member loads between the nodes.
+  f.section_forces = [&](int e, double xi) {
+    const auto& el = model.elements[e];
+    const double Le = (model.nodes[el.nodes[1]].x - model.nodes[el.nodes[0]].x).norm();
+    return section_forces_at(xi * Le, r.end_forces[e], r.element_loads[e]);
+  };
+  write_vtu((ctx.out_dir / file).string(), model, f);
+}
+
+// The joints' coordinates and reactions, written over `v`.
+void set_joints(ojson& v, const Model& model, const LinearStaticResult& r) {
+  ObjectFiller joints(v, model.joints.size());
+  std::size_t offset = 6 * model.nodes.size();
+  for (std::size_t j = 0; j < model.joints.size(); ++j) {
+    const auto nc = static_cast<std::size_t>(model.joints[j].coordinates());
+    ObjectFiller o(joints.slot(model.joints[j].id), 2);
+    set_numbers(o.slot("coordinates"), r.u.data() + offset, nc);
+    set_numbers(o.slot("reaction"), r.joint_forces[j].data(), 6);
+    o.finish();
+    offset += nc;
+  }
+  joints.finish();
 }
 
 // The keys of a linear_static result (type, load_case, status, message, free_dofs, factorizations,
 // mechanism, nodes, elements, joints, statically_indeterminate, vtk) and run_document's wall_time_s.
 constexpr std::size_t kLinearStaticResultKeys = 13;
 
-AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
+AnalysisOutcome run_linear_static(const AnalysisContext& ctx, const LinearStaticSpec& spec) {
   const Model& model = ctx.model;
   AnalysisOutcome out;
-  // One factorisation for every linear case of the run.
-  // With a workspace kept from the last run (a sweep worker's), the system of the last run when the
-  // model's structure is the same (solvers/structure_cache.hpp), and the solution written over the
-  // last one.
+  const std::shared_ptr<const LinearSystem> system = run_linear_system(ctx);
+  // With a workspace kept from the last run, the solution is written over the last one.
   RunWorkspace* kept = ctx.cache ? ctx.cache->workspace : nullptr;
-  std::shared_ptr<const LinearSystem> system;
-  if (ctx.cache && ctx.cache->linear) system = ctx.cache->linear;
-  if (!system) {
-    LinearStaticOptions options;
-    options.parallel = ctx.parallel;
-    system = kept ? kept->systems.get(model) : std::make_shared<const LinearSystem>(model, options);
-    if (ctx.cache) ctx.cache->linear = system;
-  }
-  std::string case_id;
-  if (const nlohmann::json* load_case = json_in::field(ctx.spec, "load_case")) case_id = json_in::id(*load_case, "", "load_case");
+  const LoadSet& loads = model.loads_for(spec.load_case);
   std::shared_ptr<const LinearStaticResult> fresh;  // when nothing is kept (shared with deferred parts)
   std::vector<Station> fresh_stations;
   std::vector<double> fresh_positions;
-  if (kept) {
-    if (case_id.empty()) {
-      model.default_loads(kept->loads);
-      system->solve(kept->loads, kept->linear, kept->linear_scratch);
-    } else {
-      system->solve(model.loads_of(case_id), kept->linear, kept->linear_scratch);
-    }
-  } else {
-    fresh = std::make_shared<const LinearStaticResult>(
-        system->solve(case_id.empty() ? model.default_loads() : model.loads_of(case_id)));
-  }
+  if (kept) system->solve(loads, kept->linear, kept->linear_scratch);
+  else fresh = std::make_shared<const LinearStaticResult>(system->solve(loads));
   const LinearStaticResult& r = kept ? kept->linear : *fresh;
-  const nlohmann::json* stations_value = json_in::field(ctx.spec, "stations");
-  const int stations = stations_value ? stations_value->get<int>() : kDefaultStations;
+  const int stations = spec.stations;
   // Written over the previous run's result when there is one (a sweep worker's: the nodes' and
   // elements' objects and arrays keep their storage when the model keeps its shape).
   if (ctx.previous_result) out.result = std::move(*ctx.previous_result);
   ObjectFiller res(out.result, kLinearStaticResultKeys);
   set_string(res.slot("type"), "linear_static");
-  if (!case_id.empty()) set_string(res.slot("load_case"), case_id);
-  set_string(res.slot("status"), r.status == SolveStatus::Succeeded ? "ok" : to_string(r.status));
+  if (!spec.load_case.empty()) set_string(res.slot("load_case"), spec.load_case);
+  set_string(res.slot("status"), result_status(r.status));
   set_string(res.slot("message"), r.message);
   res.slot("free_dofs") = r.free_dofs;
   res.slot("factorizations") = system->factorizations();
@@ -254,35 +289,11 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
       set_member(members.slot(model.members[m].id), model, r, m, stations, station_storage, position_storage);
     members.finish();
   }
-  {
-    ObjectFiller joints(res.slot("joints"), model.joints.size());
-    std::size_t offset = 6 * model.nodes.size();
-    for (std::size_t j = 0; j < model.joints.size(); ++j) {
-      const auto nc = static_cast<std::size_t>(model.joints[j].coordinates());
-      ObjectFiller o(joints.slot(model.joints[j].id), 2);
-      set_numbers(o.slot("coordinates"), r.u.data() + offset, nc);
-      set_numbers(o.slot("reaction"), r.joint_forces[j].data(), 6);
-      o.finish();
-      offset += nc;
-    }
-    joints.finish();
-  }
+  set_joints(res.slot("joints"), model, r);
   set_strings(res.slot("statically_indeterminate"), r.statically_indeterminate);
   if (!ctx.out_dir.empty() && ctx.write_vtk) {
-    VtkFrame f;
-    for (std::size_t n = 0; n < model.nodes.size(); ++n) {
-      f.displacement.push_back(r.u.segment<3>(6 * n));
-      f.rotation.push_back(r.u.segment<3>(6 * n + 3));
-    }
-    f.end_forces = r.end_forces;
-    // Diagrams follow the member loads between the nodes.
-    f.section_forces = [&](int e, double xi) {
-      const auto& el = model.elements[e];
-      const double Le = (model.nodes[el.nodes[1]].x - model.nodes[el.nodes[0]].x).norm();
-      return section_forces_at(xi * Le, r.end_forces[e], r.element_loads[e]);
-    };
     const std::string file = ctx.id + ".vtu";
-    write_vtu((ctx.out_dir / file).string(), model, f);
+    write_linear_vtu(ctx, r, file);
     set_string(res.slot("vtk"), file);
   }
   res.finish();
@@ -294,26 +305,34 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx) {
 // length_scale, scaled_eigenvalues), and run_document's wall_time_s.
 constexpr std::size_t kStiffnessResultKeys = 16;
 
-void check_stiffness(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
+struct StiffnessSpec {
+  int node = -1;
+  std::string load_case;  // "": the linear stiffness; otherwise the loaded-mode one about this case
+};
+
+StiffnessSpec check_stiffness(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
+  StiffnessSpec s;
+  s.load_case = read_load_case(model, spec, p);
   json_in::expect_keys(spec, p, {"id", "type", "description", "node", "load_case"});
-  node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
-  // Any node answers: where supports, loops or rigid links hold it, its compliance is zero
-  // and rigid_directions names the directions (solvers/condensed_stiffness.hpp, node_compliance).
+  s.node = node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
+  // Any node answers: where supports, loops or rigid links hold it, its compliance is zero and
+  // rigid_directions names the directions (solvers/condensed_stiffness.hpp, node_compliance).
+  return s;
 }
 
-AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
+AnalysisOutcome run_stiffness(const AnalysisContext& ctx, const StiffnessSpec& spec) {
   const Model& model = ctx.model;
-  const int node = node_ref(model, ctx.spec.at("node"), json_in::child(ctx.pointer, "node"));
+  const int node = spec.node;
   AnalysisOutcome out;
   // With a load case, the loaded-mode stiffness about its preload (K + K_g).
-  const bool loaded = ctx.spec.contains("load_case");
+  const bool loaded = !spec.load_case.empty();
   // Written over the last run's when a workspace is kept (a sweep worker's: the vectors of
   // directions and names keep their storage).
   RunWorkspace* kept = ctx.cache ? ctx.cache->workspace : nullptr;
   CondensedStiffness fresh;
   CondensedStiffness& k = kept ? kept->stiffness : fresh;
   if (loaded) {
-    k = loaded_node_stiffness(model_for_load_case(model, ctx.spec), node);
+    k = loaded_node_stiffness(model, model.loads_for(spec.load_case), node);
   } else {
     // The message formatted into the previous run's message storage, when there is one (a sweep
     // case then allocates nothing for it).
@@ -327,8 +346,8 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
   ObjectFiller r(out.result, kStiffnessResultKeys);
   set_string(r.slot("type"), "stiffness");
   set_string(r.slot("node"), model.nodes[node].id);
-  if (loaded) set_string(r.slot("load_case"), json_in::id(ctx.spec["load_case"], "", "load_case"));
-  set_string(r.slot("status"), k.ok ? "ok" : "mechanism");
+  if (loaded) set_string(r.slot("load_case"), spec.load_case);
+  set_string(r.slot("status"), stiffness_status(k.ok));
   set_string(r.slot("message"), k.message);
   out.message = std::move(k.message);
   if (!k.ok) {
@@ -354,11 +373,12 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx) {
 }  // namespace
 
 AnalysisType linear_static_analysis() {
-  return {"linear_static", check_linear_static, run_linear_static,
-          [](const std::string& id) { return AnalysisFiles{{id + ".vtu"}, {}}; }};
+  return register_analysis<LinearStaticSpec>("linear_static", check_linear_static, run_linear_static,
+                                             [](const std::string& id) { return AnalysisFiles{{id + ".vtu"}, {}}; });
 }
 AnalysisType stiffness_analysis() {
-  return {"stiffness", check_stiffness, run_stiffness, [](const std::string&) { return AnalysisFiles{}; }};  // no files
+  return register_analysis<StiffnessSpec>("stiffness", check_stiffness, run_stiffness,
+                                          [](const std::string&) { return AnalysisFiles{}; });  // no files
 }
 
 }  // namespace beamfea

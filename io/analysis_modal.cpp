@@ -10,6 +10,7 @@
 #include "io/json_util.hpp"
 #include "io/load_reader.hpp"
 #include "io/mode_shapes_vtk.hpp"
+#include "io/result_status.hpp"
 #include "solvers/modal.hpp"
 
 namespace beamfea {
@@ -18,31 +19,27 @@ namespace {
 
 constexpr const char* kDirections[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
 
-ModalOptions read_options(const nlohmann::json& spec) {
-  ModalOptions o;
-  if (spec.contains("modes")) o.modes = spec["modes"].get<int>();
-  if (spec.contains("mass")) o.mass = spec["mass"].get<std::string>() == "lumped" ? MassKind::Lumped : MassKind::Consistent;
-  o.preload = spec.contains("load_case");
-  return o;
-}
+struct ModalSpec {
+  ModalOptions options;   // preload: with a load case
+  std::string load_case;  // "": no preload; otherwise about the linear static state of this case
+};
 
-void check_modal(const Model& model, const nlohmann::json& spec, const std::string& p) {
+ModalSpec check_modal(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
+  ModalSpec s;
+  s.load_case = read_load_case(model, spec, p);
+  s.options.preload = !s.load_case.empty();
   json_in::expect_keys(spec, p, {"id", "type", "description", "modes", "mass", "load_case"});
-  if (spec.contains("modes")) {
+  if (const nlohmann::json* modes = json_in::field(spec, "modes")) {
     const json_in::Pointer mp = json_in::child(p, "modes");
-    const int m = json_in::integer_in(spec["modes"], mp, "modal modes", 1, kMaxModes);
+    s.options.modes = json_in::integer_in(*modes, mp, "modal modes", 1, kMaxModes);
     const int n = modal_dof_count(model);
-    if (m > n)
-      throw InputError(mp, "modal: " + std::to_string(m) + " modes asked for, but the model has only " +
+    if (s.options.modes > n)
+      throw InputError(mp, "modal: " + std::to_string(s.options.modes) + " modes asked for, but the model has only " +
                                std::to_string(n) + " free DOFs");
   }
-  if (spec.contains("mass")) {
-    const json_in::Pointer mp = json_in::child(p, "mass");
-    const std::string kind = json_in::string(spec["mass"], mp, "modal mass");
-    if (kind != "consistent" && kind != "lumped")
-      throw InputError(mp, "modal: unknown mass '" + kind + "' (expected consistent or lumped)");
-  }
-  // load_case: checked by the registry (io/load_reader.hpp, check_load_case): a case or a combination.
+  if (const nlohmann::json* mass = json_in::field(spec, "mass"))
+    s.options.mass = json_in::mass_kind(*mass, json_in::child(p, "mass"), "modal mass", "modal");
+  return s;
 }
 
 ojson per_direction(const Eigen::VectorXd& v) {
@@ -51,20 +48,20 @@ ojson per_direction(const Eigen::VectorXd& v) {
   return o;
 }
 
-AnalysisOutcome run_modal(const AnalysisContext& ctx) {
+AnalysisOutcome run_modal(const AnalysisContext& ctx, const ModalSpec& spec) {
   const Model& model = ctx.model;
-  const ModalOptions opt = read_options(ctx.spec);
-  const ModalResult r = solve_modal(model_for_load_case(model, ctx.spec), opt);
+  const ModalOptions& opt = spec.options;
+  const ModalResult r = solve_modal(model, model.loads_for(spec.load_case), opt);
   AnalysisOutcome out;
   // Room for every key (16 with run_document's wall_time_s): an ordered_json object that grows
   // deep copies what it holds.
   out.result = object_with_capacity(16);
   out.result["type"] = "modal";
-  out.result["status"] = to_string(r.status);
+  out.result["status"] = result_status(r.status);
   out.result["message"] = r.message;
   out.result["free_dofs"] = r.free_dofs;
   out.result["mass"] = opt.mass == MassKind::Lumped ? "lumped" : "consistent";
-  if (ctx.spec.contains("load_case")) out.result["load_case"] = ctx.spec["load_case"];
+  if (!spec.load_case.empty()) out.result["load_case"] = spec.load_case;
   out.message = r.message;
   if (r.status != ModalStatus::Succeeded) {
     out.termination = r.status == ModalStatus::MasslessMechanism ? AnalysisTermination::Mechanism
@@ -110,8 +107,8 @@ AnalysisOutcome run_modal(const AnalysisContext& ctx) {
 }  // namespace
 
 AnalysisType modal_analysis() {
-  return {"modal", check_modal, run_modal,
-          [](const std::string& id) { return AnalysisFiles{{id + ".pvd"}, {id + "_mode"}}; }};
+  return register_analysis<ModalSpec>("modal", check_modal, run_modal,
+                                      [](const std::string& id) { return AnalysisFiles{{id + ".pvd"}, {id + "_mode"}}; });
 }
 
 }  // namespace beamfea

@@ -23,6 +23,7 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -33,6 +34,7 @@
 #include "io/load_reader.hpp"
 #include "solvers/member_loading.hpp"
 #include "io/model_reader.hpp"
+#include "io/result_status.hpp"
 #include "solvers/structure.hpp"
 #include "io/vtk_writer.hpp"
 #include "solvers/path_following.hpp"
@@ -51,14 +53,9 @@ constexpr int kMaxCuts = 100;
 constexpr int kMaxImperfectionMode = 1000;   // as buckling's "modes"
 constexpr int kMaxFrequencyModes = 1000;     // as modal's "modes"
 
-int dof_of(const nlohmann::json& v, const std::string& p) {
-  const std::string name = json_in::string(v, p, "dof");
-  const int d = dof_index(name);
-  if (d < 0) throw InputError(p, "unknown DOF '" + name + "' (expected ux uy uz rx ry rz)");
-  return d;
-}
+int dof_of(const nlohmann::json& v, const json_in::Pointer& p) { return json_in::dof_name(v, p, "dof", ""); }
 
-PathOptions parse(const Model& model, const nlohmann::json& spec, const std::string& p) {
+PathOptions parse(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
   PathOptions o;
   json_in::expect_keys(spec, p, {"id", "type", "description", "control", "stop", "max_steps", "track", "stiffness_node",
                                  "branch_switch", "stability", "desired_iterations", "max_cuts", "imperfection",
@@ -140,10 +137,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
                                                                   kMaxFrequencyModes)
                                             : 1;
     if (f.contains("mass")) {
-      const std::string kind = json_in::string(f["mass"], child(pf, "mass"), "frequencies mass");
-      if (kind != "consistent" && kind != "lumped")
-        throw InputError(child(pf, "mass"), "path frequencies: unknown mass '" + kind + "' (expected consistent or lumped)");
-      o.frequency_mass = kind == "lumped" ? MassKind::Lumped : MassKind::Consistent;
+      o.frequency_mass = json_in::mass_kind(f["mass"], child(pf, "mass"), "frequencies mass", "path frequencies");
     }
   }
   if (o.branch_switch && o.control != PathControl::ArcLength)
@@ -151,9 +145,19 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const std::str
   return o;
 }
 
-void check_path(const Model& model, const nlohmann::json& spec, const std::string& p) {
-  const PathOptions o = parse(model, spec, p);
-  if (spec.contains("save_every")) json_in::integer_at_least(spec["save_every"], child(p, "save_every"), "save_every", 1);
+struct PathSpec {
+  PathOptions options;
+  std::string load_case;  // "": the default loads
+  int save_every = 1;     // a .vtu every save_every steps (and the last)
+};
+
+PathSpec check_path(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
+  PathSpec ps;
+  ps.load_case = read_load_case(model, spec, p);
+  ps.options = parse(model, spec, p);
+  const PathOptions& o = ps.options;
+  if (const nlohmann::json* save_every = json_in::field(spec, "save_every"))
+    ps.save_every = json_in::integer_at_least(*save_every, child(p, "save_every"), "save_every", 1);
   // What the path needs of the model, decided before anything runs.
   check_nonlinear_model(model, p);
   const DofMap map(model);
@@ -164,8 +168,8 @@ void check_path(const Model& model, const nlohmann::json& spec, const std::strin
                                                               model.describe({DofRef::Owner::Node, o.control_node, o.control_dof}) +
                                                               " " + why + ": it cannot be the controlled DOF");
   } else {
-    // The reference load: the analysis's load case (already checked), or the default loads.
-    const Eigen::VectorXd f = external_force(model, map, spec.contains("load_case") ? model.loads_of(json_in::id(spec["load_case"], "", "load_case")) : model.default_loads());
+    // The reference load: the analysis's load case, or the default loads.
+    const Eigen::VectorXd f = external_force(model, map, model.loads_for(ps.load_case));
     if (f.size() == 0 || !(f.cwiseAbs().maxCoeff() > 0.0))
       throw InputError(child(p, "control"), "path: the model has no loads to scale; add \"loads\", or use displacement "
                                             "control ({\"node\", \"dof\", \"to\"}) to impose a motion");
@@ -186,6 +190,7 @@ void check_path(const Model& model, const nlohmann::json& spec, const std::strin
     throw InputError(child(child(p, "imperfection"), "mode"),
                      fmt::format("imperfection: buckling mode {} does not exist: the model has {} free DOF(s)",
                                  o.imperfection_mode, map.free_size()));
+  return ps;
 }
 
 ojson node_map(const Model& model, const Eigen::VectorXd& raw) {
@@ -204,73 +209,50 @@ const char* control_name(PathControl c) {
   return "?";
 }
 
-AnalysisOutcome run_path(const AnalysisContext& ctx) {
-  // The reference load: the analysis's load case, or the default loads.
-  const Model model = model_for_load_case(ctx.model, ctx.spec);
-  PathOptions o = parse(model, ctx.spec, ctx.pointer);
-  const int save_every = ctx.spec.contains("save_every") ? ctx.spec["save_every"].get<int>() : 1;
-  // One line per step on stderr through the run's progress sink (silent with --quiet).
-  if (ctx.progress) o.progress = [&](const std::string& s) { ctx.progress("path " + ctx.id + ": " + s); };
-  const PathResult r = follow_path(model, o);
-  const bool imposed = o.control == PathControl::Displacement && r.steps.size() &&
-                       std::any_of(r.steps.begin(), r.steps.end(), [](const PathStep& s) { return s.reaction != 0.0; });
-
-  AnalysisOutcome out;
-  // Room for every key (13 with run_document's wall_time_s): an ordered_json object that grows
-  // deep copies what it holds (here the steps).
-  out.result = object_with_capacity(16);
-  out.result["type"] = "path";
-  out.result["status"] = r.completed ? "ok" : "failed";
-  out.result["termination"] = r.brief_report();
-  out.result["completed"] = r.completed;
-  out.result["control"] = control_name(o.control);
-  out.result["free_dofs"] = r.free_dofs;
-  if (!r.completed) out.termination = AnalysisTermination::NotConverged;
-  out.result["statically_indeterminate"] = r.statically_indeterminate;
-  out.message = fmt::format("path: {} steps, {}", r.steps.empty() ? 0 : r.steps.size() - 1, r.brief_report());
-  ojson steps = ojson::array();
-  for (const auto& s : r.steps) {
-    ojson j = object_with_capacity(20);  // a step's keys (at most 19)
-    j["step"] = s.step;
-    j["load_factor"] = s.load_factor;
-    j["control"] = s.control;
-    j["arc_length"] = s.arc_length;
-    // All corrector iterations of the step; those on the start state's factor also apart.
-    j["iterations"] = s.iterations + s.chord_iterations;
-    j["chord_iterations"] = s.chord_iterations;
-    ojson nodes = ojson::object();
-    for (std::size_t k = 0; k < o.track.size(); ++k)
-      nodes[model.nodes[o.track[k]].id] = ojson{{"displacement", to_json(s.track[k])}};
-    j["nodes"] = std::move(nodes);
-    j["negative_eigenvalues"] = s.negative_eigenvalues;
-    j["stable"] = s.stable;
-    j["min_eigenvalue"] = s.min_eigenvalue;
-    if (o.stiffness_node >= 0) {
-      j["stiffness"] = s.stiffness ? to_json(*s.stiffness) : ojson(nullptr);
-      const bool ok = s.node_stiffness && s.node_stiffness->ok;
-      j["compliance"] = ok ? to_json(s.node_stiffness->compliance) : ojson(nullptr);
-      j["compliance_bounded"] = ok ? ojson(s.node_stiffness->compliance_bounded()) : ojson(nullptr);
-      j["rank"] = ok ? ojson(s.node_stiffness->rank) : ojson(nullptr);
-      ojson ns = ojson::array(), ud = ojson::array(), rd = ojson::array();
-      if (ok) {
-        for (const auto& v : s.node_stiffness->null_space) ns.push_back(to_json(v));
-        for (const auto& v : s.node_stiffness->unbounded_directions()) ud.push_back(to_json(v));
-        for (const auto& v : s.node_stiffness->rigid_directions) rd.push_back(to_json(v));
-      }
-      j["null_space"] = std::move(ns);
-      j["unbounded_directions"] = std::move(ud);
-      j["rigid_directions"] = std::move(rd);
+// One step's object (`imposed`: a reaction is reported).
+ojson step_json(const Model& model, const PathOptions& o, const PathStep& s, bool imposed) {
+  ojson j = object_with_capacity(22);  // a step's keys (at most 21)
+  j["step"] = s.step;
+  j["load_factor"] = s.load_factor;
+  j["control"] = s.control;
+  j["arc_length"] = s.arc_length;
+  // All corrector iterations of the step; those on the start state's factor also apart.
+  j["iterations"] = s.iterations + s.chord_iterations;
+  j["chord_iterations"] = s.chord_iterations;
+  ojson nodes = ojson::object();
+  for (std::size_t k = 0; k < o.track.size(); ++k)
+    nodes[model.nodes[o.track[k]].id] = ojson{{"displacement", to_json(s.track[k])}};
+  j["nodes"] = std::move(nodes);
+  j["negative_eigenvalues"] = s.negative_eigenvalues;
+  j["stable"] = s.stable;
+  j["min_eigenvalue"] = s.min_eigenvalue;
+  if (o.stiffness_node >= 0) {
+    j["stiffness"] = s.stiffness ? to_json(*s.stiffness) : ojson(nullptr);
+    const bool ok = s.node_stiffness && s.node_stiffness->ok;
+    j["compliance"] = ok ? to_json(s.node_stiffness->compliance) : ojson(nullptr);
+    j["compliance_bounded"] = ok ? ojson(s.node_stiffness->compliance_bounded()) : ojson(nullptr);
+    j["rank"] = ok ? ojson(s.node_stiffness->rank) : ojson(nullptr);
+    ojson ns = ojson::array(), ud = ojson::array(), rd = ojson::array();
+    if (ok) {
+      for (const auto& v : s.node_stiffness->null_space) ns.push_back(to_json(v));
+      for (const auto& v : s.node_stiffness->unbounded_directions()) ud.push_back(to_json(v));
+      for (const auto& v : s.node_stiffness->rigid_directions) rd.push_back(to_json(v));
     }
-    if (imposed) j["reaction"] = s.reaction;
-    if (o.frequency_modes > 0) {
-      j["frequencies"] = s.frequencies_failure.empty() ? to_json(s.frequencies) : ojson(nullptr);
-      if (!s.frequencies_failure.empty()) j["frequencies_failure"] = s.frequencies_failure;
-    }
-    // Displacement control: "arc_length" on the steps taken through a snap-back of the controlled DOF.
-    if (o.control == PathControl::Displacement) j["step_control"] = control_name(s.step_control);
-    steps.push_back(std::move(j));
+    j["null_space"] = std::move(ns);
+    j["unbounded_directions"] = std::move(ud);
+    j["rigid_directions"] = std::move(rd);
   }
-  out.result["steps"] = std::move(steps);
+  if (imposed) j["reaction"] = s.reaction;
+  if (o.frequency_modes > 0) {
+    j["frequencies"] = s.frequencies_failure.empty() ? to_json(s.frequencies) : ojson(nullptr);
+    if (!s.frequencies_failure.empty()) j["frequencies_failure"] = s.frequencies_failure;
+  }
+  // Displacement control: "arc_length" on the steps taken through a snap-back of the controlled DOF.
+  if (o.control == PathControl::Displacement) j["step_control"] = control_name(s.step_control);
+  return j;
+}
+
+ojson critical_points_json(const Model& model, const PathResult& r, bool imposed) {
   ojson cps = ojson::array();
   for (const auto& c : r.critical_points) {
     ojson j = object_with_capacity(11);  // a critical point's keys
@@ -286,53 +268,98 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
     j["mode"] = c.mode.size() ? ojson{{"nodes", node_map(model, c.mode)}} : ojson(nullptr);
     cps.push_back(std::move(j));
   }
-  out.result["critical_points"] = std::move(cps);
+  return cps;
+}
+
+// DIR/<id>.csv: one row per step.
+std::string path_csv(const Model& model, const PathOptions& o, const PathResult& r, bool imposed) {
+  std::ostringstream csv;
+  csv << "step,load_factor,control,arc_length,iterations,negative_eigenvalues,stable,min_eigenvalue";
+  if (imposed) csv << ",reaction";
+  for (int k = 0; k < o.frequency_modes; ++k) csv << ",f" << k + 1;
+  for (int n : o.track)
+    for (const char* d : kDofNames) csv << "," << model.nodes[n].id << "_" << d;
+  csv << "\n";
+  for (const auto& s : r.steps) {
+    csv << fmt::format("{},{:.17g},{:.17g},{:.17g},{},{},{},{:.17g}", s.step, s.load_factor, s.control, s.arc_length,
+                       s.iterations + s.chord_iterations, s.negative_eigenvalues, s.stable ? 1 : 0, s.min_eigenvalue);
+    if (imposed) csv << fmt::format(",{:.17g}", s.reaction);
+    for (int k = 0; k < o.frequency_modes; ++k)  // empty cells where fewer (or none) were found
+      csv << (k < s.frequencies.size() ? fmt::format(",{:.17g}", s.frequencies[k]) : std::string(","));
+    for (const auto& t : s.track)
+      for (int k = 0; k < 6; ++k) csv << fmt::format(",{:.17g}", t[k]);
+    csv << "\n";
+  }
+  return csv.str();
+}
+
+// DIR/<id>_step<k>.vtu every save_every steps (and the last), and DIR/<id>.pvd.
+void write_path_vtk(const AnalysisContext& ctx, const Model& model, const PathResult& r, int save_every) {
+  const NonlinearStructure ns(model);
+  std::vector<std::pair<double, std::string>> entries;
+  for (std::size_t i = 0; i < r.steps.size(); ++i) {
+    const auto& s = r.steps[i];
+    if (i % static_cast<std::size_t>(save_every) != 0 && i + 1 != r.steps.size()) continue;
+    VtkFrame f;
+    for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+      f.displacement.push_back(s.state.x[n] - model.nodes[n].x);
+      f.rotation.push_back(log_so3(s.state.R[n]));
+    }
+    f.end_forces = s.end_forces;
+    f.shape = [&](int e, double xi) { return ns.beam_shape(s.state, e, xi); };
+    f.field_data["load_factor"] = s.load_factor;
+    f.field_data["step"] = s.step;
+    f.field_data["stable"] = s.stable ? 1.0 : 0.0;
+    f.field_data["control"] = s.control;
+    const std::string file = fmt::format("{}_step{}.vtu", ctx.id, s.step);
+    write_vtu((ctx.out_dir / file).string(), model, f);
+    entries.emplace_back(static_cast<double>(s.step), file);
+  }
+  write_pvd((ctx.out_dir / (ctx.id + ".pvd")).string(), entries);
+}
+
+AnalysisOutcome run_path(const AnalysisContext& ctx, const PathSpec& spec) {
+  // The reference load: the analysis's load case, or the default loads. follow_path follows the
+  // default loads of the model it is given: a named case needs a model with it as its default.
+  std::optional<Model> with_case;
+  const LoadSet& loads = ctx.model.loads_for(spec.load_case);
+  if (&loads != &ctx.model.default_loads()) {
+    with_case.emplace(ctx.model);
+    with_case->set_default_loads(loads);
+  }
+  const Model& model = with_case ? *with_case : ctx.model;
+  PathOptions o = spec.options;
+  // One line per step on stderr through the run's progress sink (silent with --quiet).
+  if (ctx.progress) o.progress = [&](const std::string& s) { ctx.progress("path " + ctx.id + ": " + s); };
+  const PathResult r = follow_path(model, o);
+  const bool imposed = o.control == PathControl::Displacement && r.steps.size() &&
+                       std::any_of(r.steps.begin(), r.steps.end(), [](const PathStep& s) { return s.reaction != 0.0; });
+
+  AnalysisOutcome out;
+  // Room for every key (13 with run_document's wall_time_s): an ordered_json object that grows
+  // deep copies what it holds (here the steps).
+  out.result = object_with_capacity(16);
+  out.result["type"] = "path";
+  out.result["status"] = path_status(r.completed);
+  out.result["termination"] = r.brief_report();
+  out.result["completed"] = r.completed;
+  out.result["control"] = control_name(o.control);
+  out.result["free_dofs"] = r.free_dofs;
+  if (!r.completed) out.termination = AnalysisTermination::NotConverged;
+  out.result["statically_indeterminate"] = r.statically_indeterminate;
+  out.message = fmt::format("path: {} steps, {}", r.steps.empty() ? 0 : r.steps.size() - 1, r.brief_report());
+  ojson steps = ojson::array();
+  for (const auto& s : r.steps) steps.push_back(step_json(model, o, s, imposed));
+  out.result["steps"] = std::move(steps);
+  out.result["critical_points"] = critical_points_json(model, r, imposed);
   out.result["factorizations"] = r.factorizations;
   out.result["symbolic_analyses"] = r.symbolic_analyses;
-
   if (!ctx.out_dir.empty()) {
-    std::ostringstream csv;
-    csv << "step,load_factor,control,arc_length,iterations,negative_eigenvalues,stable,min_eigenvalue";
-    if (imposed) csv << ",reaction";
-    for (int k = 0; k < o.frequency_modes; ++k) csv << ",f" << k + 1;
-    for (int n : o.track)
-      for (const char* d : kDofNames) csv << "," << model.nodes[n].id << "_" << d;
-    csv << "\n";
-    for (const auto& s : r.steps) {
-      csv << fmt::format("{},{:.17g},{:.17g},{:.17g},{},{},{},{:.17g}", s.step, s.load_factor, s.control, s.arc_length,
-                         s.iterations + s.chord_iterations, s.negative_eigenvalues, s.stable ? 1 : 0, s.min_eigenvalue);
-      if (imposed) csv << fmt::format(",{:.17g}", s.reaction);
-      for (int k = 0; k < o.frequency_modes; ++k)  // empty cells where fewer (or none) were found
-        csv << (k < s.frequencies.size() ? fmt::format(",{:.17g}", s.frequencies[k]) : std::string(","));
-      for (const auto& t : s.track)
-        for (int k = 0; k < 6; ++k) csv << fmt::format(",{:.17g}", t[k]);
-      csv << "\n";
-    }
-    write_text_atomic(ctx.out_dir / (ctx.id + ".csv"), csv.str());
+    write_text_atomic(ctx.out_dir / (ctx.id + ".csv"), path_csv(model, o, r, imposed));
     ojson files;
     files["csv"] = ctx.id + ".csv";
     if (ctx.write_vtk) {
-      const NonlinearStructure ns(model);
-      std::vector<std::pair<double, std::string>> entries;
-      for (std::size_t i = 0; i < r.steps.size(); ++i) {
-        const auto& s = r.steps[i];
-        if (i % static_cast<std::size_t>(save_every) != 0 && i + 1 != r.steps.size()) continue;
-        VtkFrame f;
-        for (std::size_t n = 0; n < model.nodes.size(); ++n) {
-          f.displacement.push_back(s.state.x[n] - model.nodes[n].x);
-          f.rotation.push_back(log_so3(s.state.R[n]));
-        }
-        f.end_forces = s.end_forces;
-        f.shape = [&](int e, double xi) { return ns.beam_shape(s.state, e, xi); };
-        f.field_data["load_factor"] = s.load_factor;
-        f.field_data["step"] = s.step;
-        f.field_data["stable"] = s.stable ? 1.0 : 0.0;
-        f.field_data["control"] = s.control;
-        const std::string file = fmt::format("{}_step{}.vtu", ctx.id, s.step);
-        write_vtu((ctx.out_dir / file).string(), model, f);
-        entries.emplace_back(static_cast<double>(s.step), file);
-      }
-      write_pvd((ctx.out_dir / (ctx.id + ".pvd")).string(), entries);
+      write_path_vtk(ctx, model, r, spec.save_every);
       files["vtk"] = ctx.id + ".pvd";
     }
     out.result["files"] = std::move(files);
@@ -343,8 +370,9 @@ AnalysisOutcome run_path(const AnalysisContext& ctx) {
 }  // namespace
 
 AnalysisType path_analysis() {
-  return {"path", check_path, run_path,
-          [](const std::string& id) { return AnalysisFiles{{id + ".csv", id + ".pvd"}, {id + "_step"}}; }};
+  return register_analysis<PathSpec>("path", check_path, run_path, [](const std::string& id) {
+    return AnalysisFiles{{id + ".csv", id + ".pvd"}, {id + "_step"}};
+  });
 }
 
 }  // namespace beamfea

@@ -64,7 +64,6 @@ void check_analyses(const Model& model, const nlohmann::json& document) {
       for (const auto& x : analysis_types()) known += (known.empty() ? "" : ", ") + x.name;
       throw InputError(json_in::child(p, "type"), "analysis '" + id + "': unknown type '" + type + "' (known: " + known + ")");
     }
-    check_load_case(model, a, p);
     t->check(model, a, p);
     if (several) owners.push_back({id, p, t});
   }

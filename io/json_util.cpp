@@ -1,5 +1,7 @@
 #include "io/json_util.hpp"
 
+#include "core/model.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cctype>
@@ -230,6 +232,21 @@ const json& array(const json& v, const Pointer& pointer, const What& what) {
 const json& object(const json& v, const Pointer& pointer, const What& what) {
   if (!v.is_object()) throw InputError(pointer, msg(what, ": expected an object"));
   return v;
+}
+
+int dof_name(const json& v, const Pointer& pointer, const What& what, const What& context, std::string_view noun) {
+  const std::string name = string(v, pointer, what);
+  const int d = dof_index(name);
+  if (d < 0)
+    throw InputError(pointer, context.str() + "unknown " + std::string(noun) + " '" + name + "' (expected ux uy uz rx ry rz)");
+  return d;
+}
+
+MassKind mass_kind(const json& v, const Pointer& pointer, const What& what, std::string_view context) {
+  const std::string kind = string(v, pointer, what);
+  if (kind == "consistent") return MassKind::Consistent;
+  if (kind == "lumped") return MassKind::Lumped;
+  throw InputError(pointer, std::string(context) + ": unknown mass '" + kind + "' (expected consistent or lumped)");
 }
 
 }  // namespace beamfea::json_in

@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "core/rotation.hpp"
+#include "elements/beam_mass.hpp"
 #include "io/json_pointer.hpp"
 
 namespace beamfea::json_in {
@@ -109,5 +110,13 @@ Vec3 vec3(const json& v, const Pointer& pointer, const What& what);
 std::vector<double> numbers(const json& v, const Pointer& pointer, const What& what);
 const json& array(const json& v, const Pointer& pointer, const What& what);
 const json& object(const json& v, const Pointer& pointer, const What& what);
+
+// The readers of names every spec shares. A DOF name ("ux" ... "rz", core/model.hpp's dof_index):
+// its index; a non-string is an InputError naming `what`, an unknown name the InputError
+// "<context>unknown <noun> '<name>' (expected ux uy uz rx ry rz)".
+int dof_name(const json& v, const Pointer& pointer, const What& what, const What& context, std::string_view noun = "DOF");
+// A mass kind, "consistent" or "lumped"; an unknown kind is the InputError
+// "<context>: unknown mass '<kind>' (expected consistent or lumped)".
+MassKind mass_kind(const json& v, const Pointer& pointer, const What& what, std::string_view context);
 
 }  // namespace beamfea::json_in

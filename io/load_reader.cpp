@@ -162,12 +162,13 @@ void for_each_identified(const json& doc, const char* key, const std::string& wh
 
 void read_loads_and_cases(const json& doc, Model& m) {
   // The default load case, straight into the model.
-  m.loads.clear();
-  m.joint_loads.clear();
-  m.member_loads.clear();
-  if (const json* loads = field(doc, "loads")) append_load_list(m, *loads, "/loads", m.loads, m.joint_loads, m.member_loads);
-  m.gravity = Vec3::Zero();
-  if (const json* gravity = field(doc, "gravity")) m.gravity = read_gravity(*gravity, "/gravity");
+  LoadSet& d = m.default_case;
+  d.nodal.clear();
+  d.joint.clear();
+  d.member.clear();
+  if (const json* loads = field(doc, "loads")) append_load_list(m, *loads, "/loads", d.nodal, d.joint, d.member);
+  d.gravity = Vec3::Zero();
+  if (const json* gravity = field(doc, "gravity")) d.gravity = read_gravity(*gravity, "/gravity");
 
   if (const json* masses = field(doc, "masses")) {
     const auto& arr = array(*masses, "/masses", "masses");
@@ -198,7 +199,7 @@ void read_loads_and_cases(const json& doc, Model& m) {
       c.factors.emplace_back(k, number(v, child(fp, name), "combination factor"));
     }
     expect_keys(o, p, {"id", "factors"});
-    m.combinations.push_back(std::move(c));
+    m.add_combination(std::move(c));
   });
 }
 
@@ -209,34 +210,13 @@ double read_density(const json* density, const json_in::Pointer& p, const std::s
   return rho;
 }
 
-namespace {
-// An analysis's load_case naming the top-level loads and gravity (unless a case or a combination
-// has this id).
-constexpr const char* kDefaultLoadCase = "default";
-
-// "default, dead, tool, uls": the names an analysis's load_case may take.
-std::string known_cases(const Model& m) {
-  std::string s = kDefaultLoadCase;
-  for (const auto& c : m.load_cases) s += ", " + c.id;
-  for (const auto& c : m.combinations) s += ", " + c.id;
-  return s;
-}
-}  // namespace
-
-void check_load_case(const Model& m, const json& spec, const json_in::Pointer& p) {
-  if (!spec.contains("load_case")) return;
-  const std::string id = json_in::id(spec["load_case"], child(p, "load_case"), "load_case");
-  if (m.find_load_case(id) < 0 && m.find_combination(id) < 0 && id != kDefaultLoadCase)
-    throw InputError(child(p, "load_case"), "unknown load case or combination '" + id + "' (known: " + known_cases(m) + ")");
-}
-
-Model model_for_load_case(const Model& m, const json& spec) {
-  Model out = m;
-  if (!spec.contains("load_case")) return out;
-  const std::string id = json_in::id(spec["load_case"], "", "load_case");
-  if (id == kDefaultLoadCase && m.find_load_case(id) < 0 && m.find_combination(id) < 0) return out;
-  out.set_default_loads(m.loads_of(id));
-  return out;
+std::string read_load_case(const Model& m, const json& spec, const json_in::Pointer& p) {
+  const json* value = field(spec, "load_case");
+  if (!value) return "";
+  std::string id = json_in::id(*value, child(p, "load_case"), "load_case");
+  if (!m.find_loads(id))
+    throw InputError(child(p, "load_case"), "unknown load case or combination '" + id + "' (known: " + m.known_load_cases() + ")");
+  return id;
 }
 
 }  // namespace beamfea

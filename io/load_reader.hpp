@@ -21,11 +21,9 @@ void read_loads_and_cases(const nlohmann::json& doc, Model& m);
 // InputError at pointer/density).
 double read_density(const nlohmann::json* density, const json_in::Pointer& pointer, const std::string& what);
 
-// Checks an analysis's "load_case" (a case or a combination of the model, or "default": the
-// top-level loads and gravity), if present.
-void check_load_case(const Model& m, const nlohmann::json& spec, const json_in::Pointer& pointer);
-// The model with the analysis's load case (its "load_case") as the default loads; the model itself
-// when the spec names none.
-Model model_for_load_case(const Model& m, const nlohmann::json& spec);
+// An analysis's "load_case" (a case or a combination of the model, or "default": the top-level
+// loads and gravity), checked: its id, "" when the spec names none (Model::loads_for takes both).
+// An id that selects nothing is an InputError at pointer/load_case naming the known ids.
+std::string read_load_case(const Model& m, const nlohmann::json& spec, const json_in::Pointer& pointer);
 
 }  // namespace beamfea

@@ -106,11 +106,7 @@ DofRef read_dof_target(const Model& m, const json& e, const json_in::Pointer& p,
     return {DofRef::Owner::Joint, j, c};
   }
   const int n = node_ref(m, require(e, p, "node", what), child(p, "node"));
-  const std::string name = string(require(e, p, "dof", what), child(p, "dof"), what);
-  const int k = dof_index(name);
-  if (k < 0)
-    throw InputError(child(p, "dof"), what + " at node '" + m.nodes[n].id + "': unknown DOF '" + name +
-                                          "' (expected ux uy uz rx ry rz)");
+  const int k = dof_name(require(e, p, "dof", what), child(p, "dof"), what, What(what, " at node '", m.nodes[n].id + "': "));
   return {DofRef::Owner::Node, n, k};
 }
 

@@ -27,11 +27,7 @@ void read_supports(ReadState& s) {
     } else {
       array(fix, child(p, "fix"), what);
       for (std::size_t k = 0; k < fix.size(); ++k) {
-        const std::string name = string(fix[k], child(child(p, "fix"), k), what);
-        const int d = dof_index(name);
-        if (d < 0)
-          throw InputError(child(child(p, "fix"), k), what.str() + ": unknown DOF '" + name + "' (expected ux uy uz rx ry rz)");
-        sup.fixed[d] = true;
+        sup.fixed[dof_name(fix[k], child(child(p, "fix"), k), what, What("support at node '", m.nodes[sup.node].id, "': "))] = true;
       }
     }
     m.supports.push_back(sup);

@@ -11,6 +11,7 @@
 #include "io/json_writer.hpp"
 #include "io/model_check.hpp"
 #include "io/model_reader.hpp"
+#include "io/result_status.hpp"
 #include "solvers/linear_static.hpp"
 
 namespace beamfea {
@@ -39,16 +40,16 @@ namespace {
 
 // Runs one analysis; a ModelError or solver error raised while running (after validation) is
 // that analysis's failure, reported in results.json, not a crash of the run.
-AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx) {
+AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx, const nlohmann::json& spec) {
   AnalysisOutcome o;
   try {
-    o = type.run(ctx);
+    o = type.run(ctx, spec);
   } catch (const InputError&) {
     throw;  // bad input found late is still bad input
   } catch (const std::exception& e) {
     o = AnalysisOutcome{};
     o.result["type"] = type.name;
-    o.result["status"] = "failed";
+    o.result["status"] = kFailedStatus;
     o.result["message"] = e.what();
     o.termination = AnalysisTermination::Failed;
     o.message = e.what();
@@ -58,7 +59,7 @@ AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx) {
     o.termination = AnalysisTermination::NonFiniteResult;
     o.message = "the result is not finite at '" + where +
                 "' (an overflow: values or stiffnesses too far apart for double precision)";
-    o.result["status"] = "failed";
+    o.result["status"] = kFailedStatus;
     o.result["message"] = o.message;
   }
   return o;
@@ -130,11 +131,11 @@ void run_into(const Model& model, const nlohmann::json& document, const RunOptio
     const AnalysisType* type = find_analysis_type(spec.at("type").get_ref<const std::string&>());
     ojson& result = analyses.slot(id);  // the last run's result of this id, or null
     std::string* previous_message = outcomes < report.outcomes.size() ? &report.outcomes[outcomes].second.message : nullptr;
-    AnalysisContext ctx{model,   document, spec, json_in::child("/analyses", i), id, staging ? staging->path() : std::filesystem::path(),
+    AnalysisContext ctx{model, json_in::child("/analyses", i), id, staging ? staging->path() : std::filesystem::path(),
                         options.write_vtk, {}, options.warning, &cache, &result, previous_message, defer, options.parallel};
     if (options.progress) ctx.progress = [&](const std::string& s) { options.progress("[" + id + "] " + s); };
     const auto t0 = std::chrono::steady_clock::now();
-    AnalysisOutcome o = run_one(*type, ctx);
+    AnalysisOutcome o = run_one(*type, ctx, spec);
     const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     o.result["wall_time_s"] = dt;
     if (options.progress) options.progress("[" + id + "] " + o.brief_report() + " (" + std::to_string(dt) + " s)");

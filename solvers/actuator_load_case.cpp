@@ -52,7 +52,7 @@ LoadedSchemeModel solve_loaded(const Model& m, const AllocationOptions& o, const
     assembler.begin();
     structure.assemble(map, assembler);
     assembler.end();
-    const SparseMatrix Kg = geometric_stiffness(m, map, structure, lin);
+    const SparseMatrix Kg = geometric_stiffness(m, map, structure, lin, m.default_loads());
     // Symmetric part, as the loaded mode of `stiffness` (the skew part of applied moments dropped).
     const SparseMatrix Kt = assembler.K_ff() + SparseMatrix(0.5 * (Kg + SparseMatrix(Kg.transpose())));
     const DirectionalStiffness ds = condense_to_directions(m, map, Kt, o.platform_node, o.directions);

@@ -112,9 +112,13 @@ LoadFactorPairs sparse_buckling_pairs(const SparseMatrix& K, const SparseMatrix&
 }  // namespace
 
 BucklingResult solve_buckling(const Model& model, const BucklingOptions& options) {
+  return solve_buckling(model, model.default_loads(), options);
+}
+
+BucklingResult solve_buckling(const Model& model, const LoadSet& loads, const BucklingOptions& options) {
   options.validate();
   BucklingResult res;
-  const LinearStaticResult lin = solve_linear_static(model);
+  const LinearStaticResult lin = LinearSystem(model).solve(loads);
   if (lin.status != SolveStatus::Succeeded) {
     res.status = lin.status == SolveStatus::Mechanism ? BucklingStatus::Mechanism : BucklingStatus::Failed;
     res.message = "buckling: the linear static solution failed: " + lin.message;
@@ -128,7 +132,7 @@ BucklingResult solve_buckling(const Model& model, const BucklingOptions& options
   structure.assemble(map, ka);
   ka.end();
   const SparseMatrix& K = ka.K_ff();
-  SparseMatrix Kg = geometric_stiffness(model, map, structure, lin);
+  SparseMatrix Kg = geometric_stiffness(model, map, structure, lin, loads);
   Kg = SparseMatrix(0.5 * (SparseMatrix(Kg.transpose()) + Kg));
   res.free_dofs = map.free_size();
   const int n = map.free_size();

@@ -51,7 +51,9 @@ struct BucklingResult {
   Eigen::VectorXd linear_u;              // raw linear static displacement (lambda = 1)
 };
 
+// Buckling under `loads` (a load case of the model); the first form under its default loads.
 BucklingResult solve_buckling(const Model& model, const BucklingOptions& options = {});
+BucklingResult solve_buckling(const Model& model, const LoadSet& loads, const BucklingOptions& options = {});
 
 // Normalises a raw mode: largest node translation 1 (or largest rotation 1 when nothing
 // translates), with that component positive.

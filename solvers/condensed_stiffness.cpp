@@ -336,7 +336,12 @@ void linear_node_stiffness(const Model& model, int node, CondensedStiffness& out
 }
 
 CondensedStiffness loaded_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options) {
-  const LinearStaticResult lin = solve_linear_static(model);
+  return loaded_node_stiffness(model, model.default_loads(), node, options);
+}
+
+CondensedStiffness loaded_node_stiffness(const Model& model, const LoadSet& loads, int node,
+                                         const CondensedStiffnessOptions& options) {
+  const LinearStaticResult lin = LinearSystem(model).solve(loads);
   if (lin.status != SolveStatus::Succeeded) {
     CondensedStiffness out;
     out.message = "loaded stiffness: the linear static solution of the preload failed: " + lin.message;
@@ -349,7 +354,7 @@ CondensedStiffness loaded_node_stiffness(const Model& model, int node, const Con
   assembler.begin();
   structure.assemble(map, assembler);
   assembler.end();
-  SparseMatrix Kg = geometric_stiffness(model, map, structure, lin);
+  SparseMatrix Kg = geometric_stiffness(model, map, structure, lin, loads);
   // Symmetric part: the skew part from applied moments is dropped, as in buckling.
   const SparseMatrix Kt = assembler.K_ff() + SparseMatrix(0.5 * (Kg + SparseMatrix(Kg.transpose())));
   return condense_to_node(model, map, Kt, node, options);

@@ -95,7 +95,9 @@ void linear_node_stiffness(const Model& model, int node, CondensedStiffness& out
 // Loaded-mode stiffness of a node (Klimchik, Pashkevich & Chablat's "loaded mode"): condensation
 // of K + K_g, K_g the geometric stiffness (solvers/buckling.hpp) of the linear solution of the
 // model's default loads (the preload: own weight, payload), linearised about the reference
-// configuration.
+// configuration. The second form about the linear solution of `loads` (a load case of the model).
 CondensedStiffness loaded_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options = {});
+CondensedStiffness loaded_node_stiffness(const Model& model, const LoadSet& loads, int node,
+                                         const CondensedStiffnessOptions& options = {});
 
 }  // namespace beamfea

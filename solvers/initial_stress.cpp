@@ -20,7 +20,7 @@ SparseMatrix independent_from_free(const NonlinearStructure& ns, const DofMap& m
 }  // namespace
 
 SparseMatrix geometric_stiffness(const Model& model, const DofMap& map, const LinearStructure& structure,
-                                 const LinearStaticResult& lin) {
+                                 const LinearStaticResult& lin, const LoadSet& loads) {
   const NonlinearStructure ns(model);
   SystemAssembler ga(map);
   ga.begin();
@@ -36,7 +36,7 @@ SparseMatrix geometric_stiffness(const Model& model, const DofMap& map, const Li
   SparseMatrix Kg = ga.K_ff();
 
   // Rigid links and joints: constraint curvature for the forces they transmit.
-  const Eigen::VectorXd f_ext = external_force(model, map);
+  const Eigen::VectorXd f_ext = external_force(model, map, loads);
   Eigen::VectorXd f = structure.internal_force(map, lin.u) - f_ext;
   const auto cf = map.constraint_forces(f);
   for (int p = 0; p < map.prescribed_size(); ++p) {

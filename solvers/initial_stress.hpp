@@ -30,8 +30,8 @@
 
 namespace beamfea {
 
-// K_g (free x free, NOT symmetrised) of the linear solution `lin` of the model's default loads.
+// K_g (free x free, NOT symmetrised) of the linear solution `lin` of `loads`.
 SparseMatrix geometric_stiffness(const Model& model, const DofMap& map, const LinearStructure& structure,
-                                 const LinearStaticResult& lin);
+                                 const LinearStaticResult& lin, const LoadSet& loads);
 
 }  // namespace beamfea

@@ -152,6 +152,10 @@ std::pair<int, int> classify_modes(const Model& model, const DofMap& map, const 
 }  // namespace
 
 ModalResult solve_modal(const Model& model, const ModalOptions& options) {
+  return solve_modal(model, model.default_loads(), options);
+}
+
+ModalResult solve_modal(const Model& model, const LoadSet& loads, const ModalOptions& options) {
   options.validate();
   ModalResult res;
   const DofMap map(model);
@@ -174,13 +178,13 @@ ModalResult solve_modal(const Model& model, const ModalOptions& options) {
   SparseMatrix K = ka.K_ff();
   const SparseMatrix& M = ma.K_ff();
   if (options.preload) {
-    const LinearStaticResult lin = solve_linear_static(model);
+    const LinearStaticResult lin = LinearSystem(model).solve(loads);
     if (lin.status != SolveStatus::Succeeded) {
       res.status = ModalStatus::PreloadFailed;
       res.message = "modal: the linear static solution of the preload failed: " + lin.message;
       return res;
     }
-    const SparseMatrix Kg = geometric_stiffness(model, map, structure, lin);
+    const SparseMatrix Kg = geometric_stiffness(model, map, structure, lin, loads);
     K += SparseMatrix(0.5 * (SparseMatrix(Kg.transpose()) + Kg));
   }
 

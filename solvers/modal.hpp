@@ -71,7 +71,10 @@ struct ModalResult {
   std::string brief_report() const { return message; }
 };
 
+// The second form with `loads` (a load case of the model) as the preload; the first with the
+// model's default loads.
 ModalResult solve_modal(const Model& model, const ModalOptions& options = {});
+ModalResult solve_modal(const Model& model, const LoadSet& loads, const ModalOptions& options = {});
 
 // The number of free DOFs of a model (the most modes a modal analysis can give).
 int modal_dof_count(const Model& model);

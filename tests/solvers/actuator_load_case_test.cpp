@@ -91,7 +91,7 @@ constexpr double kEffortTolerance = 1e-9;
 TEST(ActuatorLoadCase, EffortsOfATipForceAreMinusJacobianTransposeTimesTheForce) {
   const Model model = read_model(arm());
   const auto o = arm_options(model, 1e4, 5e3);
-  const SchemeLoadResponse r = scheme_load_response(model, o, {0, 1}, model.loads_of("tool"));
+  const SchemeLoadResponse r = scheme_load_response(model, o, {0, 1}, model.loads_for("tool"));
   ASSERT_TRUE(r.efforts_ok) << r.efforts_message;
   // Closed-form Jacobian of the 2R arm (Craig eq. 5.66 in the base frame): columns d(tip)/dq_i.
   const double s1 = std::sin(t1), c1 = std::cos(t1), s12 = std::sin(t1 + t2), c12 = std::cos(t1 + t2);
@@ -117,7 +117,7 @@ TEST(ActuatorLoadCase, EffortsUnderOwnWeightPointMassesAndACombinationMatchStati
   const Model model = read_model(arm());
   const auto o = arm_options(model, 1e4, 5e3);
   // Self-weight (density x A x g) of both links and the two point masses.
-  const SchemeLoadResponse dead = scheme_load_response(model, o, {0, 1}, model.loads_of("dead"));
+  const SchemeLoadResponse dead = scheme_load_response(model, o, {0, 1}, model.loads_for("dead"));
   ASSERT_TRUE(dead.efforts_ok) << dead.efforts_message;
   const Eigen::Vector2d tau_dead = efforts_by_statics(weights(1.0));
   for (int i = 0; i < 2; ++i)
@@ -125,7 +125,7 @@ TEST(ActuatorLoadCase, EffortsUnderOwnWeightPointMassesAndACombinationMatchStati
   // The motor of J1 lifts the arm: a positive (counter-clockwise) torque for an arm reaching +x.
   EXPECT_GT(dead.efforts[0], 0.0);
   // uls = 1.35 dead + 1.5 tool.
-  const SchemeLoadResponse uls = scheme_load_response(model, o, {0, 1}, model.loads_of("uls"));
+  const SchemeLoadResponse uls = scheme_load_response(model, o, {0, 1}, model.loads_for("uls"));
   ASSERT_TRUE(uls.efforts_ok);
   auto loads = weights(1.35);
   const double tx = L1 * std::cos(t1) + L2 * std::cos(t1 + t2), ty = L1 * std::sin(t1) + L2 * std::sin(t1 + t2);
@@ -151,7 +151,7 @@ TEST(ActuatorLoadCase, FrozenLShapedArmDeflectsAsTheUnitLoadMethodSays) {
   doc["nodes"][4]["xyz"] = {L1, L2, 0};
   const Model model = read_model(doc);
   const auto o = arm_options(model, 1e4, 5e3);
-  const SchemeLoadResponse r = scheme_load_response(model, o, {0, 1}, model.loads_of("tool"));
+  const SchemeLoadResponse r = scheme_load_response(model, o, {0, 1}, model.loads_for("tool"));
   ASSERT_TRUE(r.structural.ok) << r.structural.message;
   // Unit load in x at the tip of the frozen L frame: link 2 bends with m = L2 - y, link 1 with
   // m = L2 and stretches with N = 1: dx/Fx = (L2^3/3 + L2^2 L1)/EI + L1/EA; dy/Fy likewise.
@@ -198,7 +198,7 @@ TEST(ActuatorLoadCase, LoadedStiffnessOfAColumnOnASpringMatchesTheExactBeamColum
   o.directions = {0};  // ux
   o.candidates = {{model.find_joint("J"), 0}};
   o.actuator_stiffness = {k};
-  const SchemeLoadResponse r = scheme_load_response(model, o, {0}, model.loads_of("payload"));
+  const SchemeLoadResponse r = scheme_load_response(model, o, {0}, model.loads_for("payload"));
   ASSERT_TRUE(r.actuated.stiffness_ok) << r.actuated.stiffness_message;
   ASSERT_TRUE(r.structural.stiffness_ok) << r.structural.stiffness_message;
   ASSERT_TRUE(r.total.stiffness_ok) << r.total.stiffness_message;
@@ -291,7 +291,7 @@ TEST(ActuatorLoadCase, FiveBarEffortsAreMinusJacobianTransposeTimesThePlatformFo
   const ActuatedStiffness a = actuated_stiffness(model, o, {0, 1});
   ASSERT_TRUE(a.jacobian_ok) << a.jacobian_message;
   EXPECT_LT((a.J - J).cwiseAbs().maxCoeff(), 1e-9 * J.cwiseAbs().maxCoeff());
-  const SchemeLoadResponse r = scheme_load_response(model, o, {0, 1}, model.loads_of("tool"));
+  const SchemeLoadResponse r = scheme_load_response(model, o, {0, 1}, model.loads_for("tool"));
   ASSERT_TRUE(r.efforts_ok) << r.efforts_message;
   const Eigen::Vector2d tau = -J.transpose() * Eigen::Vector2d(kFx, kFy);
   for (int i = 0; i < 2; ++i) EXPECT_NEAR(r.efforts[i], tau[i], kEffortTolerance * tau.norm()) << "actuator " << i;

@@ -146,9 +146,9 @@ TEST(MemberLoadsStatic, ACombinationEqualsTheFactoredSumOfItsCases) {
   doc["combinations"] = json::array({{{"id", "uls"}, {"factors", {{"dead", 1.35}, {"tool", 1.5}}}}});
   const Model m = test::model_from(doc);
   const LinearSystem sys(m);
-  const auto d = sys.solve(m.loads_of("dead"));
-  const auto t = sys.solve(m.loads_of("tool"));
-  const auto c = sys.solve(m.loads_of("uls"));
+  const auto d = sys.solve(m.loads_for("dead"));
+  const auto t = sys.solve(m.loads_for("tool"));
+  const auto c = sys.solve(m.loads_for("uls"));
   EXPECT_EQ(sys.factorizations(), 1);
   const Eigen::VectorXd sum = 1.35 * d.u + 1.5 * t.u;
   EXPECT_LT((c.u - sum).cwiseAbs().maxCoeff(), 1e-12 * sum.cwiseAbs().maxCoeff());

@@ -228,7 +228,7 @@ TEST(Modal, PinnedColumnAtHalfItsEulerLoadVibratesSlowerBySqrtOneHalf) {
   EXPECT_NEAR(r1.frequencies[0], f0 * std::sqrt(0.5), 1e-4 * f0);
   // beyond buckling (1.2 P_cr) the mode is unstable: a negative omega^2
   Model m2 = m;
-  m2.loads[0].force.x() = -1.2 * Pcr;
+  m2.default_case.nodal[0].force.x() = -1.2 * Pcr;
   const ModalResult r2 = modal(m2, 1, MassKind::Consistent, true);
   EXPECT_EQ(r2.kinds[0], ModeKind::Unstable);
   EXPECT_LT(r2.frequencies[0], 0.0);

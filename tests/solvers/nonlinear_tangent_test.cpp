@@ -72,7 +72,7 @@ TEST(NonlinearStructure, TangentMatchesFiniteDifferenceOfResidualWithJointsAndRi
   // Applied forces: the loads plus arbitrary forces on slave nodes (as if reactions).
   const DofMap& map = ns.reference_map();
   Eigen::VectorXd f = Eigen::VectorXd::Zero(map.raw_size());
-  for (const auto& l : m.loads) {
+  for (const auto& l : m.default_case.nodal) {
     f.segment<3>(6 * l.node) += 10.0 * l.force;
     f.segment<3>(6 * l.node + 3) += 10.0 * l.moment;
   }
@@ -268,7 +268,7 @@ TEST(NonlinearStructure, TangentMatchesFiniteDifferenceOfResidualWithLoopClosure
   Eigen::VectorXd mu(ns.closure_rows());
   for (int i = 0; i < mu.size(); ++i) mu[i] = (i % 6 < 3 ? 2.0 : 0.3) * U(rng);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(ns.reference_map().raw_size());
-  for (const auto& l : m.loads) f.segment<3>(6 * l.node) += 10.0 * l.force;
+  for (const auto& l : m.default_case.nodal) f.segment<3>(6 * l.node) += 10.0 * l.force;
   const auto ev = ns.evaluate(s, f, true, mu);
   const Eigen::MatrixXd K(ev.tangent), C(ns.closure_jacobian(s, tw));
   const double h = 1e-6, scale = K.cwiseAbs().maxCoeff();
