@@ -319,19 +319,13 @@ void write_path_vtk(const AnalysisContext& ctx, const Model& model, const PathRe
 }
 
 AnalysisOutcome run_path(const AnalysisContext& ctx, const PathSpec& spec) {
-  // The reference load: the analysis's load case, or the default loads. follow_path follows the
-  // default loads of the model it is given: a named case needs a model with it as its default.
-  std::optional<Model> with_case;
-  const LoadSet& loads = ctx.model.loads_for(spec.load_case);
-  if (&loads != &ctx.model.default_loads()) {
-    with_case.emplace(ctx.model);
-    with_case->set_default_loads(loads);
-  }
-  const Model& model = with_case ? *with_case : ctx.model;
+  // The reference load: the analysis's load case, or the default loads (no copy of the model).
+  const Model& model = ctx.model;
+  const LoadSet& loads = model.loads_for(spec.load_case);
   PathOptions o = spec.options;
   // One line per step on stderr through the run's progress sink (silent with --quiet).
   if (ctx.progress) o.progress = [&](const std::string& s) { ctx.progress("path " + ctx.id + ": " + s); };
-  const PathResult r = follow_path(model, o);
+  const PathResult r = follow_path(model, loads, o);
   const bool imposed = o.control == PathControl::Displacement && r.steps.size() &&
                        std::any_of(r.steps.begin(), r.steps.end(), [](const PathStep& s) { return s.reaction != 0.0; });
 

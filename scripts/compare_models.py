@@ -173,7 +173,7 @@ def unloaded_stiffness(exe, doc, node, dof, out_dir, log):
 
 def compliance_entry(a, dof):
     """compliance (dof, dof); inf along an unbounded direction (where "compliance" holds 0)."""
-    free = any(abs(v[dof]) > 1e-9 for v in a.get("unbounded_directions") or [])
+    free = any(abs(v[dof]) > 1e-9 for v in a.get("unbounded_directions", []))
     return math.inf if free else a["compliance"][dof][dof]
 
 

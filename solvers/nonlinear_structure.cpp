@@ -56,7 +56,7 @@ Configuration configuration_of(const Model& model, const NonlinearState& s) {
   return c;
 }
 
-NonlinearStructure::NonlinearStructure(const Model& model) : model_(&model), map_(model), L_(model.length_scale()) {
+NonlinearStructure::NonlinearStructure(const Model& model, const LoadSet& loads) : model_(&model), map_(model), L_(model.length_scale()) {
   for (std::size_t j = 0; j < model.joints.size(); ++j) {
     if (model.joints[j].type == JointType::Spherical && model.joints[j].has_stiffness())
       throw ModelError("joint '" + model.joints[j].id + "'",
@@ -115,7 +115,7 @@ NonlinearStructure::NonlinearStructure(const Model& model) : model_(&model), map
       throw ModelError("element '" + el.id + "'", err.what());
     }
   }
-  dead_ = element_dead_loads(model, model.default_loads());
+  dead_ = element_dead_loads(model, loads);
   dead_ref_.assign(model.elements.size(), Vec12::Zero());
   for (std::size_t e = 0; e < dead_.size(); ++e)
     if (!dead_[e].empty()) {

@@ -103,7 +103,10 @@ struct Twist {
 
 class NonlinearStructure {
  public:
-  explicit NonlinearStructure(const Model& model);
+  // `loads`: the reference load whose member loads and self-weight act as dead loads (a case or
+  // combination of the model, or its default loads; it must outlive the structure's construction).
+  NonlinearStructure(const Model& model, const LoadSet& loads);
+  explicit NonlinearStructure(const Model& model) : NonlinearStructure(model, model.default_loads()) {}
 
   enum class GenKind { NodeTranslation, NodeSpin, JointScalar, JointSpherical };
   struct Gen {

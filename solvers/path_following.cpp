@@ -23,9 +23,13 @@
 namespace beamfea {
 
 Model imperfect_model(const Model& model, int mode, double amplitude) {
+  return imperfect_model(model, model.default_loads(), mode, amplitude);
+}
+
+Model imperfect_model(const Model& model, const LoadSet& loads, int mode, double amplitude) {
   BucklingOptions bo;
   bo.modes = mode;
-  const BucklingResult b = solve_buckling(model, bo);
+  const BucklingResult b = solve_buckling(model, loads, bo);
   if (b.status != BucklingStatus::Succeeded || static_cast<int>(b.modes.size()) < mode)
     throw ModelError(fmt::format("imperfection mode {}", mode),
                      fmt::format("buckling mode {} is not available ({})", mode, b.message));
@@ -148,7 +152,7 @@ int PathRun::record(const Converged& c, int step, double control, double ds, Pat
   // The evaluation at the state, shared with the stability analysis and the next predictor.
   ps.end_forces = factors_.evaluation_at(sys_, c).end_forces;
   // Plus the member loads' fixed-end forces in the co-rotated frames (dead loads), as linear_static.
-  const auto fe = corotated_fixed_end_forces(original_, original_.default_loads(), c.state.x, c.state.R, c.lambda);
+  const auto fe = corotated_fixed_end_forces(original_, sys_.loads(), c.state.x, c.state.R, c.lambda);
   for (std::size_t e = 0; e < fe.size(); ++e) ps.end_forces[e] += fe[e];
   res_.steps.push_back(std::move(ps));
   return res_.steps.back().negative_eigenvalues;
@@ -329,13 +333,19 @@ double first_step(const PathOptions& o, const PathScales& scales) {
 }  // namespace
 
 PathResult follow_path(const Model& original, const PathOptions& o) {
+  return follow_path(original, original.default_loads(), o);
+}
+
+PathResult follow_path(const Model& original, const LoadSet& loads, const PathOptions& o) {
   o.validate(original);
   // Small factorisations every few milliseconds: one BLAS thread (solvers/blas_threads.hpp).
   const SingleBlasThread one_blas_thread;
   PathResult res;
-  const Model model = o.imperfection_mode > 0 ? imperfect_model(original, o.imperfection_mode, o.imperfection_amplitude)
-                                              : original;
-  PathSystem unscaled(model, o);
+  // An imperfect geometry is a copy with its nodes moved; otherwise the path runs on the model itself.
+  std::optional<Model> imperfect;
+  if (o.imperfection_mode > 0) imperfect.emplace(imperfect_model(original, loads, o.imperfection_mode, o.imperfection_amplitude));
+  const Model& model = imperfect ? *imperfect : original;
+  PathSystem unscaled(model, loads, o);
   res.free_dofs = unscaled.nf();
   res.statically_indeterminate = unscaled.redundant();
   if (unscaled.nf() == 0) {  // every DOF held: no path to follow (and KINSOL cannot take an empty system)

@@ -56,8 +56,12 @@ namespace beamfea {
 
 // The path of the model (possibly with an imperfection applied, see PathOptions).
 PathResult follow_path(const Model& model, const PathOptions& options);
+// The same with `loads` (a load case or combination of the model) as the reference load instead of
+// the model's default loads: no copy of the model is made for it.
+PathResult follow_path(const Model& model, const LoadSet& loads, const PathOptions& options);
 
 // The model with buckling mode `mode` (1-based) added to its node positions at `amplitude`.
 Model imperfect_model(const Model& model, int mode, double amplitude);
+Model imperfect_model(const Model& model, const LoadSet& loads, int mode, double amplitude);
 
 }  // namespace beamfea

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "solvers/member_loading.hpp"
 #include "solvers/structure.hpp"
 
 namespace beamfea {
@@ -14,7 +15,7 @@ namespace {
 constexpr double kRoundOffForceRatio = 1e-5;
 }  // namespace
 
-PathSystem::PathSystem(const Model& model, const PathOptions& o) : ns_(model) {
+PathSystem::PathSystem(const Model& model, const LoadSet& loads, const PathOptions& o) : ns_(model, loads), loads_(&loads) {
   const DofMap& map = ns_.reference_map();
   // Prescribed values that the constraints make inconsistent (a loop that cannot close, a rigid link
   // whose ends are prescribed apart): bad input naming the link, joint or DOF.
@@ -31,7 +32,7 @@ PathSystem::PathSystem(const Model& model, const PathOptions& o) : ns_(model) {
     if (pv.dof.owner == DofRef::Owner::Node && map.is_slave(pv.dof.index)) cons_.push_back({pv.dof.index, pv.dof.comp, pv.value});
   }
   select_independent_constraints();
-  f_ext_ = external_force(model, map);
+  f_ext_ = external_force(model, map, loads);
   has_loads_ = f_ext_.size() > 0 && f_ext_.cwiseAbs().maxCoeff() > 0.0;
   if (o.control == PathControl::Displacement) {
     const int raw = map.raw_node(o.control_node, o.control_dof);

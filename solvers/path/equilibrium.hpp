@@ -77,7 +77,10 @@ class PathSystem {
   // the controlled DOF is supported, or when the model has no loads and the control is not a
   // displacement. The force scale is the reference load's (load factor 1) and psi = 0 until
   // with_scales.
-  PathSystem(const Model& model, const PathOptions& o);
+  // `loads`: the reference load (load factor 1), a case or combination of the model or its default
+  // loads; held by reference, it must outlive the system.
+  PathSystem(const Model& model, const LoadSet& loads, const PathOptions& o);
+  PathSystem(const Model& model, const PathOptions& o) : PathSystem(model, model.default_loads(), o) {}
   // This system with the path's own scales (solvers/path/path_scales.hpp): the force scale of the
   // convergence test at the load factor lambda_ref (not below the round-off floor; kept when
   // lambda_ref is not positive) and the arc-length weight psi of the load factor. Set once, before
@@ -87,6 +90,7 @@ class PathSystem {
   // The structure, its numbering and constraints.
   const NonlinearStructure& structure() const { return ns_; }
   const Model& model() const { return ns_.model(); }
+  const LoadSet& loads() const { return *loads_; }  // the reference load
   int nf() const { return nf_; }     // free independent coordinates
   int nc() const { return nc_; }     // multipliers: independent slave constraints, then closure rows
   const std::vector<int>& free_gens() const { return free_; }      // free coordinate -> gen
@@ -182,6 +186,7 @@ class PathSystem {
   void set_load_scale(double lambda_ref);
 
   NonlinearStructure ns_;
+  const LoadSet* loads_;
   double L_ = 1.0, F_ref_ = 1.0, psi2_ = 0.0;
   double f_max_ = 0.0;    // largest reference load component (moments / L)
   double F_floor_ = 0.0;  // round-off: kRoundOffForceRatio x the stiffest element's force for a displacement L

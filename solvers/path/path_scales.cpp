@@ -21,7 +21,7 @@ PathScales path_scales(const Model& model, const PathSystem& sys, FactorCache& f
   try {
     BucklingOptions bo;
     bo.modes = 1;
-    const BucklingResult b = solve_buckling(model, bo);
+    const BucklingResult b = solve_buckling(model, sys.loads(), bo);
     if (b.status == BucklingStatus::Succeeded && b.load_factors.size() > 0 && b.load_factors[0] > 0.0) {
       s.buckling_factor = b.load_factors[0];
     }
