@@ -10,7 +10,7 @@
 // readers that care; non-finite numbers are written as null, as nlohmann does. To a file the
 // text is streamed: it is never whole in memory.
 //
-// With a ParallelTasks hook (io/parallel_tasks.hpp), an object or array of many structured members
+// With a ParallelTasks hook (core/parallel_tasks.hpp), an object or array of many structured members
 // (the nodes, the elements of a large model) is formatted in windows of a few megabytes, each cut
 // into slices formatted at once into strings of their own and then appended in order: the text is
 // byte for byte the serial one, and still streamed. Small results start no tasks.
