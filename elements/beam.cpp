@@ -126,6 +126,7 @@ ElementResponse LinearBeam::respond(const NodalPoses& p, Evaluate what) const {
   r.energy = 0.5 * u.dot(r.force);
   r.local_end_forces = local_end_forces(u);
   if (what == Evaluate::ForceAndTangent) r.tangent = K_;
+  else r.tangent.setZero();
   return r;
 }
 

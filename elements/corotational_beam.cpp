@@ -233,8 +233,7 @@ Mat3 CorotationalBeam::axes_at(const NodalPoses& p) const {
 }
 
 ElementResponse CorotationalBeam::respond(const NodalPoses& p, Evaluate what) const {
-  CorotationalResponse r = evaluate(p.x1, p.R1, p.x2, p.R2, what == Evaluate::ForceAndTangent);
-  return {r.force, r.tangent, r.energy, r.local_end_forces};
+  return evaluate(p.x1, p.R1, p.x2, p.R2, what == Evaluate::ForceAndTangent);
 }
 
 NodalPoses CorotationalBeam::advance(const NodalPoses& p, const Vec12& d) const {

@@ -66,12 +66,10 @@
 
 namespace beamfea {
 
-struct CorotationalResponse {
-  Vec12 force;             // global internal force, conjugate to [du1 dw1 du2 dw2]
-  Mat12 tangent;           // d force / d [du1 dw1 du2 dw2], spatial spins (not symmetric, see above)
-  double energy = 0.0;     // strain energy
-  Vec12 local_end_forces;  // [N Vy Vz T My Mz] at node 1 then node 2, co-rotated axes
-};
+// The contract's response (elements/frame_element.hpp): force conjugate to [du1 dw1 du2 dw2], its
+// tangent in spatial spins (not symmetric, see above), energy, and [N Vy Vz T My Mz] at node 1 then
+// node 2 in the co-rotated axes.
+using CorotationalResponse = ElementResponse;
 
 // The co-rotated frame and deformational displacements of one configuration.
 struct CorotationalKinematics {

@@ -59,7 +59,7 @@ enum class Evaluate { Force, ForceAndTangent };
 
 struct ElementResponse {
   Vec12 force = Vec12::Zero();             // global internal force, conjugate to `advance`'s d
-  Mat12 tangent = Mat12::Zero();           // d force / d d (zero when not asked)
+  Mat12 tangent;                           // d force / d d (respond sets it: zero when not asked)
   double energy = 0.0;                     // strain energy
   Vec12 local_end_forces = Vec12::Zero();  // forces on the element at its ends, local axes at the state
 };

@@ -340,12 +340,13 @@ NonlinearStructure::Evaluation NonlinearStructure::evaluate(const NonlinearState
     if (!beams_[e]) continue;
     const auto& el = model_->elements[e];
     const int a = el.nodes[0], b = el.nodes[1];
-    ElementResponse r;
-    try {
-      r = beams_[e]->respond({s.x[a], s.x[b], s.R[a], s.R[b]}, with_tangent ? Evaluate::ForceAndTangent : Evaluate::Force);
-    } catch (const Error& err) {  // the element's own error, named here
-      throw ModelError("element '" + el.id + "'", err.what());
-    }
+    const ElementResponse r = [&] {
+      try {
+        return beams_[e]->respond({s.x[a], s.x[b], s.R[a], s.R[b]}, with_tangent ? Evaluate::ForceAndTangent : Evaluate::Force);
+      } catch (const Error& err) {  // the element's own error, named here
+        throw ModelError("element '" + el.id + "'", err.what());
+      }
+    }();
     ev.end_forces[e] = r.local_end_forces;
     ev.energy += r.energy;
     ev.f_int_raw.segment<6>(6 * a) += r.force.head<6>();
