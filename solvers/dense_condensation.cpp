@@ -98,7 +98,7 @@ bool dense_schur_condensation(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A
   const Eigen::LLT<Eigen::MatrixXd>& lc = w.llt.compute(w.C);
   if (lc.info() != Eigen::Success || cholesky_rcond(lc.matrixLLT()) < options.singular_rcond) return false;
   Kz = lc.solve(Eigen::MatrixXd::Identity(r, r));
-  // Symmetric part, in place (each off-diagonal pair 0.5 (a + b) as before; the diagonal is its
+  // Symmetric part, in place (each off-diagonal pair 0.5 (a + b); the diagonal is its
   // own mirror; no temporary).
   for (Eigen::Index j = 0; j < r; ++j)
     for (Eigen::Index i = j + 1; i < r; ++i) Kz(i, j) = Kz(j, i) = 0.5 * (Kz(i, j) + Kz(j, i));

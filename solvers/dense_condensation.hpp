@@ -60,7 +60,7 @@ bool dense_schur_condensation(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A
 // No inverse of the compliance is formed. At most six picked columns. False when K is larger
 // than options.dense_max_dofs, not positive definite, or its factor's reciprocal condition
 // estimate is below options.singular_rcond (a mechanism, an ill-posed condensation: the caller
-// falls back to dense_schur_condensation and the saddle point, as before).
+// falls back to dense_schur_condensation and the saddle point).
 bool dense_static_condensation(const Eigen::MatrixXd& K, std::span<const int> cols, std::span<const double> a,
                                Eigen::MatrixXd& Kz, const FactorOptions& options = {},
                                DenseCondensationWorkspace* workspace = nullptr);

@@ -82,7 +82,7 @@ namespace {
 // CHOLMOD allocates its factor itself (83 MB at 21,504 DOFs), through SuiteSparse's process-wide
 // allocation functions: set once to malloc, calloc and realloc followed by huge-page advice for a
 // large block (core/huge_pages.hpp). Freeing stays std::free, so a block allocated before the
-// change, or by another CHOLMOD user in the process, is freed as before.
+// change, or by another CHOLMOD user in the process, is freed correctly.
 void advise_cholmod_allocations() {
   static std::once_flag once;
   std::call_once(once, [] {
@@ -168,7 +168,7 @@ FactorStatus SparseFactor::factorize_scaled(const SparseMatrix& K, const FactorO
   if (n > 0 && n <= options.dense_max_dofs) {
     // Small system: dense Cholesky of S K S (lower triangle, as CHOLMOD reads it), skipping the
     // zeros of the matrix (solvers/dense_condensation.hpp). A failure falls through to the sparse
-    // path below, which decides as before (CHOLMOD, then LU).
+    // path below, which decides (CHOLMOD, then LU).
     Eigen::MatrixXd& D = impl_->dense_l;
     D.setZero(n, n);
     for (int j = 0; j < K.outerSize(); ++j)

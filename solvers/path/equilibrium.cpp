@@ -201,7 +201,7 @@ SparseMatrix PathSystem::jacobian_from(const Converged& start, const StepSpec& s
   const Eigen::VectorXd dg = delta_gens(u);
   const SparseMatrix D = ns_.retraction_jacobian(dg);
   // D = I at Delta = 0 (a converged state's own tangent): no product (a spherical joint's block
-  // A^-1 I A is I only to round-off: multiplied as before).
+  // A^-1 I A is I only to round-off: it is multiplied out).
   const bool at_start = dg.isZero(0.0) && std::none_of(ns_.gens().begin(), ns_.gens().end(), [](const auto& g) {
                           return g.kind == NonlinearStructure::GenKind::JointSpherical;
                         });

@@ -52,7 +52,7 @@ struct PathOptions {
   MassKind frequency_mass = MassKind::Consistent;
   KinsolOptions newton;
   // Correct each step by chord iterations on the start state's factor first, full Newton only when
-  // they give up (solvers/path/corrector.hpp); false: full Newton at every step (as before).
+  // they give up (solvers/path/corrector.hpp); false: full Newton at every step.
   bool chord_corrector = true;
   std::function<void(const std::string&)> progress;  // may be empty
   void validate(const Model& model) const;

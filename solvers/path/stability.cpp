@@ -130,7 +130,7 @@ StabilityAnalysis StabilityAnalyzer::analyse(const Converged& c, const Stability
   const Eigen::VectorXd d = out.K.diagonal().cwiseAbs();  // S's diagonal
   const Eigen::VectorXd sc = (d.array() > 0.0).select(d.cwiseSqrt().cwiseInverse(), Eigen::VectorXd::Ones(n));
   // The lowest eigenvalue from the factorisation just made, no shifted one (see lowest_from_factor).
-  // The dense solve up to dense_limit_, the critical mode, and what that fails to settle, as before.
+  // Up to dense_limit_, for the critical mode, and where that fails to settle: the general route below.
   if (large && out.info.negative >= 0 && !want_mode) {
     const InertiaFactor factor =
         shared ? InertiaFactor::SharedLlt : (cholesky ? InertiaFactor::OwnLlt : InertiaFactor::Ldlt);

@@ -95,7 +95,7 @@ TEST(BadInput, CheckCommandValidatesWithoutRunning) {
   EXPECT_NE(r.output.find("/elements/0/section"), std::string::npos) << r.output;
 }
 
-// One key policy (issue 9): every object rejects unknown keys, suggesting the nearest known one;
+// One key policy: every object rejects unknown keys, suggesting the nearest known one;
 // '_'-prefixed keys and "comment" are free.
 TEST(StrictKeys, MisspelledTopLevelKeySuggestsTheKnownOne) {
   json d = base();

@@ -10,6 +10,8 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "support/models.hpp"
+
 namespace actuator_allocation_cli_test {
 
 namespace {
@@ -17,20 +19,13 @@ namespace {
 using json = nlohmann::json;
 namespace fs = std::filesystem;
 
-// A two-link planar chain (2 DOF) ending at P: joints A (ground) and B.
+// The two-link chain (tests/support/models.hpp) with an actuator allocation over both joints.
 json chain() {
-  return {{"nodes", {{{"id", "G"}, {"xyz", {0, 0, 0}}}, {{"id", "A"}, {"xyz", {0, 0, 0}}}, {{"id", "B1"}, {"xyz", {1, 0, 0}}},
-                     {{"id", "B2"}, {"xyz", {1, 0, 0}}}, {{"id", "P"}, {"xyz", {2, 0, 0}}}}},
-          {"materials", {{{"id", "m"}, {"E", 1.0}, {"nu", 0.3}}}},
-          {"sections", {{{"id", "s"}, {"shape", "circle"}, {"r", 0.05}}}},
-          {"elements", {{{"id", "L1"}, {"type", "beam"}, {"nodes", {"A", "B1"}}, {"material", "m"}, {"section", "s"}},
-                        {{"id", "L2"}, {"type", "beam"}, {"nodes", {"B2", "P"}}, {"material", "m"}, {"section", "s"}}}},
-          {"joints", {{{"id", "JA"}, {"type", "revolute"}, {"nodes", {"G", "A"}}, {"axes", {{0, 0, 1}}}},
-                      {{"id", "JB"}, {"type", "revolute"}, {"nodes", {"B1", "B2"}}, {"axes", {{0, 0, 1}}}}}},
-          {"supports", {{{"node", "G"}, {"fix", "all"}}}},
-          {"analyses", {{{"id", "alloc"}, {"type", "actuator_allocation"}, {"platform_node", "P"},
-                         {"candidate_joints", {"JA", "JB"}}, {"actuators", 2}, {"actuator_stiffness", 1.0},
-                         {"directions", {"rz", "uy"}}}}}};
+  json d = beamfea::test::two_link_chain();
+  d["analyses"] = {{{"id", "alloc"}, {"type", "actuator_allocation"}, {"platform_node", "P"},
+                    {"candidate_joints", {"JA", "JB"}}, {"actuators", 2}, {"actuator_stiffness", 1.0},
+                    {"directions", {"rz", "uy"}}}};
+  return d;
 }
 
 struct CliRun {

@@ -29,21 +29,14 @@ json cantilever_with_case() {
   return doc;
 }
 
-// A two-link planar chain ending at P (tests/io/actuator_allocation_cli_test.cpp's), its tip
+// The two-link chain (tests/support/models.hpp), its tip
 // loaded, with the same load also as the load case "same".
 json chain_with_case() {
   const json loads = json::array({{{"node", "P"}, {"force", {0, -2, 0}}}});
-  return {{"nodes", {{{"id", "G"}, {"xyz", {0, 0, 0}}}, {{"id", "A"}, {"xyz", {0, 0, 0}}}, {{"id", "B1"}, {"xyz", {1, 0, 0}}},
-                     {{"id", "B2"}, {"xyz", {1, 0, 0}}}, {{"id", "P"}, {"xyz", {2, 0, 0}}}}},
-          {"materials", {{{"id", "m"}, {"E", 1.0}, {"nu", 0.3}}}},
-          {"sections", {{{"id", "s"}, {"shape", "circle"}, {"r", 0.05}}}},
-          {"elements", {{{"id", "L1"}, {"type", "beam"}, {"nodes", {"A", "B1"}}, {"material", "m"}, {"section", "s"}},
-                        {{"id", "L2"}, {"type", "beam"}, {"nodes", {"B2", "P"}}, {"material", "m"}, {"section", "s"}}}},
-          {"joints", {{{"id", "JA"}, {"type", "revolute"}, {"nodes", {"G", "A"}}, {"axes", {{0, 0, 1}}}},
-                      {{"id", "JB"}, {"type", "revolute"}, {"nodes", {"B1", "B2"}}, {"axes", {{0, 0, 1}}}}}},
-          {"supports", {{{"node", "G"}, {"fix", "all"}}}},
-          {"loads", loads},
-          {"load_cases", {{{"id", "same"}, {"loads", loads}}}}};
+  json d = test::two_link_chain();
+  d["loads"] = loads;
+  d["load_cases"] = {{{"id", "same"}, {"loads", loads}}};
+  return d;
 }
 
 // One analysis spec of each type that takes a load case, with the document it runs on.

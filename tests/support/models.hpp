@@ -59,4 +59,19 @@ inline nlohmann::json linear_cantilever(double Py, int divisions = 1) {
   return d;
 }
 
+// A two-link planar chain (2 DOF) ending at node P: revolute joints JA (ground G to link L1 at A)
+// and JB (L1's end B1 to L2's start B2), both about z; unit-modulus circular links; no loads.
+inline nlohmann::json two_link_chain() {
+  using nlohmann::json;
+  return {{"nodes", {{{"id", "G"}, {"xyz", {0, 0, 0}}}, {{"id", "A"}, {"xyz", {0, 0, 0}}}, {{"id", "B1"}, {"xyz", {1, 0, 0}}},
+                     {{"id", "B2"}, {"xyz", {1, 0, 0}}}, {{"id", "P"}, {"xyz", {2, 0, 0}}}}},
+          {"materials", {{{"id", "m"}, {"E", 1.0}, {"nu", 0.3}}}},
+          {"sections", {{{"id", "s"}, {"shape", "circle"}, {"r", 0.05}}}},
+          {"elements", {{{"id", "L1"}, {"type", "beam"}, {"nodes", {"A", "B1"}}, {"material", "m"}, {"section", "s"}},
+                        {{"id", "L2"}, {"type", "beam"}, {"nodes", {"B2", "P"}}, {"material", "m"}, {"section", "s"}}}},
+          {"joints", {{{"id", "JA"}, {"type", "revolute"}, {"nodes", {"G", "A"}}, {"axes", {{0, 0, 1}}}},
+                      {{"id", "JB"}, {"type", "revolute"}, {"nodes", {"B1", "B2"}}, {"axes", {{0, 0, 1}}}}}},
+          {"supports", {{{"node", "G"}, {"fix", "all"}}}}};
+}
+
 }  // namespace beamfea::test
