@@ -2,6 +2,7 @@
 //   beamfea run model.json --out DIR     run every analysis, write DIR/results.json and VTK files
 //   beamfea check model.json             validate only (the same validation as run)
 //   beamfea sweep sweep.json --out DIR   many cases, one table DIR/cases.csv (cli/sweep_command.cpp)
+//   beamfea sections [shape key=value ...]  the section shapes, or one shape's properties
 // Exit codes: 0 success, 1 an analysis failed, 2 bad input (DIR left as it was).
 #include <CLI/CLI.hpp>
 
@@ -9,6 +10,7 @@
 
 #include "app/thread_tasks.hpp"
 #include "app/program_settings.hpp"
+#include "cli/sections_command.hpp"
 #include "cli/sweep_command.hpp"
 #include "core/errors.hpp"
 #include "core/version.hpp"
@@ -63,6 +65,7 @@ int main(int argc, char** argv) {
   check->add_option("model", check_path, "Model file (JSON)")->required();
 
   const auto sweep = beamfea::cli::add_sweep_command(app);
+  const auto sections = beamfea::cli::add_sections_command(app);
 
   try {
     app.parse(argc, argv);
@@ -73,6 +76,7 @@ int main(int argc, char** argv) {
 
   beamfea::app::install_openblas_threads_hook();
   if (*sweep->app) return beamfea::cli::run_sweep_command(*sweep);
+  if (*sections->app) return beamfea::cli::run_sections_command(*sections);
   // Bad input (InputError, ModelError from validation) is exit 2 and writes nothing; anything
   // that escapes a run after validation is exit 1.
   try {

@@ -1,4 +1,7 @@
 // Model reader, part 1: nodes, materials, sections (io/model_reader_parts.hpp).
+#include <algorithm>
+#include <string_view>
+
 #include "core/errors.hpp"
 #include "elements/section_shapes.hpp"
 #include "io/json_util.hpp"
@@ -55,29 +58,39 @@ void read_materials(ReadState& s) {
 
 namespace {
 
+// The dimensions of every shape (elements/section_shapes.hpp): the keys of a section besides its
+// properties.
+constexpr std::string_view kShapeDimensions[] = {"b", "h", "d", "r", "t", "tw", "tf"};
+
 // Reads the section's properties into `sec` (its id already set); `what` holds its name in messages.
 void read_section(const Fields& f, const json_in::Pointer& p, Section& sec, const std::string& what) {
   const json* shape_value = f.get("shape");
   if (shape_value) {
-    const std::string shape = string(*shape_value, child(p, "shape"), what);
-    SectionProperties sp;
-    if (shape == "rectangle") {
-      const double b = positive(f.require("b", what), child(p, "b"), What(what, " b"));
-      const double h = positive(f.require("h", what), child(p, "h"), What(what, " h"));
-      sp = rectangle_section(b, h);
-    } else if (shape == "circle") {
-      double r;
-      if (const json* d = f.get("d")) r = 0.5 * positive(*d, child(p, "d"), What(what, " d"));
-      else r = positive(f.require("r", what), child(p, "r"), What(what, " r"));
-      sp = circle_section(r);
-    } else if (shape == "tube") {
-      const double d = positive(f.require("d", what), child(p, "d"), What(what, " d"));
-      const double t = positive(f.require("t", what), child(p, "t"), What(what, " t"));
-      if (!(t < 0.5 * d)) throw InputError(child(p, "t"), what + ": wall thickness must be below the radius");
-      sp = tube_section(d, t);
-    } else {
-      throw InputError(child(p, "shape"), what + ": unknown shape '" + shape + "' (expected rectangle, circle, tube)");
+    const std::string shape_name = string(*shape_value, child(p, "shape"), what);
+    const SectionShape* shape = find_section_shape(shape_name);
+    if (!shape)
+      throw InputError(child(p, "shape"), what + ": unknown shape '" + shape_name + "' (expected " + section_shape_names() + ")");
+    // The shape's dimensions (required, then optional: 0 when absent); a dimension of another
+    // shape is an error naming the ones this shape takes.
+    ShapeDimensions d{};
+    std::size_t n = 0;
+    for (const std::string_view key : shape->dimensions) d[n++] = positive(f.require(key, what), child(p, key), What(what, " ", key));
+    for (const std::string_view key : shape->optional) {
+      const json* v = f.get(key);
+      d[n++] = v ? positive(*v, child(p, key), What(what, " ", key)) : 0.0;
     }
+    for (const std::string_view key : kShapeDimensions) {
+      if (!f.get(key) || std::ranges::count(shape->dimensions, key) || std::ranges::count(shape->optional, key)) continue;
+      std::string takes;
+      for (const auto& k : shape->dimensions) takes.append(takes.empty() ? "" : ", ").append(k);
+      for (const auto& k : shape->optional) takes.append(takes.empty() ? "" : ", ").append(k).append(" (optional)");
+      throw InputError(child(p, key), what + ": shape '" + shape_name + "' takes " + takes + ", not '" + std::string(key) + "'");
+    }
+    if (const std::string bad = shape->check(d); !bad.empty()) {
+      const std::string key = bad.substr(0, bad.find(':'));
+      throw InputError(child(p, key), what + ": " + bad);
+    }
+    const SectionProperties sp = shape->compute(d);
     sec.A = sp.A;
     sec.Iy = sp.Iy;
     sec.Iz = sp.Iz;
@@ -108,7 +121,7 @@ void read_sections(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/sections", i);
     const auto& o = object(arr[i], p, "section");
-    const Fields f(o, p, {"id", "shape", "b", "h", "d", "r", "t", "A", "Iy", "Iz", "J", "k", "ky", "kz"});
+    const Fields f(o, p, {"id", "shape", "b", "h", "d", "r", "t", "tw", "tf", "A", "Iy", "Iz", "J", "k", "ky", "kz"});
     Section sec = s.item(&Model::sections, i);
     id_into(sec.id, f.require("id", "section"), child(p, "id"), "section");
     check_unique(m.find_section(sec.id), "section", "/sections", sec.id, i);

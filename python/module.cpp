@@ -14,6 +14,7 @@
 #include "app/huge_pages_policy.hpp"
 #include "app/openblas.hpp"
 #include "app/thread_tasks.hpp"
+#include "elements/section_shapes.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
 #include "python/convert.hpp"
@@ -154,6 +155,37 @@ py::object sweep(const py::object& spec, int jobs) {
   }
 }
 
+// The properties of a section shape (elements/section_shapes.hpp) as a dict; bad dimensions raise
+// beamfea.InputError naming the dimension.
+py::dict py_section_properties(const std::string& shape, const std::vector<std::pair<std::string, double>>& dimensions) {
+  SectionProperties p;
+  try {
+    p = beamfea::section_properties(shape, dimensions);
+  } catch (const std::invalid_argument& e) {
+    raise_input_error(InputError("", "section shape '" + shape + "': " + e.what()), nullptr);
+  }
+  const PrincipalMoments pm = principal_moments(p.Iy, p.Iz, p.Iyz);
+  py::dict d;
+  d["A"] = p.A, d["Iy"] = p.Iy, d["Iz"] = p.Iz, d["J"] = p.J, d["ky"] = p.ky, d["kz"] = p.kz, d["Iyz"] = p.Iyz;
+  d["I1"] = pm.I1, d["I2"] = pm.I2, d["principal_angle"] = pm.angle;
+  return d;
+}
+
+py::list py_section_shapes() {
+  py::list out;
+  for (const auto& s : beamfea::section_shapes()) {
+    py::dict d;
+    d["shape"] = std::string(s.name);
+    py::list dims, opt;
+    for (const auto& k : s.dimensions) dims.append(std::string(k));
+    for (const auto& k : s.optional) opt.append(std::string(k));
+    d["dimensions"] = dims, d["optional"] = opt;
+    d["description"] = std::string(s.description), d["formulas"] = std::string(s.formulas);
+    out.append(d);
+  }
+  return out;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_beamfea, m) {
@@ -176,4 +208,6 @@ PYBIND11_MODULE(_beamfea, m) {
   m.def("run", &run, py::arg("model"), py::arg("only"), py::arg("specs"), py::arg("out"), py::arg("vtk"));
   m.def("check", &check, py::arg("model"));
   m.def("sweep", &sweep, py::arg("spec"), py::arg("jobs"));
+  m.def("section_properties", &py_section_properties, py::arg("shape"), py::arg("dimensions"));
+  m.def("section_shapes", &py_section_shapes);
 }

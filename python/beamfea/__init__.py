@@ -16,7 +16,7 @@ from . import _beamfea
 from ._errors import Error, InputError, ModelError
 
 __version__: str = _beamfea.__version__
-__all__ = ["run", "check", "sweep", "blas", "Error", "InputError", "ModelError", "__version__"]
+__all__ = ["run", "check", "sweep", "blas", "section_properties", "section_shapes", "Error", "InputError", "ModelError", "__version__"]
 
 Model = Union[Mapping[str, Any], str, "os.PathLike[str]"]
 
@@ -103,6 +103,30 @@ def blas() -> Dict[str, Any]:
         them, else ""}.
     """
     return dict(_beamfea.blas())
+
+
+def section_properties(shape: str, **dimensions: float) -> Dict[str, float]:
+    """The properties of a section shape, as a model's section with "shape" gets them.
+
+    Example: ``beamfea.section_properties("i", h=0.3, b=0.15, tw=0.0071, tf=0.0107, r=0.015)``.
+    The shapes and their dimensions are those of ``section_shapes()`` (docs/input-format.md,
+    "sections"); b is along local y, h along local z; any consistent units.
+
+    Returns:
+        dict: A, Iy, Iz, J, ky, kz, Iyz (product of inertia about the centroidal y and z: nonzero for
+        an angle, neglected by the beam element), I1 >= I2 (principal second moments) and
+        principal_angle (radians from local y towards local z, the axis of I1).
+
+    Raises:
+        InputError: an unknown shape, a missing, unknown or non-positive dimension, or dimensions
+        that do not make the shape (the message names the dimension).
+    """
+    return dict(_beamfea.section_properties(shape, [(k, float(v)) for k, v in dimensions.items()]))
+
+
+def section_shapes() -> list:
+    """The section shapes: a list of dicts {"shape", "dimensions", "optional", "description", "formulas"}."""
+    return [dict(s) for s in _beamfea.section_shapes()]
 
 
 def sweep(spec: Union[Mapping[str, Any], str, "os.PathLike[str]"], jobs: Optional[int] = None) -> Any:
