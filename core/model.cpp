@@ -100,6 +100,9 @@ void LoadSet::add_scaled(const LoadSet& o, double k) {
     l.q_to *= k;
     l.force *= k;
     l.moment *= k;
+    l.uniform *= k;
+    l.gradient_y *= k;
+    l.gradient_z *= k;
     member.push_back(l);
   }
   gravity += k * o.gravity;

@@ -40,6 +40,7 @@ struct Material {
   double E = 0.0;
   double G = 0.0;
   double density = 0.0;   // mass per unit volume (0: massless); self-weight and mass matrices
+  double alpha = 0.0;     // coefficient of thermal expansion (strain per degree); temperature loads
 };
 
 struct Section {
@@ -226,7 +227,7 @@ class IdIndex {
 // in the member's local axes when `local` (docs/conventions.md); in nonlinear analyses both keep
 // the direction they have in the reference configuration (dead loads).
 struct MemberLoad {
-  enum class Kind { Distributed, Point };
+  enum class Kind { Distributed, Point, Temperature };
   int member = -1;
   Kind kind = Kind::Distributed;
   bool local = false;
@@ -236,6 +237,10 @@ struct MemberLoad {
   // Point: a force and a moment at `at`.
   Vec3 force = Vec3::Zero(), moment = Vec3::Zero();
   double at = 0.5;
+  // Temperature: a change over the whole member, Delta T(y, z) = uniform + gradient_y y +
+  // gradient_z z in its local axes (the section's centroid at y = z = 0); the strain it causes is
+  // the material's alpha times it.
+  double uniform = 0.0, gradient_y = 0.0, gradient_z = 0.0;
 };
 
 // What one load case applies: nodal, joint and member loads, and gravity (acceleration) acting on

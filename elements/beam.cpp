@@ -89,9 +89,15 @@ Mat12 BeamElement::mass(MassKind kind, double density) const {
   return T_.transpose() * beam_local_mass(section_, density, L_, kind) * T_;
 }
 
-Vec12 BeamElement::equivalent_loads(const ElementLoads& loads) const { return equivalent_nodal_loads(L_, loads); }
+Vec12 BeamElement::equivalent_loads(const ElementLoads& loads) const {
+  Vec12 f = equivalent_nodal_loads(L_, loads);
+  if (loads.has_temperature()) f += thermal_loads(loads.temperature);
+  return f;
+}
 
-Vec12 BeamElement::thermal_loads(const Temperature& t) const {
+Vec12 BeamElement::thermal_loads(const Temperature& t) const { return beam_thermal_loads(section_, t); }
+
+Vec12 beam_thermal_loads(const BeamSection& section_, const Temperature& t) {
   // The restrained thermal strain and curvatures, eps = alpha dT, kappa_v = v'' = -alpha dT/dy,
   // kappa_w = w'' = -alpha dT/dz (hotter fibres lengthen); their equivalent loads are the virtual
   // work int B^T E (A eps, I kappa) dx of the element's strain-displacement B (linear u, Hermite v
@@ -136,7 +142,7 @@ NodalPoses LinearBeam::advance(const NodalPoses& p, const Vec12& d) const {
 }
 
 Vec12 LinearBeam::fixed_end_forces_at(const NodalPoses&, const ElementLoads& loads) const {
-  return fixed_end_forces(L_, loads);
+  return -equivalent_loads(loads);
 }
 
 Vec3 LinearBeam::displacement_at(const NodalPoses& p, double xi) const {

@@ -38,6 +38,12 @@ struct BeamSection {
   double phi_z(double L) const { return Asz > 0.0 ? 12.0 * E * Iy / (G * Asz * L * L) : 0.0; }
 };
 
+// Equivalent nodal loads (local) of a temperature change on a beam of this section: those of
+// FrameElement::thermal_loads (an axial pair E A alpha dT and an end-moment pair per plane,
+// E I alpha dT/dy and E I alpha dT/dz; the same for Timoshenko beams: a uniform curvature shears
+// nothing). Independent of the length.
+Vec12 beam_thermal_loads(const BeamSection& section, const Temperature& t);
+
 // Rows are the local axes (x, y, z) in global components: v_local = R * v_global.
 // Throws ModelError if the orientation is parallel to the member or the length is zero.
 Mat3 beam_local_axes(const Vec3& x1, const Vec3& x2, const Vec3& orientation);

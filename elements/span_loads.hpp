@@ -46,11 +46,17 @@ struct LocalPointLoad {
   Vec3 moment = Vec3::Zero();
 };
 
-// The loads between the nodes of one element, local components.
+// The loads between the nodes of one element, local components, and the temperature change over
+// it (whose equivalent loads need the section: the element's equivalent_loads adds them,
+// FrameElement::thermal_loads; the free functions below are the span loads' alone).
 struct ElementLoads {
   std::vector<LocalDistributedLoad> distributed;
   std::vector<LocalPointLoad> points;
-  bool empty() const { return distributed.empty() && points.empty(); }
+  Temperature temperature;
+  bool has_temperature() const {
+    return temperature.expansion != 0.0 && (temperature.uniform != 0.0 || temperature.gradient_y != 0.0 || temperature.gradient_z != 0.0);
+  }
+  bool empty() const { return distributed.empty() && points.empty() && !has_temperature(); }
 };
 
 // Equivalent nodal loads (local) of the loads on an element of length L.

@@ -154,6 +154,13 @@ struct PathSpec {
 PathSpec check_path(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
   PathSpec ps;
   ps.load_case = read_load_case(model, spec, p);
+  // A temperature change is an initial strain of the linear theory (FrameElement::thermal_loads);
+  // the co-rotational beams of a path have no thermal strain.
+  for (const MemberLoad& l : model.loads_for(ps.load_case).member)
+    if (l.kind == MemberLoad::Kind::Temperature)
+      throw InputError(child(p, "load_case"), "path: the loads of load case '" + (ps.load_case.empty() ? std::string(kDefaultLoadCase) : ps.load_case) +
+                                                 "' include a temperature change on element '" + model.members[l.member].id +
+                                                 "': temperature loads are for linear_static and the linear preloads (buckling, modal, stiffness), not for a path");
   ps.options = parse(model, spec, p);
   const PathOptions& o = ps.options;
   if (const nlohmann::json* save_every = json_in::field(spec, "save_every"))

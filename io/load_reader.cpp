@@ -40,10 +40,26 @@ MemberLoad read_member_load(const Model& m, const json& o, const json_in::Pointe
     if (axes == "local") l.local = true;
     else if (axes != "global") throw InputError(child(p, "axes"), what + ": axes must be \"local\" or \"global\"");
   }
+  if (o.contains("temperature")) {
+    l.kind = MemberLoad::Kind::Temperature;
+    expect_keys(o, p, {"element", "temperature"});
+    const json_in::Pointer tp = child(p, "temperature");
+    const json& t = o["temperature"];
+    if (!t.is_object()) throw InputError(tp, what + ": temperature must be an object {\"uniform\", \"gradient_y\", \"gradient_z\"}");
+    expect_keys(t, tp, {"uniform", "gradient_y", "gradient_z"});
+    if (t.empty()) throw InputError(tp, what + ": temperature needs 'uniform', 'gradient_y' or 'gradient_z'");
+    if (t.contains("uniform")) l.uniform = number(t["uniform"], child(tp, "uniform"), What(what, " temperature uniform"));
+    if (t.contains("gradient_y")) l.gradient_y = number(t["gradient_y"], child(tp, "gradient_y"), What(what, " temperature gradient_y"));
+    if (t.contains("gradient_z")) l.gradient_z = number(t["gradient_z"], child(tp, "gradient_z"), What(what, " temperature gradient_z"));
+    const Material& mat = m.materials[m.members[l.member].material];
+    if (!(mat.alpha != 0.0))
+      throw InputError(tp, what + ": material '" + mat.id + "' has no thermal expansion 'alpha' (/materials, field alpha)");
+    return l;
+  }
   const bool dist = o.contains("distributed");
   const bool point = o.contains("point") || o.contains("moment");
   if (dist == point)
-    throw InputError(p, what + ": give either 'distributed' (force per unit length) or 'point'/'moment' with 'at'");
+    throw InputError(p, what + ": give either 'distributed' (force per unit length), 'point'/'moment' with 'at', or 'temperature'");
   if (dist) {
     l.kind = MemberLoad::Kind::Distributed;
     l.q_from = vec3(o["distributed"], child(p, "distributed"), What(what, " distributed"));

@@ -36,7 +36,7 @@ void read_materials(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/materials", i);
     const auto& o = object(arr[i], p, "material");
-    const Fields f(o, p, {"id", "E", "G", "nu", "density"});
+    const Fields f(o, p, {"id", "E", "G", "nu", "density", "alpha"});
     Material mat = s.item(&Model::materials, i);
     id_into(mat.id, f.require("id", "material"), child(p, "id"), "material");
     check_unique(m.find_material(mat.id), "material", "/materials", mat.id, i);
@@ -52,6 +52,10 @@ void read_materials(ReadState& s) {
       throw InputError(child(p, "G"), what + ": missing field 'G' (or 'nu')");
     }
     mat.density = read_density(f.get("density"), p, what);
+    if (const json* alpha = f.get("alpha")) {
+      mat.alpha = number(*alpha, child(p, "alpha"), What(what, " alpha"));
+      if (!(mat.alpha >= 0.0)) throw InputError(child(p, "alpha"), what + ": alpha (thermal expansion) must not be negative");
+    }
     m.add_material(std::move(mat));
   }
 }

@@ -44,7 +44,7 @@ double member_length(const Model& m, const Member& mem) {
 template <class D, class P>
 void split_member_load(const Model& m, const MemberLoad& l, D&& dist, P&& point) {
   const Member& mem = m.members[l.member];
-  if (mem.type != MemberType::Beam) return;
+  if (mem.type != MemberType::Beam || l.kind == MemberLoad::Kind::Temperature) return;
   const double L = member_length(m, mem);
   const int nseg = static_cast<int>(mem.elements.size());
   int k = 0;
@@ -77,8 +77,21 @@ void element_loads(const Model& m, const LoadSet& loads, std::vector<ElementLoad
   for (auto& e : out) {
     e.distributed.clear();
     e.points.clear();
+    e.temperature = Temperature{};
   }
   for (const auto& l : loads.member) {
+    if (l.kind == MemberLoad::Kind::Temperature) {
+      // The whole member, segment by segment; temperature changes add.
+      const Member& mem = m.members[l.member];
+      for (const int e : mem.elements) {
+        Temperature& t = out[e].temperature;
+        t.expansion = m.materials[mem.material].alpha;
+        t.uniform += l.uniform;
+        t.gradient_y += l.gradient_y;
+        t.gradient_z += l.gradient_z;
+      }
+      continue;
+    }
     split_member_load(
         m, l,
         [&](int e, double, const Mat3& R, double a, double b, const Vec3& qa, const Vec3& qb) {
@@ -123,7 +136,9 @@ void external_force(const Model& m, const DofMap& map, const LoadSet& loads, con
     const auto& E = m.elements[e];
     const Vec3 xa = m.nodes[E.nodes[0]].x, xb = m.nodes[E.nodes[1]].x;
     const Mat3 R = beam_local_axes(xa, xb, E.orientation);
-    const Vec12 fe = beam_transformation(R).transpose() * equivalent_nodal_loads((xb - xa).norm(), el[e]);
+    Vec12 local = equivalent_nodal_loads((xb - xa).norm(), el[e]);
+    if (el[e].has_temperature()) local += beam_thermal_loads(beam_section(m, E), el[e].temperature);
+    const Vec12 fe = beam_transformation(R).transpose() * local;
     f.segment<6>(map.raw_node(E.nodes[0], 0)) += fe.head<6>();
     f.segment<6>(map.raw_node(E.nodes[1], 0)) += fe.tail<6>();
   }
