@@ -106,6 +106,24 @@ TEST(SkewedSupports, InclinedRollerReactionsFollowFromStatics) {
   EXPECT_NEAR(uB[1] / (std::tan(alpha) * ux), 1.0, 1e-9);
 }
 
+TEST(SkewedSupports, APathKeepsTheRollerOnItsPlane) {
+  // The path holds the roller's row as a constraint on the displacement: B stays on the plane
+  // (n . u = 0 to the corrector's tolerance). Under a small load the mid-span deflection is the
+  // linear one: P L^3 / 48 E I, plus half of B's drop along the plane, tan(a) u_x(B) / 2 with
+  // u_x(B) = -P tan(a) L / (2 E A); the axial force's P-delta (N / N_cr ~ 1e-5) and the bow's
+  // shortening (slope^2 ~ 1e-9) stay below the tolerance.
+  const double L = 4.0, P = 10.0, alpha = kPi / 6;
+  json d = inclined_roller(L, P, alpha);
+  d["analyses"] = {{{"id", "p"}, {"type", "path"}, {"control", {{"load_factor", 1.0}, {"increments", 2}}}, {"track", {"B", "C"}}}};
+  const ojson p = analyses(d)["p"];
+  ASSERT_EQ(p["status"], "ok") << p.dump();
+  const auto uB = numbers(p["steps"].back()["nodes"]["B"]["displacement"]);
+  const auto uC = numbers(p["steps"].back()["nodes"]["C"]["displacement"]);
+  EXPECT_NEAR(-std::sin(alpha) * uB[0] + std::cos(alpha) * uB[1], 0.0, 1e-10 * L);
+  const double uxB = -P * std::tan(alpha) / 2 * L / (E * A);
+  EXPECT_NEAR(uC[1] / (-P * L * L * L / (48 * E * I) + std::tan(alpha) * uxB / 2), 1.0, 1e-4);
+}
+
 TEST(SkewedSupports, AFrameTurnedAboutTheColumnAxisIsTheSameColumn) {
   // A quarter turn: the top's frame-uy is global -x, so the skewed top holds ux, and the column
   // equals the plain one holding ux (and the base frame is a rotation of a fixed support: fixed).

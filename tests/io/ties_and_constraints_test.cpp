@@ -73,6 +73,17 @@ TEST(Ties, ThreeColumnsTiedAtTheRoofSwayTogether) {
   EXPECT_NEAR(numbers(lin["nodes"]["T2"]["displacement"])[4] / (1.5 * u / H), 1.0, 1e-9);
 }
 
+TEST(Ties, TheStiffnessAtATiedTopIsTheColumnsInParallel) {
+  // The compliance along x at T1 (a unit force there, the top's rotations free): the three
+  // cantilevers in parallel, 1 / (k1 + k2 + k3).
+  json d = columns({I, 2 * I, 3 * I}, true);
+  d["analyses"] = {{{"id", "K"}, {"type", "stiffness"}, {"node", "T1"}}};
+  const ojson K = analyses(d)["K"];
+  ASSERT_EQ(K["status"], "ok") << K.dump();
+  const double c = K["compliance"][0][0].get<double>();
+  EXPECT_NEAR(c * (k_cantilever(I) + k_cantilever(2 * I) + k_cantilever(3 * I)), 1.0, 1e-9);
+}
+
 TEST(Ties, TiedColumnsBuckleTogether) {
   // Only T1 carries the axial load P. Tied, the sway along x needs the tops' shears to balance:
   // k(P) + k2 + k3 = 0, with the loaded cantilever's lateral stiffness k(P) = mu^3 E I / (tan(mu H) -
