@@ -26,7 +26,7 @@ inline constexpr std::array<const char*, 6> kDofNames{"ux", "uy", "uz", "rx", "r
 // Index of a DOF name ("ux" ... "rz"), or -1.
 int dof_index(const std::string& name);
 
-// Node, Material, Section, Element, Joint, Support and Prescribed: a field added here that the
+// Node, Material, Section, Element, Joint, Support, Prescribed, Tie and LinearConstraint: a field added here that the
 // DofMap or LinearStructure constructors read must join the cache key's comparison in
 // solvers/structure_cache.cpp, or a sweep would reuse a stale map.
 struct Node {
@@ -118,9 +118,31 @@ struct DofRef {
   bool operator==(const DofRef&) const = default;
 };
 
+// A support fixes DOFs of a node at 0. A skewed support names them in its own orthonormal frame:
+// row k of `axes` is the frame's axis k in global components, and fixing component k (ux, uy, uz)
+// holds axes.row(k) . u = 0 (rx, ry, rz: axes.row(k - 3) . theta = 0), an inclined roller.
 struct Support {
   int node = -1;
   std::array<bool, 6> fixed{};
+  bool skewed = false;          // "axes" given: the DOFs are in that frame
+  Mat3 axes = Mat3::Identity();  // rows: the frame's axes (global components)
+};
+
+// A tie (OpenSees' equalDOF): the listed DOFs of nodes[1] equal those of nodes[0], in global axes.
+struct Tie {
+  std::array<int, 2> nodes{};
+  std::array<bool, 6> dofs{};
+};
+
+// A linear multi-point constraint: sum over terms of coefficient * u(dof) = value, over node DOFs
+// (translations, and rotations: the rotation vector's components).
+struct ConstraintTerm {
+  DofRef dof;
+  double coefficient = 0.0;
+};
+struct LinearConstraint {
+  std::vector<ConstraintTerm> terms;
+  double value = 0.0;
 };
 
 struct Prescribed {
@@ -279,6 +301,8 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<Support> supports;
   std::vector<Prescribed> prescribed;
+  std::vector<Tie> ties;
+  std::vector<LinearConstraint> constraints;
   std::vector<PointMass> masses;
   // The default load case: the top-level loads and gravity. Named cases and combinations are
   // selected by an analysis's "load_case" (loads_for).

@@ -107,15 +107,17 @@ bool member_finite(const Model& model, const LinearStaticResult& r, std::size_t 
 
 // One node's output, written over `v`: its displacement, and its reaction where it is supported.
 void set_node(ojson& v, const LinearStaticResult& r, std::size_t n) {
-  ObjectFiller o(v, 2);
+  ObjectFiller o(v, 3);
   set_numbers(o.slot("displacement"), r.u.data() + 6 * n, 6);
   if (r.supported[n]) set_numbers(o.slot("reaction"), r.reactions[n].data(), 6);
+  if (!r.skewed.empty() && r.skewed[n]) set_numbers(o.slot("reaction_local"), r.reactions_local[n].data(), 6);
   o.finish();
 }
 
 // Whether every number set_node writes for node `n` is finite.
 bool node_finite(const LinearStaticResult& r, std::size_t n) {
-  return r.u.segment(static_cast<Eigen::Index>(6 * n), 6).allFinite() && (!r.supported[n] || r.reactions[n].allFinite());
+  return r.u.segment(static_cast<Eigen::Index>(6 * n), 6).allFinite() && (!r.supported[n] || r.reactions[n].allFinite()) &&
+         (r.skewed.empty() || !r.skewed[n] || r.reactions_local[n].allFinite());
 }
 
 // A deferred object (io/deferred_results.hpp) of `count` members, made one by one while
@@ -235,8 +237,9 @@ void set_joints(ojson& v, const Model& model, const LinearStaticResult& r) {
 }
 
 // The keys of a linear_static result (type, load_case, status, message, free_dofs, factorizations,
-// mechanism, nodes, elements, joints, statically_indeterminate, vtk) and run_document's wall_time_s.
-constexpr std::size_t kLinearStaticResultKeys = 13;
+// mechanism, nodes, elements, joints, tie_forces, constraint_forces, statically_indeterminate, vtk)
+// and run_document's wall_time_s.
+constexpr std::size_t kLinearStaticResultKeys = 15;
 
 AnalysisOutcome run_linear_static(const AnalysisContext& ctx, const LinearStaticSpec& spec) {
   const Model& model = ctx.model;
@@ -290,6 +293,9 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx, const LinearStatic
     members.finish();
   }
   set_joints(res.slot("joints"), model, r);
+  // The forces of ties (on nodes[1], per DOF ux..rz) and the multipliers of linear constraints.
+  if (!model.ties.empty()) set_vectors(res.slot("tie_forces"), r.tie_forces);
+  if (!model.constraints.empty()) set_numbers(res.slot("constraint_forces"), r.constraint_forces.data(), r.constraint_forces.size());
   set_strings(res.slot("statically_indeterminate"), r.statically_indeterminate);
   if (!ctx.out_dir.empty() && ctx.write_vtk) {
     const std::string file = ctx.id + ".vtu";

@@ -121,7 +121,7 @@ void read_model_into(const json& doc, Model& m, Model* spare, std::string& what)
   // Top-level keys of a model file (docs/input-format.md). Add a new collection here.
   expect_keys(doc, "", {"nodes", "materials", "sections", "elements", "joints", "supports", "loads", "prescribed",
                         "analyses", "units", "title", "name", "description", "gravity", "masses", "load_cases",
-                        "combinations"});
+                        "combinations", "ties", "constraints"});
   reader::ReadState s{doc, m, spare, 1.0, what};
   reader::read_nodes(s);
   s.length_scale = m.length_scale();  // meshing adds nodes on members only: the box stays the same
@@ -132,6 +132,8 @@ void read_model_into(const json& doc, Model& m, Model* spare, std::string& what)
   reader::read_supports(s);
   reader::read_loads(s);
   reader::read_prescribed(s);
+  reader::read_ties(s);
+  reader::read_constraints(s);
 }
 
 }  // namespace

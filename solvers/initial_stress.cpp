@@ -40,10 +40,13 @@ SparseMatrix geometric_stiffness(const Model& model, const DofMap& map, const Li
   Eigen::VectorXd f = structure.internal_force(map, lin.u) - f_ext;
   const auto cf = map.constraint_forces(f);
   for (int p = 0; p < map.prescribed_size(); ++p) {
+    if (map.prescribed()[p].constraint >= 0) continue;  // a linear constraint's value: in user_raw
     const int raw = map.raw_index(map.prescribed()[p].dof);
     const DofRef d = map.prescribed()[p].dof;
     if (d.owner == DofRef::Owner::Node && map.is_slave(d.index)) f[raw] -= cf.prescribed[p];
   }
+  // Skewed supports, ties and linear constraints: the forces they apply, as the supports' above.
+  f -= cf.user_raw;
   const NonlinearState s0 = ns.reference_state();
   const auto tw0 = ns.twists(s0);
   SparseMatrix G = ns.constraint_curvature(s0, tw0, f);
