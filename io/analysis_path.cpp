@@ -55,6 +55,28 @@ constexpr int kMaxFrequencyModes = 1000;     // as modal's "modes"
 
 int dof_of(const nlohmann::json& v, const json_in::Pointer& p) { return json_in::dof_name(v, p, "dof", ""); }
 
+// The smallest arc length (and `min`) accepted, relative to the model's size (Model::length_scale):
+// ds is a length in the model's units (docs/analyses/path.md), and a step of 1e-12 of the model is
+// at the round-off of its coordinates, so a path of such steps could never move (and takes
+// max_steps steps to say so). Relative, so the same in every unit system.
+constexpr double kMinArcLengthRatio = 1e-12;
+
+// Arc-length limits that cannot work: below kMinArcLengthRatio of the model's size, `min` above
+// `max`.
+void check_arc_lengths(const Model& model, const json_in::Pointer& pc, const PathOptions& o) {
+  const double floor = kMinArcLengthRatio * model.length_scale();
+  const auto at_least_floor = [&](const char* key, double v) {
+    if (v > 0.0 && v < floor)
+      throw InputError(child(pc, key), fmt::format("path control: {} {:.6g} is below {:.0e} of the model's size ({:.6g}): "
+                                                   "steps this small cannot move the model",
+                                                   key, v, kMinArcLengthRatio, model.length_scale()));
+  };
+  at_least_floor("arc_length", o.arc_length_auto ? 0.0 : o.arc_length);
+  at_least_floor("min", o.min_arc_length);
+  if (o.min_arc_length > 0.0 && o.max_arc_length > 0.0 && o.min_arc_length > o.max_arc_length)
+    throw InputError(child(pc, "min"), fmt::format("path control: min {:.6g} is above max {:.6g}", o.min_arc_length, o.max_arc_length));
+}
+
 PathOptions parse(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
   PathOptions o;
   json_in::expect_keys(spec, p, {"id", "type", "description", "control", "stop", "max_steps", "track", "stiffness_node",
@@ -85,6 +107,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const json_in:
     }
     if (c.contains("min")) o.min_arc_length = json_in::positive(c["min"], child(pc, "min"), "arc_length min");
     if (c.contains("max")) o.max_arc_length = json_in::positive(c["max"], child(pc, "max"), "arc_length max");
+    check_arc_lengths(model, pc, o);
   }
   if (c.contains("increments")) {
     o.increments = json_in::integer_in(c["increments"], child(pc, "increments"), "increments", 1, kMaxSteps);

@@ -1,5 +1,6 @@
 #include "io/model_reader.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -56,6 +57,18 @@ json parse_json_text(const std::string& text, const std::string& source) {
 }
 
 json read_json_file(const std::string& path) {
+  // Only a regular file of bounded size: a device or a pipe (/dev/zero, a FIFO) could be read
+  // without end, and a file larger than kMaxInputFileBytes is no model a person wrote.
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) throw InputError("", "cannot read file '" + path + "': no such file");
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError("", "cannot read '" + path + "': not a regular file (a model is read from a file, not a device, folder or pipe)");
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) throw InputError("", "cannot read file '" + path + "': " + ec.message());
+  if (size > kMaxInputFileBytes)
+    throw InputError("", "cannot read file '" + path + "': " + std::to_string(size) + " bytes, above the limit of " +
+                             std::to_string(kMaxInputFileBytes) + " bytes of an input file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("", "cannot read file '" + path + "'");
   std::stringstream ss;
