@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "elements/released_element.hpp"
 #include "solvers/eigen_lowest.hpp"
 #include "solvers/sparse_factor.hpp"
 
@@ -57,6 +58,11 @@ std::vector<ZeroEnergyMode> zero_energy_modes(const Model& model, const DofMap& 
         const std::string id = el.member >= 0 ? model.members[el.member].id : el.id;
         if (el.member >= 0 && !members.insert(el.member).second) continue;
         d += " '" + id + "'";
+        if (el.member >= 0) {  // end releases free the member's ends: say which
+          Releases r{};
+          for (int c = 0; c < 6; ++c) r[c] = model.members[el.member].releases[0][c], r[6 + c] = model.members[el.member].releases[1][c];
+          if (std::any_of(r.begin(), r.end(), [](bool b) { return b; })) d += " (released " + describe_releases(r) + ")";
+        }
       }
     }
     m.description = d;
