@@ -59,8 +59,10 @@ std::vector<ZeroEnergyMode> zero_energy_modes(const Model& model, const DofMap& 
         if (el.member >= 0 && !members.insert(el.member).second) continue;
         d += " '" + id + "'";
         if (el.member >= 0) {  // end releases free the member's ends: say which
+          const auto& ends = model.members[el.member].releases;
           Releases r{};
-          for (int c = 0; c < 6; ++c) r[c] = model.members[el.member].releases[0][c], r[6 + c] = model.members[el.member].releases[1][c];
+          std::copy(ends[0].begin(), ends[0].end(), r.begin());
+          std::copy(ends[1].begin(), ends[1].end(), r.begin() + 6);
           if (std::any_of(r.begin(), r.end(), [](bool b) { return b; })) d += " (released " + describe_releases(r) + ")";
         }
       }
