@@ -68,6 +68,15 @@ struct Member {
   BeamTheory theory = BeamTheory::EulerBernoulli;
   int divisions = 1;
   std::vector<int> elements;      // the elements meshed from it, in order from nodes[0] to nodes[1]
+  // End releases, local DOFs ux uy uz rx ry rz at the start (nodes[0]) and at the end (nodes[1]):
+  // true where the member's end does not follow its node (elements/released_element.hpp). The
+  // first segment takes the start's, the last the end's.
+  std::array<std::array<bool, 6>, 2> releases{};
+  // Rigid end zones: lengths at the start and at the end, along the member's flexible axis, that
+  // are rigid (Frame3DD's node radii); and eccentricities: global vectors from each node to the
+  // member's end (core/meshing.hpp places the flexible part between the two).
+  std::array<double, 2> rigid_ends{};
+  std::array<Vec3, 2> offsets{Vec3::Zero(), Vec3::Zero()};
 };
 
 // An analysis element: a beam between two nodes, or an exact rigid link.
@@ -80,6 +89,14 @@ struct Element {
   Vec3 orientation = Vec3::Zero();
   BeamTheory theory = BeamTheory::EulerBernoulli;
   int member = -1;
+  // Released local DOFs in the element's DOF order (node 1's six, then node 2's): statically
+  // condensed inside the element (elements/released_element.hpp).
+  std::array<bool, 12> released{};
+  bool has_releases() const { return std::any_of(released.begin(), released.end(), [](bool r) { return r; }); }
+  // Rigid arms: global vectors from each node to the element's flexible end (zero: the end is at
+  // its node); the element's beam lies between the flexible ends (elements/offset_element.hpp).
+  std::array<Vec3, 2> offsets{Vec3::Zero(), Vec3::Zero()};
+  bool has_offsets() const { return !offsets[0].isZero(0.0) || !offsets[1].isZero(0.0); }
 };
 
 enum class JointType { Revolute, Universal, Spherical, VirtualSpring };
@@ -357,6 +374,10 @@ struct Model {
   IdIndex material_index;
   IdIndex section_index;
 };
+
+// The position at the reference of a beam element's end `end` (0, 1) where its flexible part
+// begins or ends: its node, moved by the element's rigid arm (Element::offsets).
+inline Vec3 flexible_end(const Model& m, const Element& el, int end) { return m.nodes[el.nodes[end]].x + el.offsets[end]; }
 
 // Building a model again out of an old one's storage (io/model_reader.hpp's ModelBuffer: a sweep
 // worker reads a model per case): recycled(spare, i) is a default item (every field as a fresh one)

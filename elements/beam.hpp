@@ -16,7 +16,8 @@
 // Timoshenko matrix is exact for a prismatic member without span loads: it is the stiffness of
 // the "interdependent interpolation" shape functions (elements/beam_mass.hpp), which solve the
 // homogeneous Timoshenko equations, so one element gives the exact cantilever tip deflection
-// P L^3 / (3 E I) + P L / (G As). Not supported: warping, offsets.
+// P L^3 / (3 E I) + P L / (G As). Not supported: warping (end releases and offsets are wrappers:
+// elements/frame_element.hpp).
 //
 // The element contract it fulfils: elements/frame_element.hpp.
 #include <Eigen/Core>
@@ -82,6 +83,9 @@ class BeamElement : public FrameElement {
 
   const BeamSection& section() const { return section_; }
   const Mat12& local_stiffness() const { return kl_; }
+  // Replaces the local element k by C^T k C: a static condensation (elements/released_element.hpp)
+  // that every answer built on k follows (stiffness, local end forces, response at a state).
+  void condense_local(const Mat12& C);
   const Mat12& transformation() const { return T_; }
 
  protected:

@@ -11,10 +11,12 @@
 //   CorotationalBeam  (elements/corotational_beam.hpp) large displacements, finite rotations.
 // Both share the linear local element (beam_local_stiffness) and differ in the geometric
 // transformation from the nodal kinematics to its local deformations (OpenSees' split).
-// Behaviours that transform an element (end releases, rigid ends and offsets, tension-only) are
-// meant to be FrameElements that hold another FrameElement and transform what it answers (a
-// condensation of released DOFs, a rigid-offset transformation of force, tangent and mass, a
-// switch on the axial force), so that no analysis branches on them.
+// Behaviours that transform an element are FrameElements that hold another FrameElement and
+// transform what it answers, so that no analysis branches on them (solvers/element_factory.hpp
+// makes them):
+//   ReleasedElement (elements/released_element.hpp) end releases: a condensation of released DOFs;
+//   OffsetElement   (elements/offset_element.hpp)   rigid end zones and offsets: the rigid-arm
+//                                                   transformation of force, tangent and mass.
 //
 // DOF order, global and local: [u1 v1 w1 rx1 ry1 rz1  u2 v2 w2 rx2 ry2 rz2], node 1 then node 2.
 // Local axes: x from node 1 to node 2, y and z from the orientation vector (elements/beam.hpp);

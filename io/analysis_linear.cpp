@@ -215,7 +215,7 @@ void write_linear_vtu(const AnalysisContext& ctx, const LinearStaticResult& r, c
   // Diagrams follow the member loads between the nodes.
   f.section_forces = [&](int e, double xi) {
     const auto& el = model.elements[e];
-    const double Le = (model.nodes[el.nodes[1]].x - model.nodes[el.nodes[0]].x).norm();
+    const double Le = (flexible_end(model, el, 1) - flexible_end(model, el, 0)).norm();
     return section_forces_at(xi * Le, r.end_forces[e], r.element_loads[e]);
   };
   write_vtu((ctx.out_dir / file).string(), model, f);

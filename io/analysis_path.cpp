@@ -33,6 +33,7 @@
 #include "io/model_check.hpp"
 #include "io/load_reader.hpp"
 #include "solvers/member_loading.hpp"
+#include "solvers/element_factory.hpp"
 #include "io/model_reader.hpp"
 #include "io/result_status.hpp"
 #include "solvers/structure.hpp"
@@ -190,6 +191,14 @@ PathSpec check_path(const Model& model, const nlohmann::json& spec, const json_i
     ps.save_every = json_in::integer_at_least(*save_every, child(p, "save_every"), "save_every", 1);
   // What the path needs of the model, decided before anything runs.
   check_nonlinear_model(model, p);
+  // Dead loads follow the turning chord by their consistent vectors (elements/span_loads.hpp,
+  // DeadLoadTerm), which know nothing of a wrapped element's condensation or arms.
+  const std::vector<ElementLoads> member_loads = element_loads(model, model.loads_for(ps.load_case));
+  for (std::size_t e = 0; e < member_loads.size(); ++e)
+    if (!member_loads[e].empty() && is_transformed(model.elements[e]))
+      throw InputError(p, "element '" + model.elements[e].id +
+                              "': member loads and self-weight on a member with releases, offsets or rigid_ends are "
+                              "not supported by path analyses (the linear analyses take them); load its nodes instead");
   const DofMap map(model);
   if (o.control == PathControl::Displacement) {
     const std::string why = why_held(model, map, o.control_node, o.control_dof);

@@ -1,9 +1,11 @@
 #include "io/model_check.hpp"
 
 #include <algorithm>
+#include <string_view>
 
 #include "core/errors.hpp"
 #include "io/json_util.hpp"
+#include "solvers/element_factory.hpp"
 
 namespace beamfea {
 
@@ -26,6 +28,19 @@ void check_model(const Model& m, const nlohmann::json&) {
   const bool springs = std::any_of(m.joints.begin(), m.joints.end(), [](const Joint& j) { return j.has_stiffness(); });
   if (m.members.empty() && !springs)
     throw InputError("/elements", "the model has no elements and no joint with stiffness: nothing carries a load");
+  // End releases that leave a member's end segment a mechanism (rx at both ends, ...), offsets
+  // that turn the flexible part along its orientation vector: the element says so when made
+  // (solvers/element_factory.hpp).
+  for (std::size_t i = 0; i < m.members.size(); ++i)
+    for (const int e : m.members[i].elements) {
+      if (!is_transformed(m.elements[e])) continue;
+      try {
+        make_frame_element(m, e, Kinematics::Linear);
+      } catch (const ModelError& err) {
+        const bool releases = std::string_view(err.what()).find("end releases") != std::string_view::npos;
+        throw InputError(releases ? child(child("/elements", i), "releases") : child("/elements", i), err.what());
+      }
+    }
   // A support fixes a DOF at 0; a prescribed value on the same DOF must agree.
   for (std::size_t i = 0; i < m.prescribed.size(); ++i) {
     const auto& p = m.prescribed[i];

@@ -173,7 +173,7 @@ void LinearSystem::solve(const LoadSet& loads, LinearStaticResult& res, LinearSo
   for (std::size_t e = 0; e < model.elements.size(); ++e) {
     res.end_forces[e] = s.structure.end_forces(s.map, static_cast<int>(e), res.u);
     if (const auto& beam = s.structure.beam(static_cast<int>(e)); beam && !res.element_loads[e].empty())
-      res.end_forces[e] -= beam->equivalent_loads(res.element_loads[e]);  // the fixed-end forces
+      res.end_forces[e] += beam->fixed_end_forces_at(beam->reference_poses(), res.element_loads[e]);
   }
   res.modes.clear();
   res.status = SolveStatus::Succeeded;

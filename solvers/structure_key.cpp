@@ -15,7 +15,8 @@ bool same(const Vec3& a, const Vec3& b) { return same(a[0], b[0]) && same(a[1], 
 bool same(const Node& a, const Node& b) { return a.id == b.id && same(a.x, b.x) && a.member == b.member; }
 bool same(const Element& a, const Element& b) {
   return a.id == b.id && a.type == b.type && a.nodes == b.nodes && a.material == b.material && a.section == b.section &&
-         same(a.orientation, b.orientation) && a.theory == b.theory && a.member == b.member;
+         same(a.orientation, b.orientation) && a.theory == b.theory && a.member == b.member &&
+         a.released == b.released && same(a.offsets[0], b.offsets[0]) && same(a.offsets[1], b.offsets[1]);
 }
 bool same(const Material& a, const Material& b) {
   return a.id == b.id && same(a.E, b.E) && same(a.G, b.G) && same(a.density, b.density);
