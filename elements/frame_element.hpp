@@ -47,6 +47,15 @@ enum class CutSide;      // elements/span_loads.hpp
 
 enum class MassKind { Consistent, Lumped };
 
+// Which geometric (initial-stress) stiffness an element gives (docs/analyses/second-order.md):
+//   Full   the axial-force terms, Wagner's torsion term and the end-moment and torque couplings
+//          (McGuire, Gallagher & Ziemian 2000, eq. 9.18: lateral-torsional buckling);
+//   Axial  the axial-force terms alone, with the shear-deformable coefficients on a Timoshenko
+//          beam (Przemieniecki 1968; Frame3DD's geometric_K), and Wagner's torsion term
+//          N (Iy + Iz)/(A L): the common P-Delta convention.
+// Both take the element's mean axial force and assume a linear moment diagram between its ends.
+enum class GeometricStiffness { Full, Axial };
+
 // Positions x_i and total rotations R_i (from the reference configuration) of the two nodes.
 struct NodalPoses {
   Vec3 x1 = Vec3::Zero(), x2 = Vec3::Zero();
@@ -101,8 +110,11 @@ class FrameElement {
 
   // Geometric (initial-stress) stiffness at the reference, global, of the element carrying the
   // local end forces f: the linearised stiffness about that state is stiffness() + this (for
-  // buckling and loaded modes). Linear in f, symmetric.
-  virtual Mat12 geometric_stiffness(const Vec12& local_end_forces) const = 0;
+  // buckling and loaded modes). Linear in f, symmetric. `kind` picks its terms (see above).
+  virtual Mat12 geometric_stiffness(const Vec12& local_end_forces, GeometricStiffness kind) const = 0;
+  Mat12 geometric_stiffness(const Vec12& local_end_forces) const {
+    return geometric_stiffness(local_end_forces, GeometricStiffness::Full);
+  }
 
   // Mass matrix (global) of the material's density (mass per unit volume): at the reference, and
   // at a state (the local mass turned to the axes at the state; mass is conserved).
