@@ -37,7 +37,8 @@ void read_members(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/elements", i);
     const auto& o = object(arr[i], p, "element");
-    const Fields f(o, p, {"id", "type", "nodes", "material", "section", "orientation", "divisions", "theory"});
+    const Fields f(o, p, {"id", "type", "nodes", "material", "section", "orientation", "divisions", "theory",
+                                   "behaviour"});
     Member mem = s.item(&Model::members, i);
     id_into(mem.id, f.require("id", "element"), child(p, "id"), "element");
     check_unique(m.find_member(mem.id), "element", "/elements", mem.id, i);  // member i is element i
@@ -80,10 +81,17 @@ void read_members(ReadState& s) {
           throw InputError(tp, what + ": a Timoshenko beam needs the shear factors of section '" + sec.id +
                                    "' (give \"k\" or \"ky\" and \"kz\", or a \"shape\")");
       }
+      if (const json* behaviour = f.get("behaviour")) {
+        const json_in::Pointer bp = child(p, "behaviour");
+        const std::string b = string(*behaviour, bp, What(what, " behaviour"));
+        if (b == "tension_only") mem.behaviour = MemberBehaviour::TensionOnly;
+        else if (b == "compression_only") mem.behaviour = MemberBehaviour::CompressionOnly;
+        else throw InputError(bp, what + ": unknown behaviour '" + b + "' (expected tension_only or compression_only)");
+      }
     } else {
       if (const json* divisions = f.get("divisions"); divisions && *divisions != 1)
         throw InputError(child(p, "divisions"), what + ": a rigid link cannot be divided");
-      for (const char* key : {"material", "section", "orientation", "theory"})
+      for (const char* key : {"material", "section", "orientation", "theory", "behaviour"})
         if (f.get(key)) throw InputError(child(p, key), what + ": a rigid link has no " + std::string(key));
     }
     if (const std::string taken = taken_internal_node_id(m, mem); !taken.empty())
