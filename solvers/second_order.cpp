@@ -156,6 +156,8 @@ class Increment {
     a_.end();
   }
   const SystemAssembler& matrices() const { return a_; }
+  // Whether K_g has a rigid links' and joints' part.
+  bool has_constraints() const { return ns_.has_value(); }
   // The rigid links' and joints' part of K_g for the raw residual r (symmetrised), or null.
   std::optional<SparseMatrix> constraints(const Eigen::VectorXd& r) const {
     if (!ns_) return std::nullopt;
@@ -261,7 +263,7 @@ SecondOrderResult solve_second_order(const Model& model, const LoadSet& loads, c
   PatternMemory pattern;
 
   std::vector<ElementLoads> eloads;
-  Eigen::VectorXd f_raw, f, u_free(map.free_size()), residual;
+  Eigen::VectorXd f_raw, f, u_free(map.free_size()), residual, kg_residual;
   // The end forces K_g is made of: the last iterate's (zero before the linear step).
   std::vector<Vec12> kg_forces(model.elements.size(), Vec12::Zero());
   LinearStaticResult& sol = res.solution;
@@ -338,14 +340,22 @@ SecondOrderResult solve_second_order(const Model& model, const LoadSet& loads, c
       res.linear = sol;
       set.draw_along_chords(res.linear.u);
     }
+    // Where rigid links or joints transmit forces (their part of K_g), those forces too: the raw
+    // residual f_int - f_ext that their curvature is made of.
     bool converged = !changed;
     if (options.geometric && converged) {
       double scale = 0.0;
       const double change = max_axial_change(sol.end_forces, linear_phase ? sol.end_forces : kg_forces, scale);
       converged = scale == 0.0 || (!linear_phase && change <= options.tolerance * scale);
+      if (increment.has_constraints()) {
+        const double r_scale = residual.cwiseAbs().maxCoeff();
+        const double r_change = linear_phase ? r_scale : (residual - kg_residual).cwiseAbs().maxCoeff();
+        converged = converged && (r_scale == 0.0 || (!linear_phase && r_change <= options.tolerance * r_scale));
+      }
     }
     linear_phase = linear_phase && changed;
     kg_forces = sol.end_forces;
+    kg_residual = residual;
     if (options.geometric) constraint_kg = increment.constraints(residual);
     if (converged) break;
     if (k == options.max_iterations) {

@@ -8,7 +8,9 @@
 // by fixed-point iteration on the axial forces N:
 //     u_0 = K^-1 F                                   the linear step (linear statics' answer)
 //     u_k = (K + K_g(N(u_{k-1})))^-1 F,  k = 1, 2 ...
-// converged when max_e |N_e(u_k) - N_e(u_{k-1})| <= tolerance * max_e |N_e(u_k)|.
+// converged when max_e |N_e(u_k) - N_e(u_{k-1})| <= tolerance * max_e |N_e(u_k)| (and, where rigid
+// links or joints carry K_g, when the raw residual f_int - f_ext they transmit changes by no more
+// than tolerance of its largest).
 //   N_e    element e's mean axial force, from its end forces f_e = k_e T u_e + kg_e T u_e + the
 //          fixed-end forces of its member loads (so a column's own weight enters);
 //   K_g    the beams' FrameElement::geometric_stiffness of the options' kind, plus the rigid

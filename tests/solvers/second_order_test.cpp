@@ -117,6 +117,27 @@ TEST(SecondOrder, ModalAboutTheSecondOrderEquilibriumLowersTheFrequencyByTheAxia
   EXPECT_NEAR(r.frequencies[0] / f0, std::sqrt(1.0 - P / P_pin), 1e-4);
 }
 
+// A rigid link of length L on a rotational spring k, compressed by P and pushed sideways by H:
+// k theta = H L + P L theta, so the tip moves H L^2 / (k - P L) (statics of the displaced link),
+// the amplification 1 / (1 - P L / k). K_g is the rigid link's constraint curvature alone.
+TEST(SecondOrder, RigidLinkOnASpringAmplifiesByOneOverOneMinusPLOverK) {
+  const double Lr = 0.5, k = 200.0, P = 150.0, H = 1.0;
+  json d = rigid_chain(1, Lr, k);
+  d["loads"].push_back(load("N1", -P, H, 0));
+  const Model m = read_model(d);
+  const SecondOrderResult r = solve_second_order(m, m.default_loads());
+  ASSERT_EQ(r.status, SecondOrderStatus::Converged) << r.message;
+  const double tip = r.solution.u[6 * m.find_node("N1") + 1];
+  EXPECT_NEAR(tip, H * Lr * Lr / (k - P * Lr), 1e-9 * tip);
+  EXPECT_NEAR(r.amplification, 1.0 / (1.0 - P * Lr / k), 1e-9);
+  // Above P = k / L: diverged, the factor k / (P L).
+  d["loads"][0] = load("N1", -2.0 * k / Lr, H, 0);
+  const Model over = read_model(d);
+  const SecondOrderResult o = solve_second_order(over, over.default_loads());
+  ASSERT_EQ(o.status, SecondOrderStatus::Diverged) << o.message;
+  EXPECT_NEAR(o.critical_load_factor, 0.5, 1e-9);
+}
+
 // A Timoshenko column runs through the same iteration; with shear flexibility its tip moves more
 // than the Euler-Bernoulli column's, and the amplification is nearer the Euler-Bernoulli one the
 // stiffer the shear (both converge with the mesh).
