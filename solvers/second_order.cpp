@@ -195,9 +195,13 @@ struct StateWriter {
       const auto dofs = structure.element_dofs(map, static_cast<int>(e));
       const Vec12 ue = gather(dofs, res.u);
       Vec12 fg = beam->stiffness() * ue;
-      if (kg_forces) fg += beam->geometric_stiffness((*kg_forces)[e], kind) * ue;
+      res.end_forces[e] = beam->local_end_forces(ue);
+      if (kg_forces) {
+        const Vec12 fk = beam->geometric_stiffness((*kg_forces)[e], kind) * ue;
+        fg += fk;
+        res.end_forces[e] += to_local(beam->axes(), fk);
+      }
       for (int k = 0; k < 12; ++k) r[dofs[k]] += fg[k];
-      res.end_forces[e] = to_local(beam->axes(), fg);
       if (!loads[e].empty()) res.end_forces[e] -= beam->equivalent_loads(loads[e]);
     }
     for (std::size_t j = 0; j < model.joints.size(); ++j) {
