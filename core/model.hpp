@@ -56,6 +56,9 @@ struct Section {
 enum class MemberType { Beam, Rigid };
 // Beam theory of a beam member: Euler-Bernoulli (the default) or shear-deformable Timoshenko.
 enum class BeamTheory { EulerBernoulli, Timoshenko };
+// Which sign of axial force a beam member carries: both (the default), or only tension (a bracing
+// rod, a cable) or only compression (a contact strut); solvers/second_order.hpp iterates on them.
+enum class MemberBehaviour { Both, TensionOnly, CompressionOnly };
 
 // A member as the user wrote it.
 struct Member {
@@ -67,6 +70,7 @@ struct Member {
   Vec3 orientation = Vec3::Zero();  // a vector in the local x-z plane (OpenSees' vecxz)
   BeamTheory theory = BeamTheory::EulerBernoulli;
   int divisions = 1;
+  MemberBehaviour behaviour = MemberBehaviour::Both;
   std::vector<int> elements;      // the elements meshed from it, in order from nodes[0] to nodes[1]
   // End releases, local DOFs ux uy uz rx ry rz at the start (nodes[0]) and at the end (nodes[1]):
   // true where the member's end does not follow its node (elements/released_element.hpp). The

@@ -85,8 +85,9 @@ void BeamElement::condense_local(const Mat12& C) {
   K_ = to_global(kl_, R_);
 }
 
-Mat12 BeamElement::geometric_stiffness(const Vec12& f) const {
-  const Mat12 kg = beam_local_geometric_stiffness(L_, section_.A, section_.Iy, section_.Iz, f);
+Mat12 BeamElement::geometric_stiffness(const Vec12& f, GeometricStiffness kind) const {
+  const Mat12 kg = kind == GeometricStiffness::Full ? beam_local_geometric_stiffness(L_, section_.A, section_.Iy, section_.Iz, f)
+                                                    : beam_local_axial_geometric_stiffness(section_, L_, f);
   return T_.transpose() * kg * T_;
 }
 

@@ -73,8 +73,10 @@ class BeamElement : public FrameElement {
   NodalPoses reference_poses() const override { return {X1_, X2_, Mat3::Identity(), Mat3::Identity()}; }
   const Mat12& stiffness() const override { return K_; }
   Vec12 local_end_forces(const Vec12& u) const override { return kl_ * (T_ * u); }
-  // T^T kg T, kg of elements/geometric_stiffness.hpp (Euler-Bernoulli's also for a Timoshenko beam).
-  Mat12 geometric_stiffness(const Vec12& local_end_forces) const override;
+  // T^T kg T, kg of elements/geometric_stiffness.hpp: Full, McGuire's (its Euler-Bernoulli
+  // coefficients also for a Timoshenko beam); Axial, with the shear-deformable coefficients.
+  using FrameElement::geometric_stiffness;
+  Mat12 geometric_stiffness(const Vec12& local_end_forces, GeometricStiffness kind) const override;
   // T^T m T, m of elements/beam_mass.hpp.
   Mat12 mass(MassKind kind, double density) const override;
   Vec12 equivalent_loads(const ElementLoads& loads) const override;

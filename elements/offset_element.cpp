@@ -44,9 +44,9 @@ ElementResponse OffsetElement::respond(const NodalPoses& p, Evaluate what) const
   return r;
 }
 
-Mat12 OffsetElement::geometric_stiffness(const Vec12& f) const {
-  Mat12 kg = B0_.transpose() * flexible_->geometric_stiffness(f) * B0_;
-  // The second-order work of the end force F on the arm turned by theta:
+Mat12 OffsetElement::geometric_stiffness(const Vec12& f, GeometricStiffness kind) const {
+  Mat12 kg = B0_.transpose() * flexible_->geometric_stiffness(f, kind) * B0_;
+  // The arms' part, whichever kind the flexible part's: the second-order work of the end force F on the arm turned by theta:
   // F . (theta x (theta x o)) / 2 = theta^T (sym(F o^T) - (F . o) I) theta / 2.
   const Mat3& E = flexible_->axes();
   for (int e = 0; e < 2; ++e) {

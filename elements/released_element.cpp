@@ -66,8 +66,8 @@ Mat12 ReleasedElement::condensed(const Mat12& A, const Mat3& axes) const {
   return T.transpose() * (C_.transpose() * (T * A * T.transpose()) * C_) * T;
 }
 
-Mat12 ReleasedElement::geometric_stiffness(const Vec12& f) const {
-  return condensed(beam_->geometric_stiffness(f), beam_->axes());
+Mat12 ReleasedElement::geometric_stiffness(const Vec12& f, GeometricStiffness kind) const {
+  return condensed(beam_->geometric_stiffness(f, kind), beam_->axes());
 }
 
 Mat12 ReleasedElement::mass(MassKind kind, double density) const {

@@ -56,7 +56,8 @@ class ReleasedElement final : public FrameElement {
   ElementResponse respond(const NodalPoses& p, Evaluate what) const override { return beam_->respond(p, what); }
   NodalPoses advance(const NodalPoses& p, const Vec12& d) const override { return beam_->advance(p, d); }
 
-  Mat12 geometric_stiffness(const Vec12& local_end_forces) const override;
+  using FrameElement::geometric_stiffness;
+  Mat12 geometric_stiffness(const Vec12& local_end_forces, GeometricStiffness kind) const override;
   Mat12 mass(MassKind kind, double density) const override;
   Mat12 mass_at(const NodalPoses& p, MassKind kind, double density) const override;
   Vec12 equivalent_loads(const ElementLoads& loads) const override { return C_.transpose() * beam_->equivalent_loads(loads); }

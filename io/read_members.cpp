@@ -91,7 +91,8 @@ void read_members(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/elements", i);
     const auto& o = object(arr[i], p, "element");
-    const Fields f(o, p, {"id", "type", "nodes", "material", "section", "orientation", "divisions", "theory", "releases", "rigid_ends", "offsets"});
+    const Fields f(o, p, {"id", "type", "nodes", "material", "section", "orientation", "divisions", "theory", "releases", "rigid_ends", "offsets",
+                          "behaviour"});
     Member mem = s.item(&Model::members, i);
     id_into(mem.id, f.require("id", "element"), child(p, "id"), "element");
     check_unique(m.find_member(mem.id), "element", "/elements", mem.id, i);  // member i is element i
@@ -136,10 +137,17 @@ void read_members(ReadState& s) {
       }
       if (const json* releases = f.get("releases")) read_releases(*releases, child(p, "releases"), what, mem);
       read_arms(f, p, what, s.length_scale, mem, x1, x2);
+      if (const json* behaviour = f.get("behaviour")) {
+        const json_in::Pointer bp = child(p, "behaviour");
+        const std::string b = string(*behaviour, bp, What(what, " behaviour"));
+        if (b == "tension_only") mem.behaviour = MemberBehaviour::TensionOnly;
+        else if (b == "compression_only") mem.behaviour = MemberBehaviour::CompressionOnly;
+        else throw InputError(bp, what + ": unknown behaviour '" + b + "' (expected tension_only or compression_only)");
+      }
     } else {
       if (const json* divisions = f.get("divisions"); divisions && *divisions != 1)
         throw InputError(child(p, "divisions"), what + ": a rigid link cannot be divided");
-      for (const char* key : {"material", "section", "orientation", "theory", "releases", "rigid_ends", "offsets"})
+      for (const char* key : {"material", "section", "orientation", "theory", "releases", "rigid_ends", "offsets", "behaviour"})
         if (f.get(key)) throw InputError(child(p, key), what + ": a rigid link has no " + std::string(key));
     }
     if (const std::string taken = taken_internal_node_id(m, mem); !taken.empty())
