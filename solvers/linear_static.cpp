@@ -111,35 +111,12 @@ LinearStaticResult LinearSystem::solve(const LoadSet& loads) const {
   return res;
 }
 
-void LinearSystem::solve(const LoadSet& loads, LinearStaticResult& res, LinearSolveScratch& scratch) const {
-  const Impl& s = *impl_;
-  if (s.failure.status != SolveStatus::Succeeded) {
-    res = s.failure;
-    return;
-  }
-  const Model& model = *model_;
-  ++solves_;
-  res.free_dofs = s.map.free_size();
-  element_loads(model, loads, res.element_loads);
-  Eigen::VectorXd& f_raw = scratch.f_raw;
-  external_force(model, s.map, loads, res.element_loads, f_raw);
-  Eigen::VectorXd& f = scratch.f;
-  s.map.reduce(f_raw, f);
-  if (s.map.prescribed_size() > 0) f -= s.assembler.K_fp() * s.up;
-  scratch.u_free.resize(f.size());
-  s.factor.solve(f, scratch.u_free);
-  s.map.expand(scratch.u_free, s.up, res.u);
-
-  Eigen::VectorXd& r = scratch.residual;  // f_int - f_ext
-  s.structure.internal_force(s.map, res.u, r);
-  r -= f_raw;
-  s.map.constraint_forces(r, scratch.constraint_forces, scratch.constraint_scratch);
-  const DofMap::ConstraintForces& cf = scratch.constraint_forces;
+void set_constraint_results(const Model& model, const DofMap& map, const DofMap::ConstraintForces& cf, LinearStaticResult& res) {
   res.reactions.assign(model.nodes.size(), Vec6::Zero());
   res.supported.assign(model.nodes.size(), 0);
-  for (int p = 0; p < s.map.prescribed_size(); ++p) {
-    const auto& d = s.map.prescribed()[p].dof;
-    if (d.owner != DofRef::Owner::Node || s.map.prescribed()[p].constraint >= 0) continue;
+  for (int p = 0; p < map.prescribed_size(); ++p) {
+    const auto& d = map.prescribed()[p].dof;
+    if (d.owner != DofRef::Owner::Node || map.prescribed()[p].constraint >= 0) continue;
     res.reactions[d.index][d.comp] = cf.prescribed[p];
     res.supported[d.index] = 1;
   }
@@ -167,6 +144,33 @@ void LinearSystem::solve(const LoadSet& loads, LinearStaticResult& res, LinearSo
   }
   res.tie_forces = cf.tie;
   res.constraint_forces = cf.constraint;
+}
+
+void LinearSystem::solve(const LoadSet& loads, LinearStaticResult& res, LinearSolveScratch& scratch) const {
+  const Impl& s = *impl_;
+  if (s.failure.status != SolveStatus::Succeeded) {
+    res = s.failure;
+    return;
+  }
+  const Model& model = *model_;
+  ++solves_;
+  res.free_dofs = s.map.free_size();
+  element_loads(model, loads, res.element_loads);
+  Eigen::VectorXd& f_raw = scratch.f_raw;
+  external_force(model, s.map, loads, res.element_loads, f_raw);
+  Eigen::VectorXd& f = scratch.f;
+  s.map.reduce(f_raw, f);
+  if (s.map.prescribed_size() > 0) f -= s.assembler.K_fp() * s.up;
+  scratch.u_free.resize(f.size());
+  s.factor.solve(f, scratch.u_free);
+  s.map.expand(scratch.u_free, s.up, res.u);
+
+  Eigen::VectorXd& r = scratch.residual;  // f_int - f_ext
+  s.structure.internal_force(s.map, res.u, r);
+  r -= f_raw;
+  s.map.constraint_forces(r, scratch.constraint_forces, scratch.constraint_scratch);
+  const DofMap::ConstraintForces& cf = scratch.constraint_forces;
+  set_constraint_results(model, s.map, cf, res);
   res.joint_forces = cf.joint;
   res.statically_indeterminate = s.map.redundant_constraints();
   res.end_forces.resize(model.elements.size());

@@ -63,6 +63,11 @@ struct LinearSolveScratch {
   DofMap::ConstraintForceScratch constraint_scratch;
 };
 
+// The results that the constraint forces `cf` of a solution give (DofMap::constraint_forces of its
+// residual f_int - f_ext): reactions (global; in a skewed support's axes too), tie forces and the
+// multipliers of linear constraints, written into `res`. Shared by every static solver.
+void set_constraint_results(const Model& model, const DofMap& map, const DofMap::ConstraintForces& cf, LinearStaticResult& res);
+
 // The linear system of a model, assembled and factorised once; every load case solves against the
 // same factorisation (`factorizations()` counts them: 1, or 0 when the stiffness is singular).
 class LinearSystem {

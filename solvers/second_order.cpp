@@ -212,14 +212,7 @@ struct StateWriter {
     }
     r -= f_raw;
     const DofMap::ConstraintForces cf = map.constraint_forces(r);
-    res.reactions.assign(model.nodes.size(), Vec6::Zero());
-    res.supported.assign(model.nodes.size(), 0);
-    for (int p = 0; p < map.prescribed_size(); ++p) {
-      const auto& d = map.prescribed()[p].dof;
-      if (d.owner != DofRef::Owner::Node) continue;
-      res.reactions[d.index][d.comp] = cf.prescribed[p];
-      res.supported[d.index] = 1;
-    }
+    set_constraint_results(model, map, cf, res);
     res.joint_forces = cf.joint;
     res.statically_indeterminate = map.redundant_constraints();
     res.modes.clear();
