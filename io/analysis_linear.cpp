@@ -12,6 +12,7 @@
 #include "io/load_reader.hpp"
 #include "io/model_reader.hpp"
 #include "io/result_status.hpp"
+#include "io/stiffness_indices_output.hpp"
 #include "io/vtk_writer.hpp"
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/linear_static.hpp"
@@ -302,19 +303,22 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx, const LinearStatic
 
 // The keys of a stiffness result (type, node, load_case, status, message, matrix, rank, null_space,
 // compliance, compliance_bounded, unbounded_directions, rigid_directions, statically_indeterminate,
-// length_scale, scaled_eigenvalues), and run_document's wall_time_s.
-constexpr std::size_t kStiffnessResultKeys = 16;
+// length_scale, scaled_eigenvalues, indices), and run_document's wall_time_s.
+constexpr std::size_t kStiffnessResultKeys = 17;
 
 struct StiffnessSpec {
   int node = -1;
   std::string load_case;  // "": the linear stiffness; otherwise the loaded-mode one about this case
+  IndicesRequest indices;  // "directions", "reference_wrench"
 };
 
 StiffnessSpec check_stiffness(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
   StiffnessSpec s;
   s.load_case = read_load_case(model, spec, p);
-  json_in::expect_keys(spec, p, {"id", "type", "description", "node", "load_case"});
+  json_in::expect_keys(spec, p,
+                       {"id", "type", "description", "node", "load_case", "directions", "reference_wrench"});
   s.node = node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
+  s.indices = read_indices_request(spec, p);
   // Any node answers: where supports, loops or rigid links hold it, its compliance is zero and
   // rigid_directions names the directions (solvers/condensed_stiffness.hpp, node_compliance).
   return s;
@@ -366,6 +370,7 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx, const StiffnessSpec& s
   set_strings(r.slot("statically_indeterminate"), k.statically_indeterminate);
   r.slot("length_scale") = model.length_scale();
   set_numbers(r.slot("scaled_eigenvalues"), k.eigenvalues.data(), static_cast<std::size_t>(k.eigenvalues.size()));
+  set_indices(r.slot("indices"), k, model.length_scale(), spec.indices);
   r.finish();
   return out;
 }
