@@ -1,6 +1,7 @@
 #include "solvers/stiffness_indices.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 #include "core/errors.hpp"
@@ -128,6 +129,16 @@ std::optional<Vec6> deflection_under(const Mat6& C, const std::vector<Vec6>& unb
   for (const Vec6& n : unbounded)
     if (std::abs(n.dot(ws)) > options.free_tolerance * ws.norm()) return std::nullopt;
   return Vec6(C * w);
+}
+
+ComplianceAxes compliance_axes(const Mat3& C) {
+  const Eigen::SelfAdjointEigenSolver<Mat3> es(C);
+  ComplianceAxes out;
+  for (int i = 0; i < 3; ++i) {
+    out.semi_axes[i] = std::max(0.0, es.eigenvalues()[2 - i]);
+    out.axes.col(i) = signed_direction(es.eigenvectors().col(2 - i));
+  }
+  return out;
 }
 
 }  // namespace beamfea

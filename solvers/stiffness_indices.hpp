@@ -80,4 +80,13 @@ std::optional<double> stiffness_along(const Mat6& compliance, const std::vector<
 std::optional<Vec6> deflection_under(const Mat6& compliance, const std::vector<Vec6>& unbounded_directions, double L,
                                      const Vec6& wrench, const StiffnessIndicesOptions& options = {});
 
+// The principal axes of a 3x3 compliance block: its eigenvalues, descending (rounding below zero
+// written as zero), and the unit eigenvectors as the columns of `axes` (signed as above): the
+// semi-axes of the compliance ellipsoid { C f : |f| = 1 }.
+struct ComplianceAxes {
+  Vec3 semi_axes = Vec3::Zero();
+  Mat3 axes = Mat3::Identity();
+};
+ComplianceAxes compliance_axes(const Mat3& C);
+
 }  // namespace beamfea

@@ -172,6 +172,7 @@ TEST(StiffnessIndicesOutput, BadDirectionsAndWrenchesAreInputErrorsAtTheirPointe
   EXPECT_NE(error({{"directions", {{1, 0, 0}, {0, 0, 0}}}}).find("/analyses/0/directions/1"), std::string::npos);
   EXPECT_NE(error({{"directions", {{1, 0}}}}).find("/analyses/0/directions/0"), std::string::npos);
   EXPECT_NE(error({{"reference_wrench", {1, 2, 3}}}).find("/analyses/0/reference_wrench"), std::string::npos);
+  EXPECT_NE(error({{"ellipsoid", 1}}).find("/analyses/0/ellipsoid"), std::string::npos);
   EXPECT_NE(error({{"direction", {{1, 0, 0}}}}).find("did you mean 'directions'"), std::string::npos);
 }
 

@@ -163,4 +163,19 @@ TEST(StiffnessIndices, DeflectionIsTheComplianceTimesTheWrenchUnlessTheWrenchDri
   EXPECT_TRUE(beamfea::deflection_under(C, {n}, 2.0, no_mz));
 }
 
+TEST(StiffnessIndices, TheComplianceAxesAreTheEigenvaluesDescendingAlongTheRotatedAxes) {
+  const Mat3 R = Eigen::AngleAxisd(0.4, Vec3(-2, 1, 0.5).normalized()).toRotationMatrix();
+  const Mat3 C = R * Vec3(3e-6, 7e-5, 1e-5).asDiagonal() * R.transpose();
+  const auto axes = beamfea::compliance_axes(C);
+  EXPECT_NEAR(axes.semi_axes[0], 7e-5, 1e-12 * 7e-5);
+  EXPECT_NEAR(axes.semi_axes[1], 1e-5, 1e-11 * 1e-5);
+  EXPECT_NEAR(axes.semi_axes[2], 3e-6, 1e-10 * 3e-6);
+  EXPECT_NEAR(alignment(axes.axes.col(0), R.col(1)), 1.0, 1e-12);
+  EXPECT_NEAR(alignment(axes.axes.col(1), R.col(2)), 1.0, 1e-12);
+  EXPECT_NEAR(alignment(axes.axes.col(2), R.col(0)), 1.0, 1e-12);
+  // A blocked direction: a zero semi-axis (never a negative one from rounding).
+  const auto flat = beamfea::compliance_axes(Vec3(0, 2e-6, 1e-6).asDiagonal());
+  EXPECT_EQ(flat.semi_axes[2], 0.0);
+}
+
 }  // namespace stiffness_indices_test
