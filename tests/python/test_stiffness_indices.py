@@ -128,3 +128,24 @@ def test_no_ellipsoid_file_without_vtk_output(tmp_path):
     assert not (tmp_path / "out" / "K_ellipsoid.vtp").exists()
     res = json.loads((tmp_path / "out" / "results.json").read_text())
     assert "file" not in res["analyses"]["K"]["ellipsoid"]
+
+
+def test_a_kept_sweep_plays_the_ellipsoids_as_a_series(tmp_path):
+    # Two tip positions: the tip compliance grows as L^3 (bending) and L (axial).
+    (tmp_path / "base.json").write_text(json.dumps(stiffness_model(ellipsoid=True)))
+    lengths = [1.0, 2.0]
+    spec = {"base": "base.json", "grid": [{"name": "L", "pointer": "/nodes/1/xyz/0", "values": lengths}],
+            "outputs": ["analyses.K.ellipsoid.scale"]}
+    (tmp_path / "sweep.json").write_text(json.dumps(spec))
+    subprocess.run([EXE, "sweep", str(tmp_path / "sweep.json"), "--out", str(tmp_path / "out"), "--keep", "-q",
+                    "--jobs", "2"], check=True)
+    import xml.etree.ElementTree as ET
+    sets = ET.parse(tmp_path / "out" / "K_ellipsoid.pvd").getroot().findall("./Collection/DataSet")
+    assert [(float(s.get("timestep")), s.get("file")) for s in sets] == \
+        [(0.0, "cases/0/K_ellipsoid.vtp"), (1.0, "cases/1/K_ellipsoid.vtp")]
+    for s, Lc in zip(sets, lengths):
+        poly, _, field = read_polydata(tmp_path / "out" / s.get("file"))
+        # The largest semi-axis (z bending, L^3 / 3 E Iy) drawn at 0.1 of that case's model size Lc.
+        zmin, zmax = poly.GetBounds()[4:]
+        np.testing.assert_allclose((zmax - zmin) / 2, 0.1 * Lc, rtol=1e-9)
+        np.testing.assert_allclose(field["semi_axes"][0], Lc**3 / (3 * E * Iy), rtol=1e-9)
