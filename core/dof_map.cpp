@@ -213,24 +213,28 @@ void DofMap::build_extra_rows(const Model& m, const Configuration& c) {
   };
   for (const auto& s : m.supports)
     for (int k = 0; k < 6; ++k)
-      if (s.fixed[k]) prescribe(6 * s.node + k, 0.0, true);
+      if (s.fixed[k] && !s.skewed) prescribe(6 * s.node + k, 0.0, true);
   for (const auto& p : m.prescribed) prescribe(raw_index(p.dof), p.value, false);
+  // The values of the linear constraints: prescribed values that hold no raw DOF.
+  for (std::size_t c = 0; c < m.constraints.size(); ++c) {
+    const auto& lc = m.constraints[c];
+    prescribed_.push_back({lc.terms.empty() ? DofRef{} : lc.terms[0].dof, lc.value, false, static_cast<int>(c)});
+  }
 
   ind_prescribed_.assign(n_ind_, -1);
   // The rows are counted first and written over the last build's rows (their vectors keep their
   // storage): a prescribed value on a slave, then six rows per loop edge.
-  std::size_t n_extra = 6 * loop_edges_.size();
+  // The user rows (skewed supports, ties, linear constraints) come last: a redundant one is then
+  // the user's to remove, never a loop's.
+  std::size_t n_extra = 6 * loop_edges_.size() + m.constraints.size();
   for (int r = 0; r < n_raw_; ++r)
     if (raw_prescribed_[r] >= 0 && raw_to_ind_[r] < 0) ++n_extra;
+  for (const auto& s : m.supports)
+    if (s.skewed) n_extra += static_cast<std::size_t>(std::count(s.fixed.begin(), s.fixed.end(), true));
+  for (const auto& t : m.ties) n_extra += static_cast<std::size_t>(std::count(t.dofs.begin(), t.dofs.end(), true));
   extra_.resize(n_extra);
   std::size_t next = 0;
-  auto new_row = [&]() -> ExtraRow& {
-    ExtraRow& x = extra_[next++];
-    x.raw.clear();
-    x.rhs.clear();
-    x.joint = x.joint_row = x.prescribed = x.loop = -1;
-    return x;
-  };
+  auto new_row = [&]() -> ExtraRow& { return next_extra_row(next); };
   for (int r = 0; r < n_raw_; ++r) {
     const int p = raw_prescribed_[r];
     if (p < 0) continue;
@@ -252,6 +256,16 @@ void DofMap::build_extra_rows(const Model& m, const Configuration& c) {
       x.joint_row = k;
       if (e.kind == ConstraintEdge::Kind::Joint) x.joint = e.index;
     }
+  build_user_rows(m, next);
+}
+
+DofMap::ExtraRow& DofMap::next_extra_row(std::size_t& next) {
+  ExtraRow& x = extra_[next++];
+  x.raw.clear();
+  x.rhs.clear();
+  x.joint = x.joint_row = x.prescribed = x.loop = -1;
+  x.support = x.tie = x.constraint = x.comp = -1;
+  return x;
 }
 
 void DofMap::eliminate(const Model& m) {
@@ -312,6 +326,7 @@ void DofMap::eliminate_extra_rows(const Model& m) {
         pivot = k;
       }
     if (pivot < 0) {
+      if (is_user_row(x)) reject_user_row(m, x, e, scale);
       add_redundant_row(m, x, e, scale, n_names, n_rows);
       continue;
     }
@@ -429,6 +444,21 @@ void DofMap::describe_extra(const Model& m, const ExtraRow& x, std::string& out)
       append_edge_name(tree_edges_[parent_edge_[d.index]]);
       out.append(")");
     }
+    return;
+  }
+  if (x.support >= 0) {
+    out.append("skewed support at node '").append(m.nodes[m.supports[x.support].node].id).append("' ");
+    out.append(kDofNames[x.comp]).append(" (in its axes)");
+    return;
+  }
+  if (x.tie >= 0) {
+    const Tie& t = m.ties[x.tie];
+    out.append("tie of node '").append(m.nodes[t.nodes[1]].id).append("' to node '").append(m.nodes[t.nodes[0]].id);
+    out.append("' ").append(kDofNames[x.comp]);
+    return;
+  }
+  if (x.constraint >= 0) {
+    out.append("linear constraint ").append(std::to_string(x.constraint));
     return;
   }
   append_edge_name(loop_edges_[x.loop]);

@@ -16,7 +16,11 @@
 //                 "prescribed" (an imposed displacement or actuator motion). Also the value of
 //                 a support or prescription that falls on a slave node.
 //   dependent     an independent DOF eliminated by an extra constraint: a loop of rigid links
-//                 and joints closed by an edge outside the forest, or a support on a slave.
+//                 and joints closed by an edge outside the forest, a support on a slave, or a
+//                 user's constraint row (a skewed support's fixed axis, a tie, a linear constraint).
+//   user rows     the rows of skewed supports, ties and linear constraints (Model::supports with
+//                 axes, Model::ties, Model::constraints): each must remove a DOF of its own; a
+//                 redundant or contradictory one is an InputError naming it (/ties/<i> ...).
 //   free          independent, neither prescribed nor dependent: the unknowns of the system.
 //   condensation  eliminating all free DOFs but those of one node (the stiffness analysis).
 //
@@ -90,6 +94,9 @@ class DofMap {
     DofRef dof;
     double value = 0.0;
     bool support = false;  // from "supports" (reaction reported) rather than "prescribed"
+    // >= 0: the value of linear constraint `constraint` (no raw DOF is held; `dof` is its first
+    // term's, for messages): a column of T_prescribed like the others.
+    int constraint = -1;
   };
   const std::vector<PrescribedValue>& prescribed() const { return prescribed_; }
   Eigen::VectorXd prescribed_values() const;
@@ -123,6 +130,13 @@ class DofMap {
     std::vector<Vec6> loop;                // per loop edge: multipliers of its six rows (force and
                                            // moment that nodes[0]'s side exerts on nodes[1]); the
                                            // minimum-norm split where rows are redundant
+    std::vector<Vec6> support_local;       // per support: the reaction in its frame (skewed
+                                           // supports only: the multipliers of their rows)
+    std::vector<Vec6> tie;                 // per tie: the force (moment) it applies to nodes[1]
+                                           // along each tied DOF (nodes[0] takes the opposite)
+    std::vector<double> constraint;        // per linear constraint: the multiplier lambda; the
+                                           // constraint applies coefficient * lambda to each DOF
+    Eigen::VectorXd user_raw;              // the raw forces of the user rows, sum lambda C
   };
   ConstraintForces constraint_forces(const Eigen::VectorXd& r_raw) const;
   // The arrays of the computation (per node, the residual accumulated from the leaves; the residual
@@ -193,7 +207,16 @@ class DofMap {
     int joint = -1, joint_row = -1;        // loop joint rows: which joint and component (0..5)
     int prescribed = -1;                   // slave support rows: which prescribed value
     int loop = -1;                         // loop edge rows: which loop edge (row = joint_row)
+    int support = -1, tie = -1, constraint = -1;  // user rows: which item of the model
+    int comp = -1;                         // skewed support and tie rows: which DOF (0..5)
   };
+  // extra_[next++], emptied (its vectors keep their storage).
+  ExtraRow& next_extra_row(std::size_t& next);
+  bool is_user_row(const ExtraRow& x) const { return x.support >= 0 || x.tie >= 0 || x.constraint >= 0; }
+  // The rows of skewed supports, ties and linear constraints, appended to extra_ from `next`.
+  void build_user_rows(const Model& m, std::size_t& next);
+  // A user row found redundant or contradictory (reduced to `e`, no free DOF left): InputError.
+  [[noreturn]] void reject_user_row(const Model& m, const ExtraRow& x, const SparseRow& e, double scale) const;
   std::vector<ExtraRow> extra_;  // resized, not cleared, by a rebuild: each row keeps its storage
   // The link, joint or DOF an extra row came from, written over `out` (its storage kept).
   void describe_extra(const Model& m, const ExtraRow& x, std::string& out) const;

@@ -84,9 +84,19 @@ void DofMap::constraint_forces(const Eigen::VectorXd& r_raw, ConstraintForces& o
     acc[e.parent].tail<3>() += a.tail<3>() + (x_[e.child] - x_[e.parent]).cross(a.head<3>());
   }
   out.loop.assign(loop_edges_.size(), Vec6::Zero());
+  out.support_local.assign(model_->supports.size(), Vec6::Zero());
+  out.tie.assign(model_->ties.size(), Vec6::Zero());
+  out.constraint.assign(model_->constraints.size(), 0.0);
+  out.user_raw.setZero(n_raw_);
   for (int c = 0; c < m; ++c) {
-    if (extra_[c].joint >= 0) out.joint[extra_[c].joint][extra_[c].joint_row] = lambda[c];
-    if (extra_[c].loop >= 0) out.loop[extra_[c].loop][extra_[c].joint_row] = lambda[c];
+    const ExtraRow& x = extra_[c];
+    if (x.joint >= 0) out.joint[x.joint][x.joint_row] = lambda[c];
+    if (x.loop >= 0) out.loop[x.loop][x.joint_row] = lambda[c];
+    if (x.support >= 0) out.support_local[x.support][x.comp] = lambda[c];
+    if (x.tie >= 0) out.tie[x.tie][x.comp] = lambda[c];
+    if (x.constraint >= 0) out.constraint[x.constraint] = lambda[c];
+    if (is_user_row(x))
+      for (const auto& t : x.raw) out.user_raw[t.ind] += lambda[c] * t.coef;
   }
 }
 

@@ -30,7 +30,12 @@ std::string taken_internal_node_id(const Model& model, const Member& member) {
 
 int add_meshed_member(Model& model, Member mem, Model* spare) {
   const int mi = static_cast<int>(model.members.size());
-  const Vec3 x1 = model.nodes[mem.nodes[0]].x, x2 = model.nodes[mem.nodes[1]].x;
+  // The flexible part runs from F1 to F2: the ends moved by the offsets, then shortened by the
+  // rigid end zones along the line between them (the reader checks that something is left).
+  const Vec3 X1 = model.nodes[mem.nodes[0]].x, X2 = model.nodes[mem.nodes[1]].x;
+  const Vec3 P1 = X1 + mem.offsets[0], P2 = X2 + mem.offsets[1];
+  const Vec3 axis = (P2 - P1).normalized();
+  const Vec3 x1 = P1 + mem.rigid_ends[0] * axis, x2 = P2 - mem.rigid_ends[1] * axis;
   const int n = mem.divisions;
   mem.elements.clear();
   mem.elements.reserve(n);
@@ -54,6 +59,12 @@ int add_meshed_member(Model& model, Member mem, Model* spare) {
     e.orientation = mem.orientation;
     e.theory = mem.theory;
     e.member = mi;
+    e.released = {};
+    for (int c = 0; c < 6; ++c) {
+      if (k == 0) e.released[c] = mem.releases[0][c];
+      if (k + 1 == n) e.released[6 + c] = mem.releases[1][c];
+    }
+    e.offsets = {k == 0 ? Vec3(x1 - X1) : Vec3::Zero(), k + 1 == n ? Vec3(x2 - X2) : Vec3::Zero()};
     mem.elements.push_back(static_cast<int>(model.elements.size()));
     model.elements.push_back(std::move(e));
     prev = next;

@@ -142,6 +142,8 @@ void Model::clear() {
   joints.clear();
   supports.clear();
   prescribed.clear();
+  ties.clear();
+  constraints.clear();
   masses.clear();
   default_case.nodal.clear();
   default_case.joint.clear();

@@ -26,7 +26,7 @@ inline constexpr std::array<const char*, 6> kDofNames{"ux", "uy", "uz", "rx", "r
 // Index of a DOF name ("ux" ... "rz"), or -1.
 int dof_index(const std::string& name);
 
-// Node, Material, Section, Element, Joint, Support and Prescribed: a field added here that the
+// Node, Material, Section, Element, Joint, Support, Prescribed, Tie and LinearConstraint: a field added here that the
 // DofMap or LinearStructure constructors read must join the cache key's comparison in
 // solvers/structure_cache.cpp, or a sweep would reuse a stale map.
 struct Node {
@@ -56,6 +56,9 @@ struct Section {
 enum class MemberType { Beam, Rigid };
 // Beam theory of a beam member: Euler-Bernoulli (the default) or shear-deformable Timoshenko.
 enum class BeamTheory { EulerBernoulli, Timoshenko };
+// Which sign of axial force a beam member carries: both (the default), or only tension (a bracing
+// rod, a cable) or only compression (a contact strut); solvers/second_order.hpp iterates on them.
+enum class MemberBehaviour { Both, TensionOnly, CompressionOnly };
 
 // A member as the user wrote it.
 struct Member {
@@ -67,7 +70,17 @@ struct Member {
   Vec3 orientation = Vec3::Zero();  // a vector in the local x-z plane (OpenSees' vecxz)
   BeamTheory theory = BeamTheory::EulerBernoulli;
   int divisions = 1;
+  MemberBehaviour behaviour = MemberBehaviour::Both;
   std::vector<int> elements;      // the elements meshed from it, in order from nodes[0] to nodes[1]
+  // End releases, local DOFs ux uy uz rx ry rz at the start (nodes[0]) and at the end (nodes[1]):
+  // true where the member's end does not follow its node (elements/released_element.hpp). The
+  // first segment takes the start's, the last the end's.
+  std::array<std::array<bool, 6>, 2> releases{};
+  // Rigid end zones: lengths at the start and at the end, along the member's flexible axis, that
+  // are rigid (Frame3DD's node radii); and eccentricities: global vectors from each node to the
+  // member's end (core/meshing.hpp places the flexible part between the two).
+  std::array<double, 2> rigid_ends{};
+  std::array<Vec3, 2> offsets{Vec3::Zero(), Vec3::Zero()};
 };
 
 // An analysis element: a beam between two nodes, or an exact rigid link.
@@ -80,6 +93,14 @@ struct Element {
   Vec3 orientation = Vec3::Zero();
   BeamTheory theory = BeamTheory::EulerBernoulli;
   int member = -1;
+  // Released local DOFs in the element's DOF order (node 1's six, then node 2's): statically
+  // condensed inside the element (elements/released_element.hpp).
+  std::array<bool, 12> released{};
+  bool has_releases() const { return std::any_of(released.begin(), released.end(), [](bool r) { return r; }); }
+  // Rigid arms: global vectors from each node to the element's flexible end (zero: the end is at
+  // its node); the element's beam lies between the flexible ends (elements/offset_element.hpp).
+  std::array<Vec3, 2> offsets{Vec3::Zero(), Vec3::Zero()};
+  bool has_offsets() const { return !offsets[0].isZero(0.0) || !offsets[1].isZero(0.0); }
 };
 
 enum class JointType { Revolute, Universal, Spherical, VirtualSpring };
@@ -118,9 +139,31 @@ struct DofRef {
   bool operator==(const DofRef&) const = default;
 };
 
+// A support fixes DOFs of a node at 0. A skewed support names them in its own orthonormal frame:
+// row k of `axes` is the frame's axis k in global components, and fixing component k (ux, uy, uz)
+// holds axes.row(k) . u = 0 (rx, ry, rz: axes.row(k - 3) . theta = 0), an inclined roller.
 struct Support {
   int node = -1;
   std::array<bool, 6> fixed{};
+  bool skewed = false;          // "axes" given: the DOFs are in that frame
+  Mat3 axes = Mat3::Identity();  // rows: the frame's axes (global components)
+};
+
+// A tie (OpenSees' equalDOF): the listed DOFs of nodes[1] equal those of nodes[0], in global axes.
+struct Tie {
+  std::array<int, 2> nodes{};
+  std::array<bool, 6> dofs{};
+};
+
+// A linear multi-point constraint: sum over terms of coefficient * u(dof) = value, over node DOFs
+// (translations, and rotations: the rotation vector's components).
+struct ConstraintTerm {
+  DofRef dof;
+  double coefficient = 0.0;
+};
+struct LinearConstraint {
+  std::vector<ConstraintTerm> terms;
+  double value = 0.0;
 };
 
 struct Prescribed {
@@ -279,6 +322,8 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<Support> supports;
   std::vector<Prescribed> prescribed;
+  std::vector<Tie> ties;
+  std::vector<LinearConstraint> constraints;
   std::vector<PointMass> masses;
   // The default load case: the top-level loads and gravity. Named cases and combinations are
   // selected by an analysis's "load_case" (loads_for).
@@ -333,6 +378,10 @@ struct Model {
   IdIndex material_index;
   IdIndex section_index;
 };
+
+// The position at the reference of a beam element's end `end` (0, 1) where its flexible part
+// begins or ends: its node, moved by the element's rigid arm (Element::offsets).
+inline Vec3 flexible_end(const Model& m, const Element& el, int end) { return m.nodes[el.nodes[end]].x + el.offsets[end]; }
 
 // Building a model again out of an old one's storage (io/model_reader.hpp's ModelBuffer: a sweep
 // worker reads a model per case): recycled(spare, i) is a default item (every field as a fresh one)

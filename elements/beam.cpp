@@ -80,8 +80,14 @@ BeamElement::BeamElement(const BeamSection& section, const Vec3& x1, const Vec3&
     : section_(section), X1_(x1), X2_(x2), L_((x2 - x1).norm()), R_(beam_local_axes(x1, x2, orientation)),
       T_(beam_transformation(R_)), kl_(beam_local_stiffness(section, L_)), K_(to_global(kl_, R_)) {}
 
-Mat12 BeamElement::geometric_stiffness(const Vec12& f) const {
-  const Mat12 kg = beam_local_geometric_stiffness(L_, section_.A, section_.Iy, section_.Iz, f);
+void BeamElement::condense_local(const Mat12& C) {
+  kl_ = C.transpose() * kl_ * C;
+  K_ = to_global(kl_, R_);
+}
+
+Mat12 BeamElement::geometric_stiffness(const Vec12& f, GeometricStiffness kind) const {
+  const Mat12 kg = kind == GeometricStiffness::Full ? beam_local_geometric_stiffness(L_, section_.A, section_.Iy, section_.Iz, f)
+                                                    : beam_local_axial_geometric_stiffness(section_, L_, f);
   return T_.transpose() * kg * T_;
 }
 

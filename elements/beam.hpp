@@ -16,7 +16,8 @@
 // Timoshenko matrix is exact for a prismatic member without span loads: it is the stiffness of
 // the "interdependent interpolation" shape functions (elements/beam_mass.hpp), which solve the
 // homogeneous Timoshenko equations, so one element gives the exact cantilever tip deflection
-// P L^3 / (3 E I) + P L / (G As). Not supported: warping, offsets.
+// P L^3 / (3 E I) + P L / (G As). Not supported: warping (end releases and offsets are wrappers:
+// elements/frame_element.hpp).
 //
 // The element contract it fulfils: elements/frame_element.hpp.
 #include <Eigen/Core>
@@ -72,8 +73,10 @@ class BeamElement : public FrameElement {
   NodalPoses reference_poses() const override { return {X1_, X2_, Mat3::Identity(), Mat3::Identity()}; }
   const Mat12& stiffness() const override { return K_; }
   Vec12 local_end_forces(const Vec12& u) const override { return kl_ * (T_ * u); }
-  // T^T kg T, kg of elements/geometric_stiffness.hpp (Euler-Bernoulli's also for a Timoshenko beam).
-  Mat12 geometric_stiffness(const Vec12& local_end_forces) const override;
+  // T^T kg T, kg of elements/geometric_stiffness.hpp: Full, McGuire's (its Euler-Bernoulli
+  // coefficients also for a Timoshenko beam); Axial, with the shear-deformable coefficients.
+  using FrameElement::geometric_stiffness;
+  Mat12 geometric_stiffness(const Vec12& local_end_forces, GeometricStiffness kind) const override;
   // T^T m T, m of elements/beam_mass.hpp.
   Mat12 mass(MassKind kind, double density) const override;
   Vec12 equivalent_loads(const ElementLoads& loads) const override;
@@ -82,6 +85,9 @@ class BeamElement : public FrameElement {
 
   const BeamSection& section() const { return section_; }
   const Mat12& local_stiffness() const { return kl_; }
+  // Replaces the local element k by C^T k C: a static condensation (elements/released_element.hpp)
+  // that every answer built on k follows (stiffness, local end forces, response at a state).
+  void condense_local(const Mat12& C);
   const Mat12& transformation() const { return T_; }
 
  protected:

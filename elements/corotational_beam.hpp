@@ -59,7 +59,7 @@
 // section has shear areas (the element's "theory"); the co-rotated frame is unchanged.
 // Member loads: dead loads (fixed in space) through fixed_end_forces_at and the chord-following
 // consistent vectors of elements/span_loads.hpp (DeadLoadTerm).
-// Not supported: warping, offsets, large local strains; the frame
+// Not supported: warping, large local strains (releases and offsets: wrappers); the frame
 // is undefined when the mean nodal y axis q becomes parallel to the chord (local rotations near
 // 90 deg about the member's z axis), which throws ModelError.
 #include "elements/beam.hpp"

@@ -11,10 +11,15 @@
 //   CorotationalBeam  (elements/corotational_beam.hpp) large displacements, finite rotations.
 // Both share the linear local element (beam_local_stiffness) and differ in the geometric
 // transformation from the nodal kinematics to its local deformations (OpenSees' split).
-// Behaviours that transform an element (end releases, rigid ends and offsets, tension-only) are
-// meant to be FrameElements that hold another FrameElement and transform what it answers (a
-// condensation of released DOFs, a rigid-offset transformation of force, tangent and mass, a
-// switch on the axial force), so that no analysis branches on them.
+// Behaviours that transform an element are FrameElements that hold another FrameElement and
+// transform what it answers, so that no analysis branches on them (solvers/element_factory.hpp
+// makes them):
+//   ReleasedElement (elements/released_element.hpp) end releases: a condensation of released DOFs;
+//   OffsetElement   (elements/offset_element.hpp)   rigid end zones and offsets: the rigid-arm
+//                                                   transformation of force, tangent and mass.
+// Tension-only and compression-only members are not an element transformation but a choice of which
+// members are in the structure: an active set that the static solvers iterate
+// (solvers/second_order.hpp), each member answering as itself or not at all.
 //
 // DOF order, global and local: [u1 v1 w1 rx1 ry1 rz1  u2 v2 w2 rx2 ry2 rz2], node 1 then node 2.
 // Local axes: x from node 1 to node 2, y and z from the orientation vector (elements/beam.hpp);
@@ -46,6 +51,15 @@ struct ElementLoads;     // elements/span_loads.hpp
 enum class CutSide;      // elements/span_loads.hpp
 
 enum class MassKind { Consistent, Lumped };
+
+// Which geometric (initial-stress) stiffness an element gives (docs/analyses/second-order.md):
+//   Full   the axial-force terms, Wagner's torsion term and the end-moment and torque couplings
+//          (McGuire, Gallagher & Ziemian 2000, eq. 9.18: lateral-torsional buckling);
+//   Axial  the axial-force terms alone, with the shear-deformable coefficients on a Timoshenko
+//          beam (Przemieniecki 1968; Frame3DD's geometric_K), and Wagner's torsion term
+//          N (Iy + Iz)/(A L): the common P-Delta convention.
+// Both take the element's mean axial force and assume a linear moment diagram between its ends.
+enum class GeometricStiffness { Full, Axial };
 
 // Positions x_i and total rotations R_i (from the reference configuration) of the two nodes.
 struct NodalPoses {
@@ -101,8 +115,11 @@ class FrameElement {
 
   // Geometric (initial-stress) stiffness at the reference, global, of the element carrying the
   // local end forces f: the linearised stiffness about that state is stiffness() + this (for
-  // buckling and loaded modes). Linear in f, symmetric.
-  virtual Mat12 geometric_stiffness(const Vec12& local_end_forces) const = 0;
+  // buckling and loaded modes). Linear in f, symmetric. `kind` picks its terms (see above).
+  virtual Mat12 geometric_stiffness(const Vec12& local_end_forces, GeometricStiffness kind) const = 0;
+  Mat12 geometric_stiffness(const Vec12& local_end_forces) const {
+    return geometric_stiffness(local_end_forces, GeometricStiffness::Full);
+  }
 
   // Mass matrix (global) of the material's density (mass per unit volume): at the reference, and
   // at a state (the local mass turned to the axes at the state; mass is conserved).

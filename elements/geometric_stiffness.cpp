@@ -1,6 +1,7 @@
 #include "elements/geometric_stiffness.hpp"
 
 #include <cassert>
+#include <utility>
 
 namespace beamfea {
 
@@ -69,6 +70,37 @@ Mat12 beam_local_geometric_stiffness(double L, double A, double Iy, double Iz, c
   kg(1, 1) = kg(2, 2) = kg(7, 7) = kg(8, 8) = 6.0 * Fx2 / (5.0 * L);
   kg(3, 3) = kg(9, 9) = Fx2 * Ip_A / L;
   kg(4, 4) = kg(5, 5) = kg(10, 10) = kg(11, 11) = 2.0 * Fx2 * L / 15.0;
+  return kg;
+}
+
+Mat12 beam_local_axial_geometric_stiffness(const BeamSection& s, double L, const Vec12& f) {
+  assert(L > 0.0 && s.A > 0.0);
+  const double N = 0.5 * (f(6) - f(0));
+  Mat12 kg = Mat12::Zero();
+  // Axial and Wagner torsion terms: N/L [1 -1; -1 1] on u and N (Iy + Iz)/(A L) on rx.
+  const double axial = N / L, torsion = N * (s.Iy + s.Iz) / (s.A * L);
+  for (const auto& [i, k] : {std::pair{0, axial}, std::pair{3, torsion}}) {
+    kg(i, i) = kg(i + 6, i + 6) = k;
+    kg(i, i + 6) = kg(i + 6, i) = -k;
+  }
+  // Bending in one plane: translation t, rotation r, `sign` +1 for (v, rz), -1 for (w, ry)
+  // (w' = -ry). Przemieniecki (1968) sec. 15.3 as coded in Frame3DD's geometric_K.
+  const auto plane = [&](int t, int r, double sign, double phi) {
+    const double D = (1.0 + phi) * (1.0 + phi);
+    const double ktt = N / L * (1.2 + 2.0 * phi + phi * phi) / D;
+    const double ktr = sign * N / (10.0 * D);
+    const double krr = N * L * (2.0 / 15.0 + phi / 6.0 + phi * phi / 12.0) / D;
+    const double krr2 = -N * L * (1.0 / 30.0 + phi / 6.0 + phi * phi / 12.0) / D;
+    const int t2 = t + 6, r2 = r + 6;
+    kg(t, t) = kg(t2, t2) = ktt;
+    kg(t, t2) = kg(t2, t) = -ktt;
+    kg(r, r) = kg(r2, r2) = krr;
+    kg(r, r2) = kg(r2, r) = krr2;
+    kg(t, r) = kg(r, t) = kg(t, r2) = kg(r2, t) = ktr;
+    kg(t2, r) = kg(r, t2) = kg(t2, r2) = kg(r2, t2) = -ktr;
+  };
+  plane(1, 5, 1.0, s.phi_y(L));
+  plane(2, 4, -1.0, s.phi_z(L));
   return kg;
 }
 

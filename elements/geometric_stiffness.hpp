@@ -28,6 +28,18 @@
 // (f[6] - f[0])/2 and (f[9] - f[3])/2. The end shears enter only through the moments
 // (Vy = -(Mz1 + Mz2)/L etc. by equilibrium) and are not read.
 //
+// The axial-force matrix (GeometricStiffness::Axial, beam_local_axial_geometric_stiffness): the
+// terms of N alone, the common P-Delta convention (Frame3DD, Pynite's P-Delta, design codes'
+// second-order elastic analysis). On a Timoshenko beam with the shear parameters Phi_y, Phi_z of
+// elements/beam.hpp, the shear-deformable coefficients of Przemieniecki, Theory of Matrix
+// Structural Analysis (1968), sec. 15.3, as Frame3DD's geometric_K codes them, for bending in x-y
+// (Phi = Phi_y, D = (1 + Phi)^2; x-z alike with Phi_z and the signs of w, ry):
+//   kg(v1, v1)   =  N/L (6/5 + 2 Phi + Phi^2)/D       kg(v1, rz1) = N/(10 D)
+//   kg(rz1, rz1) =  N L (2/15 + Phi/6 + Phi^2/12)/D   kg(rz1, rz2) = -N L (1/30 + Phi/6 + Phi^2/12)/D
+// (Phi = 0: the Hermite matrix above), the axial term N/L [1 -1; -1 1] on u and Wagner's torsion
+// term N (Iy + Iz)/(A L) [1 -1; -1 1] on rx (Frame3DD takes J instead of Iy + Iz there). Under a
+// rigid rotation the matrix gives the force pair N theta of the rotated axial force, as it must.
+//
 // Not supported: warping torsion (no bimoment DOF), mono-symmetric sections (Wagner coefficient
 // beta_x), load-height effects, member loads between the nodes.
 #include "elements/beam.hpp"
@@ -37,5 +49,10 @@ namespace beamfea {
 // Local geometric stiffness of a member of length L, area A, second moments Iy, Iz, carrying the
 // local end forces `local_end_forces` (see above). Global: T^T kg T with T = beam_transformation.
 Mat12 beam_local_geometric_stiffness(double L, double A, double Iy, double Iz, const Vec12& local_end_forces);
+
+// The axial-force matrix (see above) of a member of section s (Timoshenko coefficients when
+// s.shear_deformable()) and length L carrying the local end forces `local_end_forces` (N their
+// mean axial force).
+Mat12 beam_local_axial_geometric_stiffness(const BeamSection& s, double L, const Vec12& local_end_forces);
 
 }  // namespace beamfea

@@ -218,5 +218,6 @@ AnalysisType actuator_allocation_analysis();
 AnalysisType buckling_analysis();
 AnalysisType path_analysis();
 AnalysisType modal_analysis();
+AnalysisType second_order_analysis();
 
 }  // namespace beamfea

@@ -1,6 +1,6 @@
 // Analysis "buckling": linearised buckling load factors and modes (solvers/buckling.hpp).
-//   {"id": "b", "type": "buckling", "modes": 4}
-// Result analyses.<id>: type, status, message, free_dofs, load_factors (ascending),
+//   {"id": "b", "type": "buckling", "modes": 4, "load_case": ..., "geometric_stiffness": "full" | "axial"}
+// Result analyses.<id>: type, load_case, geometric_stiffness, status, message, free_dofs, load_factors (ascending),
 // modes[] {mode, load_factor, nodes.<id>.displacement (6, normalised: largest translation 1)},
 // vtk (the .pvd) and files DIR/<id>_mode<k>.vtu, DIR/<id>.pvd (time = mode number).
 
@@ -24,7 +24,10 @@ struct BucklingSpec {
 BucklingSpec check_buckling(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
   BucklingSpec s;
   s.load_case = read_load_case(model, spec, p);
-  json_in::expect_keys(spec, p, {"id", "type", "description", "modes", "load_case"});
+  json_in::expect_keys(spec, p, {"id", "type", "description", "modes", "load_case", "geometric_stiffness"});
+  if (const nlohmann::json* g = json_in::field(spec, "geometric_stiffness"))
+    s.options.geometric_stiffness = json_in::geometric_stiffness_kind(*g, json_in::child(p, "geometric_stiffness"),
+                                                                      "buckling geometric_stiffness", "buckling");
   if (const nlohmann::json* modes = json_in::field(spec, "modes"))
     s.options.modes = json_in::integer_in(*modes, json_in::child(p, "modes"), "buckling modes", 1, kMaxModes);
   check_nonlinear_model(model, p);
@@ -36,11 +39,12 @@ AnalysisOutcome run_buckling(const AnalysisContext& ctx, const BucklingSpec& spe
   // The reference load: the analysis's load case, or the default loads.
   const BucklingResult r = solve_buckling(model, model.loads_for(spec.load_case), spec.options);
   AnalysisOutcome out;
-  // Room for every key (type, load_case, status, message, free_dofs, load_factors, modes, vtk,
+  // Room for every key (type, load_case, geometric_stiffness, status, message, free_dofs, load_factors, modes, vtk,
   // vtk_scale, wall_time_s): an ordered_json object that grows deep copies what it holds.
-  out.result = object_with_capacity(10);
+  out.result = object_with_capacity(11);
   out.result["type"] = "buckling";
   if (!spec.load_case.empty()) out.result["load_case"] = spec.load_case;
+  out.result["geometric_stiffness"] = spec.options.geometric_stiffness == GeometricStiffness::Full ? "full" : "axial";
   out.result["status"] = result_status(r.status);
   out.result["message"] = r.message;
   out.result["free_dofs"] = r.free_dofs;

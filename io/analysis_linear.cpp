@@ -13,6 +13,7 @@
 #include "io/load_reader.hpp"
 #include "io/model_reader.hpp"
 #include "io/result_status.hpp"
+#include "io/static_results.hpp"
 #include "io/stiffness_indices_output.hpp"
 #include "io/vtk_writer.hpp"
 #include "solvers/condensed_stiffness.hpp"
@@ -20,8 +21,6 @@
 #include "solvers/member_loading.hpp"
 
 namespace beamfea {
-
-namespace {
 
 // Objects here are built with room for all their keys (object_with_capacity) and filled by moves:
 // an ordered_json object that grows deep copies what it holds, which at 97,344 DOFs cost a tenth
@@ -45,6 +44,8 @@ ojson mechanism_json(const Model& model, const std::vector<ZeroEnergyMode>& mode
   }
   return out;
 }
+
+namespace {
 
 // [first six, last six] of a 12-vector: a pair of 6-vectors (end 1, end 2), written over `v`.
 void set_ends(ojson& v, const Vec12& x) {
@@ -109,15 +110,17 @@ bool member_finite(const Model& model, const LinearStaticResult& r, std::size_t 
 
 // One node's output, written over `v`: its displacement, and its reaction where it is supported.
 void set_node(ojson& v, const LinearStaticResult& r, std::size_t n) {
-  ObjectFiller o(v, 2);
+  ObjectFiller o(v, 3);
   set_numbers(o.slot("displacement"), r.u.data() + 6 * n, 6);
   if (r.supported[n]) set_numbers(o.slot("reaction"), r.reactions[n].data(), 6);
+  if (!r.skewed.empty() && r.skewed[n]) set_numbers(o.slot("reaction_local"), r.reactions_local[n].data(), 6);
   o.finish();
 }
 
 // Whether every number set_node writes for node `n` is finite.
 bool node_finite(const LinearStaticResult& r, std::size_t n) {
-  return r.u.segment(static_cast<Eigen::Index>(6 * n), 6).allFinite() && (!r.supported[n] || r.reactions[n].allFinite());
+  return r.u.segment(static_cast<Eigen::Index>(6 * n), 6).allFinite() && (!r.supported[n] || r.reactions[n].allFinite()) &&
+         (r.skewed.empty() || !r.skewed[n] || r.reactions_local[n].allFinite());
 }
 
 // A deferred object (io/deferred_results.hpp) of `count` members, made one by one while
@@ -178,14 +181,23 @@ struct LinearStaticSpec {
   int stations = kDefaultStations;
 };
 
+}  // namespace
+
+int read_stations(const nlohmann::json& spec, const json_in::Pointer& p, const std::string& type) {
+  const nlohmann::json* stations = json_in::field(spec, "stations");
+  if (!stations) return kDefaultStations;
+  const int n = json_in::integer_at_least(*stations, json_in::child(p, "stations"), type + " stations", 0);
+  if (n > kMaxStations) throw InputError(json_in::child(p, "stations"), type + ": at most 10000 stations");
+  return n;
+}
+
+namespace {
+
 LinearStaticSpec check_linear_static(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
   LinearStaticSpec s;
   s.load_case = read_load_case(model, spec, p);
   json_in::expect_keys(spec, p, {"id", "type", "description", "load_case", "stations"});
-  if (const nlohmann::json* stations = json_in::field(spec, "stations")) {
-    s.stations = json_in::integer_at_least(*stations, json_in::child(p, "stations"), "linear_static stations", 0);
-    if (s.stations > kMaxStations) throw InputError(json_in::child(p, "stations"), "linear_static: at most 10000 stations");
-  }
+  s.stations = read_stations(spec, p, "linear_static");
   return s;
 }
 
@@ -215,7 +227,7 @@ void write_linear_vtu(const AnalysisContext& ctx, const LinearStaticResult& r, c
   // Diagrams follow the member loads between the nodes.
   f.section_forces = [&](int e, double xi) {
     const auto& el = model.elements[e];
-    const double Le = (model.nodes[el.nodes[1]].x - model.nodes[el.nodes[0]].x).norm();
+    const double Le = (flexible_end(model, el, 1) - flexible_end(model, el, 0)).norm();
     return section_forces_at(xi * Le, r.end_forces[e], r.element_loads[e]);
   };
   write_vtu((ctx.out_dir / file).string(), model, f);
@@ -236,12 +248,54 @@ void set_joints(ojson& v, const Model& model, const LinearStaticResult& r) {
   joints.finish();
 }
 
+}  // namespace
+
+void set_static_solution(ObjectFiller& res, const AnalysisContext& ctx, std::shared_ptr<const LinearStaticResult> held,
+                         int stations, std::vector<Station>& station_storage, std::vector<double>& position_storage) {
+  const Model& model = ctx.model;
+  const LinearStaticResult& r = *held;
+  if (ctx.deferred) {
+    // Nobody reads the tree (`beamfea run`): the nodes and members are made as results.json is
+    // written. The parts hold the solution: a fresh one is shared with them; a kept one (a reused
+    // report's) lives in the run's workspace, which outlives the writing.
+    defer_nodes(*ctx.deferred, res.slot("nodes"), model, held);
+    defer_members(*ctx.deferred, res.slot("elements"), model, held, stations);
+  } else {
+    ObjectFiller nodes(res.slot("nodes"), model.nodes.size());
+    for (std::size_t n = 0; n < model.nodes.size(); ++n) set_node(nodes.slot(model.nodes[n].id), r, n);
+    nodes.finish();
+    ObjectFiller members(res.slot("elements"), model.members.size());
+    for (std::size_t m = 0; m < model.members.size(); ++m)
+      set_member(members.slot(model.members[m].id), model, r, m, stations, station_storage, position_storage);
+    members.finish();
+  }
+  set_joints(res.slot("joints"), model, r);
+  // The forces of ties (on nodes[1], per DOF ux..rz) and the multipliers of linear constraints.
+  if (!model.ties.empty()) set_vectors(res.slot("tie_forces"), r.tie_forces);
+  if (!model.constraints.empty()) set_numbers(res.slot("constraint_forces"), r.constraint_forces.data(), r.constraint_forces.size());
+  set_strings(res.slot("statically_indeterminate"), r.statically_indeterminate);
+  if (!ctx.out_dir.empty() && ctx.write_vtk) {
+    const std::string file = ctx.id + ".vtu";
+    write_linear_vtu(ctx, r, file);
+    set_string(res.slot("vtk"), file);
+  }
+}
+
+namespace {
+
 // The keys of a linear_static result (type, load_case, status, message, free_dofs, factorizations,
-// mechanism, nodes, elements, joints, statically_indeterminate, vtk) and run_document's wall_time_s.
-constexpr std::size_t kLinearStaticResultKeys = 13;
+// mechanism, nodes, elements, joints, tie_forces, constraint_forces, statically_indeterminate, vtk)
+// and run_document's wall_time_s.
+constexpr std::size_t kLinearStaticResultKeys = 15;
 
 AnalysisOutcome run_linear_static(const AnalysisContext& ctx, const LinearStaticSpec& spec) {
   const Model& model = ctx.model;
+  // Tension-only and compression-only members: solved until their set stays the same.
+  if (has_behaviour_members(model)) {
+    SecondOrderOptions options;
+    options.geometric = false;
+    return run_iterated_static(ctx, "linear_static", spec.load_case, spec.stations, options);
+  }
   AnalysisOutcome out;
   const std::shared_ptr<const LinearSystem> system = run_linear_system(ctx);
   // With a workspace kept from the last run, the solution is written over the last one.
@@ -273,43 +327,22 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx, const LinearStatic
     res.finish();
     return out;
   }
-  if (ctx.deferred) {
-    // Nobody reads the tree (`beamfea run`): the nodes and members are made as results.json is
-    // written. The parts hold the solution: a fresh one is shared with them; a kept one (a reused
-    // report's) lives in the run's workspace, which outlives the writing.
-    auto held = kept ? std::shared_ptr<const LinearStaticResult>(std::shared_ptr<void>(), &kept->linear) : fresh;
-    defer_nodes(*ctx.deferred, res.slot("nodes"), model, held);
-    defer_members(*ctx.deferred, res.slot("elements"), model, held, stations);
-  } else {
-    ObjectFiller nodes(res.slot("nodes"), model.nodes.size());
-    for (std::size_t n = 0; n < model.nodes.size(); ++n) set_node(nodes.slot(model.nodes[n].id), r, n);
-    nodes.finish();
-    ObjectFiller members(res.slot("elements"), model.members.size());
-    std::vector<Station>& station_storage = kept ? kept->stations : fresh_stations;
-    std::vector<double>& position_storage = kept ? kept->station_positions : fresh_positions;
-    for (std::size_t m = 0; m < model.members.size(); ++m)
-      set_member(members.slot(model.members[m].id), model, r, m, stations, station_storage, position_storage);
-    members.finish();
-  }
-  set_joints(res.slot("joints"), model, r);
-  set_strings(res.slot("statically_indeterminate"), r.statically_indeterminate);
-  if (!ctx.out_dir.empty() && ctx.write_vtk) {
-    const std::string file = ctx.id + ".vtu";
-    write_linear_vtu(ctx, r, file);
-    set_string(res.slot("vtk"), file);
-  }
+  auto held = kept ? std::shared_ptr<const LinearStaticResult>(std::shared_ptr<void>(), &kept->linear) : fresh;
+  set_static_solution(res, ctx, held, stations, kept ? kept->stations : fresh_stations,
+                      kept ? kept->station_positions : fresh_positions);
   res.finish();
   return out;
 }
 
-// The keys of a stiffness result (type, node, load_case, status, message, matrix, rank, null_space,
+// The keys of a stiffness result (type, node, load_case, about, geometric_stiffness, status, message, matrix, rank, null_space,
 // compliance, compliance_bounded, unbounded_directions, rigid_directions, statically_indeterminate,
 // length_scale, scaled_eigenvalues, indices, ellipsoid), and run_document's wall_time_s.
-constexpr std::size_t kStiffnessResultKeys = 18;
+constexpr std::size_t kStiffnessResultKeys = 20;
 
 struct StiffnessSpec {
   int node = -1;
   std::string load_case;  // "": the linear stiffness; otherwise the loaded-mode one about this case
+  PreloadOptions preload;  // about which equilibrium of the case, with which K_g
   IndicesRequest indices;  // "directions", "reference_wrench"
   bool ellipsoid = false;  // write DIR/<id>_ellipsoid.vtp
 };
@@ -318,7 +351,10 @@ StiffnessSpec check_stiffness(const Model& model, const nlohmann::json& spec, co
   StiffnessSpec s;
   s.load_case = read_load_case(model, spec, p);
   json_in::expect_keys(spec, p,
-                       {"id", "type", "description", "node", "load_case", "directions", "reference_wrench", "ellipsoid"});
+                       {"id", "type", "description", "node", "load_case", "about", "geometric_stiffness", "directions",
+                        "reference_wrench", "ellipsoid"});
+  s.preload = read_preload(spec, p, "stiffness", !s.load_case.empty());
+  if (s.preload.about == Equilibrium::SecondOrder) check_nonlinear_model(model, p);
   s.node = node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
   s.indices = read_indices_request(spec, p);
   if (const nlohmann::json* e = json_in::field(spec, "ellipsoid"))
@@ -358,7 +394,7 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx, const StiffnessSpec& s
   CondensedStiffness fresh;
   CondensedStiffness& k = kept ? kept->stiffness : fresh;
   if (loaded) {
-    k = loaded_node_stiffness(model, model.loads_for(spec.load_case), node);
+    k = loaded_node_stiffness(model, model.loads_for(spec.load_case), node, spec.preload);
   } else {
     // The message formatted into the previous run's message storage, when there is one (a sweep
     // case then allocates nothing for it).
@@ -372,7 +408,11 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx, const StiffnessSpec& s
   ObjectFiller r(out.result, kStiffnessResultKeys);
   set_string(r.slot("type"), "stiffness");
   set_string(r.slot("node"), model.nodes[node].id);
-  if (loaded) set_string(r.slot("load_case"), spec.load_case);
+  if (loaded) {
+    set_string(r.slot("load_case"), spec.load_case);
+    set_string(r.slot("about"), spec.preload.about == Equilibrium::SecondOrder ? "second_order" : "linear_static");
+    set_string(r.slot("geometric_stiffness"), spec.preload.geometric_stiffness == GeometricStiffness::Full ? "full" : "axial");
+  }
   set_string(r.slot("status"), stiffness_status(k.ok));
   set_string(r.slot("message"), k.message);
   out.message = std::move(k.message);

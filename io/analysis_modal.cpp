@@ -1,6 +1,7 @@
 // Analysis "modal": natural frequencies and mode shapes (solvers/modal.hpp).
-//   {"id": "m", "type": "modal", "modes": 10, "mass": "consistent" | "lumped", "load_case": ...}
-// Result analyses.<id>: type, status, message, free_dofs, mass, preloaded, frequencies (Hz,
+//   {"id": "m", "type": "modal", "modes": 10, "mass": "consistent" | "lumped", "load_case": ...,
+//    "about": "linear_static" | "second_order", "geometric_stiffness": "full" | "axial"}
+// Result analyses.<id>: type, status, message, free_dofs, mass, load_case, about, geometric_stiffness, frequencies (Hz,
 // ascending), eigenvalues (omega^2), kinds, total_mass {ux..rz}, effective_mass {ux..rz: one per
 // mode}, effective_mass_sum {ux..rz}, modes[] {mode, frequency, kind, participation[6],
 // effective_mass[6], nodes.<id>.displacement (6, mass-normalised)}, vtk, vtk_scale; files
@@ -11,6 +12,7 @@
 #include "io/load_reader.hpp"
 #include "io/mode_shapes_vtk.hpp"
 #include "io/result_status.hpp"
+#include "io/static_results.hpp"
 #include "solvers/modal.hpp"
 
 namespace beamfea {
@@ -28,7 +30,10 @@ ModalSpec check_modal(const Model& model, const nlohmann::json& spec, const json
   ModalSpec s;
   s.load_case = read_load_case(model, spec, p);
   s.options.preload = !s.load_case.empty();
-  json_in::expect_keys(spec, p, {"id", "type", "description", "modes", "mass", "load_case"});
+  json_in::expect_keys(spec, p,
+                       {"id", "type", "description", "modes", "mass", "load_case", "about", "geometric_stiffness"});
+  s.options.about_state = read_preload(spec, p, "modal", s.options.preload);
+  if (s.options.about_state.about == Equilibrium::SecondOrder) check_nonlinear_model(model, p);
   if (const nlohmann::json* modes = json_in::field(spec, "modes")) {
     const json_in::Pointer mp = json_in::child(p, "modes");
     s.options.modes = json_in::integer_in(*modes, mp, "modal modes", 1, kMaxModes);
@@ -53,15 +58,19 @@ AnalysisOutcome run_modal(const AnalysisContext& ctx, const ModalSpec& spec) {
   const ModalOptions& opt = spec.options;
   const ModalResult r = solve_modal(model, model.loads_for(spec.load_case), opt);
   AnalysisOutcome out;
-  // Room for every key (16 with run_document's wall_time_s): an ordered_json object that grows
+  // Room for every key (18 with run_document's wall_time_s): an ordered_json object that grows
   // deep copies what it holds.
-  out.result = object_with_capacity(16);
+  out.result = object_with_capacity(18);
   out.result["type"] = "modal";
   out.result["status"] = result_status(r.status);
   out.result["message"] = r.message;
   out.result["free_dofs"] = r.free_dofs;
   out.result["mass"] = opt.mass == MassKind::Lumped ? "lumped" : "consistent";
-  if (!spec.load_case.empty()) out.result["load_case"] = spec.load_case;
+  if (!spec.load_case.empty()) {
+    out.result["load_case"] = spec.load_case;
+    out.result["about"] = opt.about_state.about == Equilibrium::SecondOrder ? "second_order" : "linear_static";
+    out.result["geometric_stiffness"] = opt.about_state.geometric_stiffness == GeometricStiffness::Full ? "full" : "axial";
+  }
   out.message = r.message;
   if (r.status != ModalStatus::Succeeded) {
     out.termination = r.status == ModalStatus::MasslessMechanism ? AnalysisTermination::Mechanism

@@ -34,6 +34,7 @@
 #include "io/model_check.hpp"
 #include "io/load_reader.hpp"
 #include "solvers/member_loading.hpp"
+#include "solvers/element_factory.hpp"
 #include "io/model_reader.hpp"
 #include "io/result_status.hpp"
 #include "solvers/structure.hpp"
@@ -55,6 +56,28 @@ constexpr int kMaxImperfectionMode = 1000;   // as buckling's "modes"
 constexpr int kMaxFrequencyModes = 1000;     // as modal's "modes"
 
 int dof_of(const nlohmann::json& v, const json_in::Pointer& p) { return json_in::dof_name(v, p, "dof", ""); }
+
+// The smallest arc length (and `min`) accepted, relative to the model's size (Model::length_scale):
+// ds is a length in the model's units (docs/analyses/path.md), and a step of 1e-12 of the model is
+// at the round-off of its coordinates, so a path of such steps could never move (and takes
+// max_steps steps to say so). Relative, so the same in every unit system.
+constexpr double kMinArcLengthRatio = 1e-12;
+
+// Arc-length limits that cannot work: below kMinArcLengthRatio of the model's size, `min` above
+// `max`.
+void check_arc_lengths(const Model& model, const json_in::Pointer& pc, const PathOptions& o) {
+  const double floor = kMinArcLengthRatio * model.length_scale();
+  const auto at_least_floor = [&](const char* key, double v) {
+    if (v > 0.0 && v < floor)
+      throw InputError(child(pc, key), fmt::format("path control: {} {:.6g} is below {:.0e} of the model's size ({:.6g}): "
+                                                   "steps this small cannot move the model",
+                                                   key, v, kMinArcLengthRatio, model.length_scale()));
+  };
+  at_least_floor("arc_length", o.arc_length_auto ? 0.0 : o.arc_length);
+  at_least_floor("min", o.min_arc_length);
+  if (o.min_arc_length > 0.0 && o.max_arc_length > 0.0 && o.min_arc_length > o.max_arc_length)
+    throw InputError(child(pc, "min"), fmt::format("path control: min {:.6g} is above max {:.6g}", o.min_arc_length, o.max_arc_length));
+}
 
 PathOptions parse(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
   PathOptions o;
@@ -86,6 +109,7 @@ PathOptions parse(const Model& model, const nlohmann::json& spec, const json_in:
     }
     if (c.contains("min")) o.min_arc_length = json_in::positive(c["min"], child(pc, "min"), "arc_length min");
     if (c.contains("max")) o.max_arc_length = json_in::positive(c["max"], child(pc, "max"), "arc_length max");
+    check_arc_lengths(model, pc, o);
   }
   if (c.contains("increments")) {
     o.increments = json_in::integer_in(c["increments"], child(pc, "increments"), "increments", 1, kMaxSteps);
@@ -168,6 +192,14 @@ PathSpec check_path(const Model& model, const nlohmann::json& spec, const json_i
     ps.save_every = json_in::integer_at_least(*save_every, child(p, "save_every"), "save_every", 1);
   // What the path needs of the model, decided before anything runs.
   check_nonlinear_model(model, p);
+  // Dead loads follow the turning chord by their consistent vectors (elements/span_loads.hpp,
+  // DeadLoadTerm), which know nothing of a wrapped element's condensation or arms.
+  const std::vector<ElementLoads> member_loads = element_loads(model, model.loads_for(ps.load_case));
+  for (std::size_t e = 0; e < member_loads.size(); ++e)
+    if (!member_loads[e].empty() && is_transformed(model.elements[e]))
+      throw InputError(p, "element '" + model.elements[e].id +
+                              "': member loads and self-weight on a member with releases, offsets or rigid_ends are "
+                              "not supported by path analyses (the linear analyses take them); load its nodes instead");
   const DofMap map(model);
   if (o.control == PathControl::Displacement) {
     const std::string why = why_held(model, map, o.control_node, o.control_dof);

@@ -16,6 +16,7 @@ const std::vector<AnalysisType>& analysis_types() {
       buckling_analysis(),
       path_analysis(),
       modal_analysis(),
+      second_order_analysis(),
   };
   return types;
 }

@@ -249,4 +249,11 @@ MassKind mass_kind(const json& v, const Pointer& pointer, const What& what, std:
   throw InputError(pointer, std::string(context) + ": unknown mass '" + kind + "' (expected consistent or lumped)");
 }
 
+GeometricStiffness geometric_stiffness_kind(const json& v, const Pointer& pointer, const What& what, std::string_view context) {
+  const std::string kind = string(v, pointer, what);
+  if (kind == "full") return GeometricStiffness::Full;
+  if (kind == "axial") return GeometricStiffness::Axial;
+  throw InputError(pointer, std::string(context) + ": unknown geometric_stiffness '" + kind + "' (expected full or axial)");
+}
+
 }  // namespace beamfea::json_in

@@ -118,5 +118,7 @@ int dof_name(const json& v, const Pointer& pointer, const What& what, const What
 // A mass kind, "consistent" or "lumped"; an unknown kind is the InputError
 // "<context>: unknown mass '<kind>' (expected consistent or lumped)".
 MassKind mass_kind(const json& v, const Pointer& pointer, const What& what, std::string_view context);
+// "full" or "axial" (elements/frame_element.hpp, GeometricStiffness).
+GeometricStiffness geometric_stiffness_kind(const json& v, const Pointer& pointer, const What& what, std::string_view context);
 
 }  // namespace beamfea::json_in

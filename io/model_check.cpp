@@ -1,9 +1,11 @@
 #include "io/model_check.hpp"
 
 #include <algorithm>
+#include <string_view>
 
 #include "core/errors.hpp"
 #include "io/json_util.hpp"
+#include "solvers/element_factory.hpp"
 
 namespace beamfea {
 
@@ -14,14 +16,31 @@ namespace {
 // The index of the first support entry that fixes `comp` of `node`, or -1.
 int support_fixing(const Model& m, int node, int comp) {
   for (std::size_t s = 0; s < m.supports.size(); ++s)
-    if (m.supports[s].node == node && m.supports[s].fixed[comp]) return static_cast<int>(s);
+    if (m.supports[s].node == node && m.supports[s].fixed[comp] && !m.supports[s].skewed) return static_cast<int>(s);
   return -1;
 }
 
 }  // namespace
 
 void check_model(const Model& m, const nlohmann::json&) {
-  if (m.members.empty()) throw InputError("/elements", "the model has no elements: nothing carries a load");
+  // What carries a load: a member, or a joint with stiffness (a node on springs). Rigid links,
+  // passive joints, ties and constraints only carry a load over to something that does.
+  const bool springs = std::any_of(m.joints.begin(), m.joints.end(), [](const Joint& j) { return j.has_stiffness(); });
+  if (m.members.empty() && !springs)
+    throw InputError("/elements", "the model has no elements and no joint with stiffness: nothing carries a load");
+  // End releases that leave a member's end segment a mechanism (rx at both ends, ...), offsets
+  // that turn the flexible part along its orientation vector: the element says so when made
+  // (solvers/element_factory.hpp).
+  for (std::size_t i = 0; i < m.members.size(); ++i)
+    for (const int e : m.members[i].elements) {
+      if (!is_transformed(m.elements[e])) continue;
+      try {
+        make_frame_element(m, e, Kinematics::Linear);
+      } catch (const ModelError& err) {
+        const bool releases = std::string_view(err.what()).find("end releases") != std::string_view::npos;
+        throw InputError(releases ? child(child("/elements", i), "releases") : child("/elements", i), err.what());
+      }
+    }
   // A support fixes a DOF at 0; a prescribed value on the same DOF must agree.
   for (std::size_t i = 0; i < m.prescribed.size(); ++i) {
     const auto& p = m.prescribed[i];
@@ -36,8 +55,13 @@ void check_model(const Model& m, const nlohmann::json&) {
   // Supports hold at 0: when every prescribed value is 0 as well, all agree whatever the rows, and
   // the map (a third of the check of a small model) is not built.
   const bool all_zero = std::all_of(m.prescribed.begin(), m.prescribed.end(), [](const auto& p) { return p.value == 0.0; });
-  if (all_zero) return;
+  // Skewed supports, ties and linear constraints: the map refuses a redundant or contradictory one,
+  // naming it (/supports/<i>, /ties/<i>, /constraints/<i>).
+  const bool user_rows = !m.ties.empty() || !m.constraints.empty() ||
+                         std::any_of(m.supports.begin(), m.supports.end(), [](const Support& s) { return s.skewed; });
+  if (all_zero && !user_rows) return;
   const DofMap map(m);
+  if (all_zero) return;
   if (std::string conflict = map.check_consistency(map.prescribed_values()); !conflict.empty())
     throw InputError("/prescribed", conflict);
 }

@@ -1,7 +1,8 @@
 #pragma once
 // Model-level validation that no single entry shows (contradictions are errors):
 // a model without elements; a support and a prescribed value on one DOF that disagree; supports
-// and prescribed values on one rigid body (rigid links, locked joint directions) that disagree.
+// and prescribed values on one rigid body (rigid links, locked joint directions) that disagree;
+// end releases that leave a member a mechanism.
 // Each is an InputError naming both sides. Called by load_and_check after read_model.
 #include <nlohmann/json.hpp>
 #include <string>

@@ -1,5 +1,6 @@
 #include "io/model_reader.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -56,6 +57,18 @@ json parse_json_text(const std::string& text, const std::string& source) {
 }
 
 json read_json_file(const std::string& path) {
+  // Only a regular file of bounded size: a device or a pipe (/dev/zero, a FIFO) could be read
+  // without end, and a file larger than kMaxInputFileBytes is no model a person wrote.
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) throw InputError("", "cannot read file '" + path + "': no such file");
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError("", "cannot read '" + path + "': not a regular file (a model is read from a file, not a device, folder or pipe)");
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) throw InputError("", "cannot read file '" + path + "': " + ec.message());
+  if (size > kMaxInputFileBytes)
+    throw InputError("", "cannot read file '" + path + "': " + std::to_string(size) + " bytes, above the limit of " +
+                             std::to_string(kMaxInputFileBytes) + " bytes of an input file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("", "cannot read file '" + path + "'");
   std::stringstream ss;
@@ -121,7 +134,7 @@ void read_model_into(const json& doc, Model& m, Model* spare, std::string& what)
   // Top-level keys of a model file (docs/input-format.md). Add a new collection here.
   expect_keys(doc, "", {"nodes", "materials", "sections", "elements", "joints", "supports", "loads", "prescribed",
                         "analyses", "units", "title", "name", "description", "gravity", "masses", "load_cases",
-                        "combinations"});
+                        "combinations", "ties", "constraints"});
   reader::ReadState s{doc, m, spare, 1.0, what};
   reader::read_nodes(s);
   s.length_scale = m.length_scale();  // meshing adds nodes on members only: the box stays the same
@@ -132,6 +145,8 @@ void read_model_into(const json& doc, Model& m, Model* spare, std::string& what)
   reader::read_supports(s);
   reader::read_loads(s);
   reader::read_prescribed(s);
+  reader::read_ties(s);
+  reader::read_constraints(s);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // Reading a model from JSON (docs/input-format.md): parse, validate, mesh.
 // Every error is an InputError carrying the JSON pointer of the field at fault and naming the
 // entity (node, element, joint...). Nothing is analysed here.
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -12,7 +13,11 @@ namespace beamfea {
 
 // Parses JSON text; malformed JSON becomes an InputError naming the byte offset.
 nlohmann::json parse_json_text(const std::string& text, const std::string& source);
-// Reads and parses a file.
+// The largest input file read (1 GiB): JSON of about 5e6 beams, beyond any model one factorisation
+// solves (docs/input-format.md).
+inline constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{1} << 30;
+// Reads and parses a file: a regular file of at most kMaxInputFileBytes, else an InputError
+// naming it (a device such as /dev/zero, a folder, a pipe).
 nlohmann::json read_json_file(const std::string& path);
 
 // Builds the model from a parsed document (the "analyses" entry is not read here).

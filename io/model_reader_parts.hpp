@@ -5,7 +5,8 @@
 //   io/read_members.cpp     elements (members), meshed by core/meshing
 //   io/read_joints.cpp      joints
 //   io/read_boundary.cpp    supports, loads (io/load_reader.cpp: nodal, joint and member loads,
-//                           gravity, masses, load cases, combinations), prescribed values
+//                           gravity, masses, load cases, combinations), prescribed values, ties,
+//                           linear constraints
 // Internal to io/: not installed as an API.
 #include <nlohmann/json.hpp>
 #include <string>
@@ -56,5 +57,7 @@ void read_joints(ReadState& s);
 void read_supports(ReadState& s);
 void read_loads(ReadState& s);
 void read_prescribed(ReadState& s);
+void read_ties(ReadState& s);
+void read_constraints(ReadState& s);
 
 }  // namespace beamfea::reader

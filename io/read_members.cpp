@@ -21,6 +21,60 @@ constexpr double kZeroLength = 1e-12;
 // |sin| of the angle between orientation and member below which they are parallel.
 constexpr double kParallelOrientation = 1e-8;
 
+// "releases": {"start": [...], "end": [...]}, local DOF names at each end of the member.
+void read_releases(const json& v, const json_in::Pointer& p, const std::string& what, Member& mem) {
+  const auto& o = object(v, p, What(what, " releases"));
+  const Fields f(o, p, {"start", "end"});
+  mem.releases = {};
+  for (int end = 0; end < 2; ++end) {
+    const char* key = end == 0 ? "start" : "end";
+    const json* names = f.get(key);
+    if (!names) continue;
+    const json_in::Pointer pe = child(p, key);
+    array(*names, pe, What(what, " releases ", key));
+    const std::string context = what + ": release at the " + key + ": ";
+    for (std::size_t k = 0; k < names->size(); ++k) {
+      const int d = dof_name((*names)[k], child(pe, k), What(what, " release"), What(context));
+      if (mem.releases[end][d])
+        throw InputError(child(pe, k), what + ": release '" + kDofNames[d] + "' given twice at the " + key);
+      mem.releases[end][d] = true;
+    }
+  }
+}
+
+// "offsets": {"start": [dx, dy, dz], "end": [...]} (global vectors from the nodes to the member's
+// ends) and "rigid_ends": [r_start, r_end] (rigid lengths along the axis between those ends):
+// something flexible must remain.
+void read_arms(const Fields& f, const json_in::Pointer& p, const std::string& what, double length_scale, Member& mem,
+               const Vec3& x1, const Vec3& x2) {
+  mem.offsets = {Vec3::Zero(), Vec3::Zero()};
+  mem.rigid_ends = {0.0, 0.0};
+  if (const json* offsets = f.get("offsets")) {
+    const json_in::Pointer po = child(p, "offsets");
+    const Fields fo(object(*offsets, po, What(what, " offsets")), po, {"start", "end"});
+    for (int end = 0; end < 2; ++end) {
+      const char* key = end == 0 ? "start" : "end";
+      if (const json* o = fo.get(key)) mem.offsets[end] = vec3(*o, child(po, key), What(what, " offset at the ", key));
+    }
+  }
+  const double axis = (x2 + mem.offsets[1] - x1 - mem.offsets[0]).norm();
+  if (!(axis > kZeroLength * length_scale))
+    throw InputError(child(p, "offsets"), what + ": the offsets bring the member's ends together");
+  if (const json* r = f.get("rigid_ends")) {
+    const json_in::Pointer pr = child(p, "rigid_ends");
+    if (!r->is_array() || r->size() != 2) throw InputError(pr, what + ": rigid_ends must be [r_start, r_end]");
+    for (int end = 0; end < 2; ++end) {
+      mem.rigid_ends[end] = number((*r)[end], child(pr, end), What(what, " rigid end"));
+      if (!(mem.rigid_ends[end] >= 0.0))
+        throw InputError(child(pr, end), what + ": a rigid end's length must be >= 0");
+    }
+    if (!(mem.rigid_ends[0] + mem.rigid_ends[1] < axis * (1.0 - kZeroLength)))
+      throw InputError(pr, what + ": the rigid ends (" + json(mem.rigid_ends[0]).dump() + " + " +
+                               json(mem.rigid_ends[1]).dump() + ") leave nothing flexible of the member's length " +
+                               json(axis).dump());
+  }
+}
+
 }  // namespace
 
 BeamTheory beam_theory(const std::string& name, const json_in::Pointer& pointer, const std::string& what) {
@@ -37,7 +91,8 @@ void read_members(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/elements", i);
     const auto& o = object(arr[i], p, "element");
-    const Fields f(o, p, {"id", "type", "nodes", "material", "section", "orientation", "divisions", "theory"});
+    const Fields f(o, p, {"id", "type", "nodes", "material", "section", "orientation", "divisions", "theory", "releases", "rigid_ends", "offsets",
+                          "behaviour"});
     Member mem = s.item(&Model::members, i);
     id_into(mem.id, f.require("id", "element"), child(p, "id"), "element");
     check_unique(m.find_member(mem.id), "element", "/elements", mem.id, i);  // member i is element i
@@ -80,10 +135,19 @@ void read_members(ReadState& s) {
           throw InputError(tp, what + ": a Timoshenko beam needs the shear factors of section '" + sec.id +
                                    "' (give \"k\" or \"ky\" and \"kz\", or a \"shape\")");
       }
+      if (const json* releases = f.get("releases")) read_releases(*releases, child(p, "releases"), what, mem);
+      read_arms(f, p, what, s.length_scale, mem, x1, x2);
+      if (const json* behaviour = f.get("behaviour")) {
+        const json_in::Pointer bp = child(p, "behaviour");
+        const std::string b = string(*behaviour, bp, What(what, " behaviour"));
+        if (b == "tension_only") mem.behaviour = MemberBehaviour::TensionOnly;
+        else if (b == "compression_only") mem.behaviour = MemberBehaviour::CompressionOnly;
+        else throw InputError(bp, what + ": unknown behaviour '" + b + "' (expected tension_only or compression_only)");
+      }
     } else {
       if (const json* divisions = f.get("divisions"); divisions && *divisions != 1)
         throw InputError(child(p, "divisions"), what + ": a rigid link cannot be divided");
-      for (const char* key : {"material", "section", "orientation", "theory"})
+      for (const char* key : {"material", "section", "orientation", "theory", "releases", "rigid_ends", "offsets", "behaviour"})
         if (f.get(key)) throw InputError(child(p, key), what + ": a rigid link has no " + std::string(key));
     }
     if (const std::string taken = taken_internal_node_id(m, mem); !taken.empty())

@@ -57,7 +57,14 @@ json::json_pointer read_pointer(const json& v, const std::string& where) {
 
 // A pointer must name an existing value of the base model.
 void check_exists(const json& base, const json::json_pointer& p, const std::string& where) {
-  if (!base.contains(p)) throw InputError(where, "'" + p.to_string() + "' does not exist in the base model");
+  bool exists = false;
+  try {
+    exists = base.contains(p);
+  } catch (const json::exception&) {
+    // nlohmann throws (out_of_range.404) for an array index too large for an integer: a value
+    // that does not exist like any other.
+  }
+  if (!exists) throw InputError(where, "'" + p.to_string() + "' does not exist in the base model");
 }
 
 void check_value(const json& base, const json::json_pointer& p, const json& v, const std::string& where) {

@@ -14,12 +14,14 @@
 
 #include <algorithm>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <vector>
 
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
+#include "solvers/element_factory.hpp"
 
 namespace beamfea {
 
@@ -139,28 +141,52 @@ void VtuBuilder::add_cell_data(int kind, int member, int element, const std::str
 void VtuBuilder::add_element(int e) {
   const auto& el = model_.elements[e];
   const int a = el.nodes[0], b = el.nodes[1];
-  const Vec3 Xa = model_.nodes[a].x, Xb = model_.nodes[b].x;
   const std::string id = el.member >= 0 ? model_.members[el.member].id : el.id;
   const Vec12 sf = have_forces_ ? section_forces(frame_.end_forces[e]) : Vec12::Zero();
   const int n = el.type == MemberType::Beam ? std::max(1, frame_.segments) : 1;
+  // A beam with rigid arms (offsets, rigid ends) is drawn as its arms, node to flexible end, and
+  // its flexible part between the flexible ends.
+  const bool beam = el.type == MemberType::Beam;
+  const bool arm[2] = {beam && !el.offsets[0].isZero(0.0), beam && !el.offsets[1].isZero(0.0)};
+  const Vec3 Xa = flexible_end(model_, el, 0), Xb = flexible_end(model_, el, 1);
   std::optional<Mat3> R;
   Vec12 ue;
+  // A beam whose element is wrapped (end releases, rigid arms) draws its own shape: its released
+  // ends do not turn with the nodes, its flexible ends follow the arms.
+  std::unique_ptr<FrameElement> wrapped;
+  NodalPoses poses;
   if (el.type == MemberType::Beam && !frame_.shape) {
     R = beam_local_axes(Xa, Xb, el.orientation);
     ue << frame_.displacement[a], frame_.rotation[a], frame_.displacement[b], frame_.rotation[b];
+    if (is_transformed(el)) {
+      wrapped = make_frame_element(model_, e, Kinematics::Linear);
+      poses = {model_.nodes[a].x + frame_.displacement[a], model_.nodes[b].x + frame_.displacement[b],
+               exp_so3(frame_.rotation[a]), exp_so3(frame_.rotation[b])};
+    }
   }
+  auto add_arm = [&](vtkIdType from, vtkIdType to) {
+    const vtkIdType line[2] = {from, to};
+    cells_->InsertNextCell(2, line);
+    cell_types_.push_back(3);  // VTK_LINE
+    add_cell_data(1, el.member, e, id, Vec6::Zero());
+  };
   vtkIdType prev = -1;
+  if (arm[0]) {
+    prev = add_point(model_.nodes[a].x, frame_.displacement[a], frame_.rotation[a], a);
+    add_point_forces(Vec6::Zero(), nullptr);
+  }
   for (int k = 0; k <= n; ++k) {
     const double xi = static_cast<double>(k) / n;
     const Vec3 X = (1 - xi) * Xa + xi * Xb;
     Vec3 u;
-    if (k == 0) u = frame_.displacement[a];
-    else if (k == n) u = frame_.displacement[b];
+    if (k == 0 && !arm[0]) u = frame_.displacement[a];
+    else if (k == n && !arm[1]) u = frame_.displacement[b];
     else if (frame_.shape) u = frame_.shape(e, xi);
+    else if (wrapped) u = wrapped->displacement_at(poses, xi);
     else if (R) u = beam_displacement_at(*R, (Xb - Xa).norm(), ue, xi);
     else u = (1 - xi) * frame_.displacement[a] + xi * frame_.displacement[b];
     const Vec3 r = (1 - xi) * frame_.rotation[a] + xi * frame_.rotation[b];
-    const vtkIdType id_pt = add_point(X, u, r, k == 0 ? a : (k == n ? b : -1));
+    const vtkIdType id_pt = add_point(X, u, r, k == 0 && !arm[0] ? a : (k == n && !arm[1] ? b : -1));
     const bool beam_forces = diagrams_ && el.type == MemberType::Beam;
     if (beam_forces) {
       const Mat3 Rl = beam_local_axes(Xa, Xb, el.orientation);
@@ -168,6 +194,7 @@ void VtuBuilder::add_element(int e) {
     } else {
       add_point_forces(Vec6::Zero(), nullptr);
     }
+    if (k == 0 && arm[0]) add_arm(prev, id_pt);
     if (k > 0) {
       const vtkIdType line[2] = {prev, id_pt};
       cells_->InsertNextCell(2, line);
@@ -177,6 +204,11 @@ void VtuBuilder::add_element(int e) {
       add_cell_data(el.type == MemberType::Beam ? 0 : 1, el.member, e, id, s);
     }
     prev = id_pt;
+  }
+  if (arm[1]) {
+    const vtkIdType id_b = add_point(model_.nodes[b].x, frame_.displacement[b], frame_.rotation[b], b);
+    add_point_forces(Vec6::Zero(), nullptr);
+    add_arm(prev, id_b);
   }
 }
 

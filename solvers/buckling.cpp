@@ -132,7 +132,7 @@ BucklingResult solve_buckling(const Model& model, const LoadSet& loads, const Bu
   structure.assemble(map, ka);
   ka.end();
   const SparseMatrix& K = ka.K_ff();
-  SparseMatrix Kg = geometric_stiffness(model, map, structure, lin, loads);
+  SparseMatrix Kg = geometric_stiffness(model, map, structure, lin, loads, options.geometric_stiffness);
   Kg = SparseMatrix(0.5 * (SparseMatrix(Kg.transpose()) + Kg));
   res.free_dofs = map.free_size();
   const int n = map.free_size();

@@ -31,11 +31,14 @@
 
 #include "core/dof_map.hpp"
 #include "core/model.hpp"
+#include "elements/frame_element.hpp"
 
 namespace beamfea {
 
 struct BucklingOptions {
   int modes = 4;
+  // The beams' K_g: Full (McGuire's, with the end-moment terms) or Axial (elements/frame_element.hpp).
+  GeometricStiffness geometric_stiffness = GeometricStiffness::Full;
   void validate() const;
 };
 

@@ -341,23 +341,26 @@ CondensedStiffness loaded_node_stiffness(const Model& model, int node, const Con
 
 CondensedStiffness loaded_node_stiffness(const Model& model, const LoadSet& loads, int node,
                                          const CondensedStiffnessOptions& options) {
-  const LinearStaticResult lin = LinearSystem(model).solve(loads);
-  if (lin.status != SolveStatus::Succeeded) {
-    CondensedStiffness out;
-    out.message = "loaded stiffness: the linear static solution of the preload failed: " + lin.message;
-    out.modes = lin.modes;
-    return out;
-  }
+  return loaded_node_stiffness(model, loads, node, PreloadOptions{}, options);
+}
+
+CondensedStiffness loaded_node_stiffness(const Model& model, const LoadSet& loads, int node, const PreloadOptions& preload,
+                                         const CondensedStiffnessOptions& options) {
   const DofMap map(model);
   const LinearStructure structure(model);
   SystemAssembler assembler(map);
   assembler.begin();
   structure.assemble(map, assembler);
   assembler.end();
-  SparseMatrix Kg = geometric_stiffness(model, map, structure, lin, loads);
-  // Symmetric part: the skew part from applied moments is dropped, as in buckling.
-  const SparseMatrix Kt = assembler.K_ff() + SparseMatrix(0.5 * (Kg + SparseMatrix(Kg.transpose())));
-  return condense_to_node(model, map, Kt, node, options);
+  std::string why;
+  const std::optional<SparseMatrix> Kt = loaded_tangent(model, map, structure, assembler.K_ff(), loads, preload, why);
+  if (!Kt) {
+    CondensedStiffness out;
+    out.message = "loaded stiffness: " + why;
+    if (preload.about == Equilibrium::LinearStatic) out.modes = LinearSystem(model).solve(loads).modes;
+    return out;
+  }
+  return condense_to_node(model, map, *Kt, node, options);
 }
 
 }  // namespace beamfea

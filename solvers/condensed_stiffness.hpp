@@ -27,6 +27,7 @@
 #include "core/model.hpp"
 #include "solvers/condensation.hpp"
 #include "solvers/mechanism.hpp"
+#include "solvers/second_order.hpp"
 
 namespace beamfea {
 
@@ -98,6 +99,10 @@ void linear_node_stiffness(const Model& model, int node, CondensedStiffness& out
 // configuration. The second form about the linear solution of `loads` (a load case of the model).
 CondensedStiffness loaded_node_stiffness(const Model& model, int node, const CondensedStiffnessOptions& options = {});
 CondensedStiffness loaded_node_stiffness(const Model& model, const LoadSet& loads, int node,
+                                         const CondensedStiffnessOptions& options = {});
+// The same about the equilibrium and with the K_g that `preload` names (solvers/second_order.hpp:
+// the linear static state or the second-order equilibrium; full or axial K_g).
+CondensedStiffness loaded_node_stiffness(const Model& model, const LoadSet& loads, int node, const PreloadOptions& preload,
                                          const CondensedStiffnessOptions& options = {});
 
 }  // namespace beamfea

@@ -19,31 +19,16 @@ SparseMatrix independent_from_free(const NonlinearStructure& ns, const DofMap& m
 }
 }  // namespace
 
-SparseMatrix geometric_stiffness(const Model& model, const DofMap& map, const LinearStructure& structure,
-                                 const LinearStaticResult& lin, const LoadSet& loads) {
-  const NonlinearStructure ns(model);
-  SystemAssembler ga(map);
-  ga.begin();
-  for (std::size_t e = 0; e < model.elements.size(); ++e) {
-    const auto& beam = structure.beam(static_cast<int>(e));
-    if (!beam) continue;
-    // End forces include the member loads' fixed-end forces: kg takes the element's mean axial
-    // force, so a load along the member (a column's own weight) converges with the mesh.
-    const auto dofs = structure.element_dofs(map, static_cast<int>(e));
-    ga.add(dofs, beam->geometric_stiffness(lin.end_forces[e]));
-  }
-  ga.end();
-  SparseMatrix Kg = ga.K_ff();
-
-  // Rigid links and joints: constraint curvature for the forces they transmit.
-  const Eigen::VectorXd f_ext = external_force(model, map, loads);
-  Eigen::VectorXd f = structure.internal_force(map, lin.u) - f_ext;
+SparseMatrix constraint_geometric_stiffness(const NonlinearStructure& ns, const DofMap& map, Eigen::VectorXd f) {
   const auto cf = map.constraint_forces(f);
   for (int p = 0; p < map.prescribed_size(); ++p) {
+    if (map.prescribed()[p].constraint >= 0) continue;  // a linear constraint's value: in user_raw
     const int raw = map.raw_index(map.prescribed()[p].dof);
     const DofRef d = map.prescribed()[p].dof;
     if (d.owner == DofRef::Owner::Node && map.is_slave(d.index)) f[raw] -= cf.prescribed[p];
   }
+  // Skewed supports, ties and linear constraints: the forces they apply, as the supports' above.
+  f -= cf.user_raw;
   const NonlinearState s0 = ns.reference_state();
   const auto tw0 = ns.twists(s0);
   SparseMatrix G = ns.constraint_curvature(s0, tw0, f);
@@ -54,10 +39,30 @@ SparseMatrix geometric_stiffness(const Model& model, const DofMap& map, const Li
     for (int k = 0; k < static_cast<int>(ns.closures().size()); ++k) mu.segment<6>(6 * k) = -cf.loop[k];
     G += ns.closure_curvature(s0, tw0, mu);
   }
-  if (G.nonZeros() > 0) {
-    const SparseMatrix Z = independent_from_free(ns, map);
-    Kg += SparseMatrix(Z.transpose() * G * Z);
+  if (G.nonZeros() == 0) return SparseMatrix(map.free_size(), map.free_size());
+  const SparseMatrix Z = independent_from_free(ns, map);
+  return SparseMatrix(Z.transpose() * G * Z);
+}
+
+SparseMatrix geometric_stiffness(const Model& model, const DofMap& map, const LinearStructure& structure,
+                                 const LinearStaticResult& lin, const LoadSet& loads, GeometricStiffness kind) {
+  const NonlinearStructure ns(model);
+  SystemAssembler ga(map);
+  ga.begin();
+  for (std::size_t e = 0; e < model.elements.size(); ++e) {
+    const auto& beam = structure.beam(static_cast<int>(e));
+    if (!beam) continue;
+    // End forces include the member loads' fixed-end forces: kg takes the element's mean axial
+    // force, so a load along the member (a column's own weight) converges with the mesh.
+    const auto dofs = structure.element_dofs(map, static_cast<int>(e));
+    ga.add(dofs, beam->geometric_stiffness(lin.end_forces[e], kind));
   }
+  ga.end();
+  SparseMatrix Kg = ga.K_ff();
+
+  // Rigid links and joints: constraint curvature for the forces they transmit.
+  const Eigen::VectorXd f_ext = external_force(model, map, loads);
+  Kg += constraint_geometric_stiffness(ns, map, structure.internal_force(map, lin.u) - f_ext);
   return Kg;
 }
 

@@ -30,8 +30,18 @@
 
 namespace beamfea {
 
-// K_g (free x free, NOT symmetrised) of the linear solution `lin` of `loads`.
+// K_g (free x free, NOT symmetrised) of the linear solution `lin` of `loads`, the beams' matrices
+// of the given kind (elements/frame_element.hpp, GeometricStiffness).
 SparseMatrix geometric_stiffness(const Model& model, const DofMap& map, const LinearStructure& structure,
-                                 const LinearStaticResult& lin, const LoadSet& loads);
+                                 const LinearStaticResult& lin, const LoadSet& loads,
+                                 GeometricStiffness kind = GeometricStiffness::Full);
+
+class NonlinearStructure;  // solvers/nonlinear_structure.hpp
+
+// The rigid links' and joints' part Z^T G Z of K_g (free x free) at the reference, for the raw
+// residual forces r = f_int - f_ext of a state (the reactions at slave nodes taken out here): what
+// geometric_stiffness adds to the beams' matrices. Zero (no entries) without rigid links, joints
+// or loops. `ns` is NonlinearStructure(model).
+SparseMatrix constraint_geometric_stiffness(const NonlinearStructure& ns, const DofMap& map, Eigen::VectorXd r);
 
 }  // namespace beamfea

@@ -139,17 +139,41 @@ void LinearSystem::solve(const LoadSet& loads, LinearStaticResult& res, LinearSo
   res.supported.assign(model.nodes.size(), 0);
   for (int p = 0; p < s.map.prescribed_size(); ++p) {
     const auto& d = s.map.prescribed()[p].dof;
-    if (d.owner != DofRef::Owner::Node) continue;
+    if (d.owner != DofRef::Owner::Node || s.map.prescribed()[p].constraint >= 0) continue;
     res.reactions[d.index][d.comp] = cf.prescribed[p];
     res.supported[d.index] = 1;
   }
+  // Skewed supports: the multipliers of their rows are the reaction in their axes A, A^T of it global.
+  res.skewed.clear();
+  res.reactions_local.clear();
+  for (std::size_t i = 0; i < model.supports.size(); ++i) {
+    const Support& sup = model.supports[i];
+    if (!sup.skewed) continue;
+    const Vec6& local = cf.support_local[i];
+    res.reactions[sup.node].head<3>() += sup.axes.transpose() * local.head<3>();
+    res.reactions[sup.node].tail<3>() += sup.axes.transpose() * local.tail<3>();
+    res.supported[sup.node] = 1;
+    res.skewed.resize(model.nodes.size(), 0);
+    res.skewed[sup.node] = 1;
+  }
+  if (!res.skewed.empty()) {
+    // The node's whole reaction in the axes of its skewed support (the reader allows one per node).
+    res.reactions_local.assign(model.nodes.size(), Vec6::Zero());
+    for (const Support& sup : model.supports) {
+      if (!sup.skewed) continue;
+      const Vec6& g = res.reactions[sup.node];
+      res.reactions_local[sup.node] << sup.axes * g.head<3>(), sup.axes * g.tail<3>();
+    }
+  }
+  res.tie_forces = cf.tie;
+  res.constraint_forces = cf.constraint;
   res.joint_forces = cf.joint;
   res.statically_indeterminate = s.map.redundant_constraints();
   res.end_forces.resize(model.elements.size());
   for (std::size_t e = 0; e < model.elements.size(); ++e) {
     res.end_forces[e] = s.structure.end_forces(s.map, static_cast<int>(e), res.u);
     if (const auto& beam = s.structure.beam(static_cast<int>(e)); beam && !res.element_loads[e].empty())
-      res.end_forces[e] -= beam->equivalent_loads(res.element_loads[e]);  // the fixed-end forces
+      res.end_forces[e] += beam->fixed_end_forces_at(beam->reference_poses(), res.element_loads[e]);
   }
   res.modes.clear();
   res.status = SolveStatus::Succeeded;

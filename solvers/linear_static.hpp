@@ -42,6 +42,13 @@ struct LinearStaticResult {
                                        // (k u + fixed-end forces of the member loads)
   std::vector<ElementLoads> element_loads;  // per element: the loads between its nodes (local)
   std::vector<Vec6> joint_forces;      // per joint: force and moment from body 1 on body 2, global
+  // Per node, where the model has skewed supports (both empty otherwise): whether the node has one,
+  // and its reaction in that support's axes (`reactions` has it in global axes).
+  std::vector<char> skewed;
+  std::vector<Vec6> reactions_local;
+  std::vector<Vec6> tie_forces;        // per tie: force (moment) on nodes[1] along each tied DOF
+  std::vector<double> constraint_forces;  // per linear constraint: its multiplier lambda (the
+                                          // force coefficient * lambda on each term's DOF)
   std::vector<ZeroEnergyMode> modes;   // when status == Mechanism
   // Redundant constraint rows (over-constrained loops, supports on one rigid body), e.g. "joint 'jC'
   // uz": their reactions are statically indeterminate; the reported ones are the minimum-norm split.

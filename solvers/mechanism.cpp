@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "elements/released_element.hpp"
 #include "solvers/eigen_lowest.hpp"
 #include "solvers/sparse_factor.hpp"
 
@@ -57,6 +58,13 @@ std::vector<ZeroEnergyMode> zero_energy_modes(const Model& model, const DofMap& 
         const std::string id = el.member >= 0 ? model.members[el.member].id : el.id;
         if (el.member >= 0 && !members.insert(el.member).second) continue;
         d += " '" + id + "'";
+        if (el.member >= 0) {  // end releases free the member's ends: say which
+          const auto& ends = model.members[el.member].releases;
+          Releases r{};
+          std::copy(ends[0].begin(), ends[0].end(), r.begin());
+          std::copy(ends[1].begin(), ends[1].end(), r.begin() + 6);
+          if (std::any_of(r.begin(), r.end(), [](bool b) { return b; })) d += " (released " + describe_releases(r) + ")";
+        }
       }
     }
     m.description = d;

@@ -5,6 +5,7 @@
 
 #include "elements/beam.hpp"
 #include "elements/corotational_beam.hpp"
+#include "solvers/element_factory.hpp"
 #include "solvers/structure.hpp"
 
 namespace beamfea {
@@ -21,22 +22,24 @@ Vec3 self_weight(const Model& m, const Element& el, const Vec3& g) {
   return m.materials[el.material].density * m.sections[el.section].A * g;
 }
 
-// Calls f(element index, s0, Le, R) for each segment of a member (s0: distance of its first node
-// from the member's first node).
+// Calls f(element index, s0, Le, R) for each segment of a member (s0: distance of its flexible
+// start from the member's flexible start; Le and R the segment's flexible part: between its
+// nodes unless rigid arms move its ends, core/model.hpp flexible_end).
 template <class F>
 void for_segments(const Model& m, const Member& mem, F&& f) {
   double s0 = 0.0;
   for (int e : mem.elements) {
     const auto& el = m.elements[e];
-    const Vec3 xa = m.nodes[el.nodes[0]].x, xb = m.nodes[el.nodes[1]].x;
+    const Vec3 xa = flexible_end(m, el, 0), xb = flexible_end(m, el, 1);
     const double Le = (xb - xa).norm();
     f(e, s0, Le, beam_local_axes(xa, xb, el.orientation));
     s0 += Le;
   }
 }
 
+// The length of a member's flexible part (node to node without rigid arms).
 double member_length(const Model& m, const Member& mem) {
-  return (m.nodes[mem.nodes[1]].x - m.nodes[mem.nodes[0]].x).norm();
+  return (flexible_end(m, m.elements[mem.elements.back()], 1) - flexible_end(m, m.elements[mem.elements.front()], 0)).norm();
 }
 
 // Calls dist(e, Le, R, a, b, q_a, q_b) for the pieces of a distributed member load (local element
@@ -106,7 +109,7 @@ void element_loads(const Model& m, const LoadSet& loads, std::vector<ElementLoad
       const auto& el = m.elements[e];
       const Vec3 q = self_weight(m, el, loads.gravity);
       if (q.isZero(0.0)) continue;
-      const Vec3 xa = m.nodes[el.nodes[0]].x, xb = m.nodes[el.nodes[1]].x;
+      const Vec3 xa = flexible_end(m, el, 0), xb = flexible_end(m, el, 1);  // rigid arms weigh nothing
       const Mat3 R = beam_local_axes(xa, xb, el.orientation);
       out[e].distributed.push_back({0.0, (xb - xa).norm(), R * q, R * q});
     }
@@ -134,11 +137,18 @@ void external_force(const Model& m, const DofMap& map, const LoadSet& loads, con
   for (std::size_t e = 0; e < m.elements.size(); ++e) {
     if (el[e].empty()) continue;
     const auto& E = m.elements[e];
-    const Vec3 xa = m.nodes[E.nodes[0]].x, xb = m.nodes[E.nodes[1]].x;
+    const Vec3 xa = flexible_end(m, E, 0), xb = flexible_end(m, E, 1);
     const Mat3 R = beam_local_axes(xa, xb, E.orientation);
-    Vec12 local = equivalent_nodal_loads((xb - xa).norm(), el[e]);
-    if (el[e].has_temperature()) local += beam_thermal_loads(beam_section(m, E), el[e].temperature);
-    const Vec12 fe = beam_transformation(R).transpose() * local;
+    // A wrapped element (end releases, rigid arms) carries its loads to the nodes (temperature
+    // included: the element's equivalent_loads); a plain beam's are the span's and its thermal loads.
+    Vec12 fl;
+    if (is_transformed(E)) {
+      fl = make_frame_element(m, static_cast<int>(e), Kinematics::Linear)->equivalent_loads(el[e]);
+    } else {
+      fl = equivalent_nodal_loads((xb - xa).norm(), el[e]);
+      if (el[e].has_temperature()) fl += beam_thermal_loads(beam_section(m, E), el[e].temperature);
+    }
+    const Vec12 fe = beam_transformation(R).transpose() * fl;
     f.segment<6>(map.raw_node(E.nodes[0], 0)) += fe.head<6>();
     f.segment<6>(map.raw_node(E.nodes[1], 0)) += fe.tail<6>();
   }
@@ -165,7 +175,7 @@ std::vector<std::vector<DeadLoadTerm>> element_dead_loads(const Model& m, const 
     for (std::size_t e = 0; e < m.elements.size(); ++e) {
       const Vec3 q = self_weight(m, m.elements[e], loads.gravity);
       if (q.isZero(0.0)) continue;
-      const double Le = (m.nodes[m.elements[e].nodes[1]].x - m.nodes[m.elements[e].nodes[0]].x).norm();
+      const double Le = (flexible_end(m, m.elements[e], 1) - flexible_end(m, m.elements[e], 0)).norm();
       append(out[e], dead_load_terms(Le, 0.0, Le, q, q));
     }
   return out;
@@ -180,8 +190,8 @@ std::vector<Vec12> corotated_fixed_end_forces(const Model& model, const LoadSet&
     const auto& el = model.elements[e];
     if (el.type != MemberType::Beam || ref[e].empty()) continue;
     const int a = el.nodes[0], b = el.nodes[1];
-    const CorotationalBeam beam(beam_section(model, el), model.nodes[a].x, model.nodes[b].x, el.orientation);
-    out[e] = factor * beam.fixed_end_forces_at({x[a], x[b], R[a], R[b]}, ref[e]);
+    const auto beam = make_frame_element(model, static_cast<int>(e), Kinematics::Corotational);
+    out[e] = factor * beam->fixed_end_forces_at({x[a], x[b], R[a], R[b]}, ref[e]);
   }
   return out;
 }

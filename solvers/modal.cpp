@@ -178,14 +178,14 @@ ModalResult solve_modal(const Model& model, const LoadSet& loads, const ModalOpt
   SparseMatrix K = ka.K_ff();
   const SparseMatrix& M = ma.K_ff();
   if (options.preload) {
-    const LinearStaticResult lin = LinearSystem(model).solve(loads);
-    if (lin.status != SolveStatus::Succeeded) {
+    std::string why;
+    std::optional<SparseMatrix> Kt = loaded_tangent(model, map, structure, K, loads, options.about_state, why);
+    if (!Kt) {
       res.status = ModalStatus::PreloadFailed;
-      res.message = "modal: the linear static solution of the preload failed: " + lin.message;
+      res.message = "modal: " + why;
       return res;
     }
-    const SparseMatrix Kg = geometric_stiffness(model, map, structure, lin, loads);
-    K += SparseMatrix(0.5 * (SparseMatrix(Kg.transpose()) + Kg));
+    K = std::move(*Kt);
   }
 
   const std::optional<double> sigma = modal_shift(K.diagonal(), M.diagonal());
@@ -212,7 +212,7 @@ ModalResult solve_modal(const Model& model, const LoadSet& loads, const ModalOpt
   const Eigen::Index count = eig.values.size();
   res.status = ModalStatus::Succeeded;
   res.message = fmt::format("modal: {} free DOFs, {} modes{}, lowest {:.6g} Hz{}{}", n, count,
-                            options.preload ? " about the loaded state" : "",
+                            !options.preload ? "" : options.about_state.about == Equilibrium::SecondOrder ? " about the second-order equilibrium" : " about the loaded state",
                             count > 0 ? res.frequencies[0] : 0.0,
                             zero > 0 ? fmt::format(", {} zero-frequency", zero) : "",
                             unstable > 0 ? fmt::format(", {} unstable (beyond buckling)", unstable) : "");

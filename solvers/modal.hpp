@@ -2,7 +2,8 @@
 // Modal analysis: natural frequencies and mode shapes of the constrained structure,
 //     K phi = omega^2 M phi,   f = omega / (2 pi),
 // optionally about a loaded equilibrium: K is then the tangent K + K_g of the linear static state
-// of the loads (solvers/initial_stress.hpp), so that a compressive preload lowers the
+// of the loads (solvers/initial_stress.hpp) or of their second-order equilibrium
+// (solvers/second_order.hpp, loaded_tangent), so that a compressive preload lowers the
 // frequencies (a pinned column under P: omega = omega_0 sqrt(1 - P/P_cr)) and a frequency falls
 // to zero at buckling.
 //
@@ -34,13 +35,15 @@
 
 #include "core/model.hpp"
 #include "elements/beam_mass.hpp"
+#include "solvers/second_order.hpp"
 
 namespace beamfea {
 
 struct ModalOptions {
   int modes = 10;
   MassKind mass = MassKind::Consistent;
-  bool preload = false;           // about the linear static state of the model's loads
+  bool preload = false;           // about an equilibrium of the loads (about_state says which)
+  PreloadOptions about_state;     // linear static (default) or second order; which K_g
   double zero_tolerance = 1e-10;  // Jacobi-scaled Rayleigh quotient of a zero-frequency mode
   void validate() const;
 };

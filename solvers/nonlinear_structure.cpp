@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/errors.hpp"
+#include "solvers/element_factory.hpp"
 #include "solvers/member_loading.hpp"
 #include "solvers/structure.hpp"
 
@@ -109,11 +110,7 @@ NonlinearStructure::NonlinearStructure(const Model& model, const LoadSet& loads)
   for (std::size_t e = 0; e < model.elements.size(); ++e) {
     const auto& el = model.elements[e];
     if (el.type != MemberType::Beam) continue;
-    try {
-      beams_[e].emplace(beam_section(model, el), model.nodes[el.nodes[0]].x, model.nodes[el.nodes[1]].x, el.orientation);
-    } catch (const Error& err) {  // the element's own error, named here
-      throw ModelError("element '" + el.id + "'", err.what());
-    }
+    beams_[e] = make_frame_element(model, static_cast<int>(e), Kinematics::Corotational);
   }
   dead_ = element_dead_loads(model, loads);
   dead_ref_.assign(model.elements.size(), Vec12::Zero());

@@ -56,6 +56,7 @@
 // Not supported (ModelError): springs on spherical joints.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -121,6 +122,8 @@ class NonlinearStructure {
   };
 
   const Model& model() const { return *model_; }
+  // The co-rotational element of a beam (solvers/element_factory.hpp), null for a rigid link.
+  const FrameElement* beam(int element) const { return beams_[element].get(); }
   const DofMap& reference_map() const { return map_; }
   int size() const { return static_cast<int>(gens_.size()); }
   const std::vector<Gen>& gens() const { return gens_; }
@@ -210,7 +213,7 @@ class NonlinearStructure {
   std::vector<Gen> gens_;
   std::vector<int> raw_to_gen_;
   std::vector<std::vector<int>> chain_;
-  std::vector<std::optional<CorotationalBeam>> beams_;
+  std::vector<std::unique_ptr<FrameElement>> beams_;  // solvers/element_factory.hpp
   std::vector<std::vector<DeadLoadTerm>> dead_;  // per element: dead loads between its nodes
   std::vector<Vec12> dead_ref_;                   // their vector at the reference configuration
   std::vector<Closure> closures_;

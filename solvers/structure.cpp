@@ -6,6 +6,7 @@
 
 #include "core/errors.hpp"
 #include "core/huge_pages.hpp"
+#include "solvers/element_factory.hpp"
 #include "solvers/member_loading.hpp"
 
 namespace beamfea {
@@ -33,9 +34,15 @@ void LinearStructure::rebuild(const Model& model) {
     advise_huge_pages(beams_.data(), beams_.capacity() * sizeof(beams_[0]));
   }
   beams_.assign(model.elements.size(), std::nullopt);
+  transformed_.clear();
   for (std::size_t e = 0; e < model.elements.size(); ++e) {
     const auto& el = model.elements[e];
     if (el.type != MemberType::Beam) continue;
+    if (is_transformed(el)) {
+      transformed_.resize(model.elements.size());
+      transformed_[e] = make_frame_element(model, static_cast<int>(e), Kinematics::Linear);
+      continue;
+    }
     try {
       beams_[e].emplace(beam_section(model, el), model.nodes[el.nodes[0]].x, model.nodes[el.nodes[1]].x,
                         el.orientation);
@@ -83,7 +90,7 @@ AssemblyBlocks LinearStructure::assembly_blocks(const Model& model, const DofMap
 
 std::size_t LinearStructure::assembly_entries() const {
   std::size_t entries = 0;  // 12 x 12 per beam, nq x nq per joint with stiffness
-  for (const auto& b : beams_) entries += b ? 144 : 0;
+  for (std::size_t e = 0; e < beams_.size(); ++e) entries += beam(static_cast<int>(e)) ? 144 : 0;
   for (const auto& jt : model_->joints)
     if (jt.has_stiffness()) entries += static_cast<std::size_t>(jt.coordinates()) * jt.coordinates();
   return entries;
@@ -96,9 +103,10 @@ void LinearStructure::assemble_into(const DofMap& map, Assembler& assembler) con
   if constexpr (std::is_same_v<Assembler, SystemAssembler>)
     if (!assembler.has_pattern()) assembler.expect(assembly_entries());
   for (std::size_t e = 0; e < beams_.size(); ++e) {
-    if (!beams_[e]) continue;
+    const FrameElement* b = beam(static_cast<int>(e));
+    if (!b) continue;
     const auto dofs = element_dofs(map, static_cast<int>(e));
-    assembler.add(dofs, beams_[e]->stiffness());
+    assembler.add(dofs, b->stiffness());
   }
   // A joint has at most 6 coordinates: its stiffness and DOF list stay on the stack.
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> Kj;
@@ -136,11 +144,12 @@ Eigen::VectorXd LinearStructure::internal_force(const DofMap& map, const Eigen::
 void LinearStructure::internal_force(const DofMap& map, const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
   f.setZero(map.raw_size());
   for (std::size_t e = 0; e < beams_.size(); ++e) {
-    if (!beams_[e]) continue;
+    const FrameElement* b = beam(static_cast<int>(e));
+    if (!b) continue;
     const auto dofs = element_dofs(map, static_cast<int>(e));
     Vec12 ue;
     for (int k = 0; k < 12; ++k) ue[k] = u[dofs[k]];
-    const Vec12 fe = beams_[e]->stiffness() * ue;
+    const Vec12 fe = b->stiffness() * ue;
     for (int k = 0; k < 12; ++k) f[dofs[k]] += fe[k];
   }
   for (std::size_t j = 0; j < model_->joints.size(); ++j) {
@@ -152,11 +161,12 @@ void LinearStructure::internal_force(const DofMap& map, const Eigen::VectorXd& u
 }
 
 Vec12 LinearStructure::end_forces(const DofMap& map, int element, const Eigen::VectorXd& u) const {
-  if (!beams_[element]) return Vec12::Zero();
+  const FrameElement* b = beam(element);
+  if (!b) return Vec12::Zero();
   const auto dofs = element_dofs(map, element);
   Vec12 ue;
   for (int k = 0; k < 12; ++k) ue[k] = u[dofs[k]];
-  return beams_[element]->local_end_forces(ue);
+  return b->local_end_forces(ue);
 }
 
 Eigen::VectorXd external_force(const Model& m, const DofMap& map) { return external_force(m, map, m.default_loads()); }

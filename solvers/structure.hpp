@@ -2,6 +2,7 @@
 // The model's elements in their linear form, built once per analysis: beams (LinearBeam, the
 // element contract of elements/frame_element.hpp) and joint springs; rigid links and joints
 // themselves are constraints handled by the DofMap.
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -41,8 +42,12 @@ class LinearStructure {
   // Local end forces [N Vy Vz T My Mz] x 2 of a beam element for raw displacements u.
   Vec12 end_forces(const DofMap& map, int element, const Eigen::VectorXd& u_raw) const;
 
-  // The element of a beam, null for a rigid link.
-  const FrameElement* beam(int element) const { return beams_[element] ? &*beams_[element] : nullptr; }
+  // The element of a beam, null for a rigid link: a LinearBeam, or the wrapped element of a beam
+  // with end releases (solvers/element_factory.hpp).
+  const FrameElement* beam(int element) const {
+    if (!transformed_.empty() && transformed_[element]) return transformed_[element].get();
+    return beams_[element] ? &*beams_[element] : nullptr;
+  }
   const Model& model() const { return *model_; }
   // Points the structure at `model`, which must equal the model it was built from in everything
   // the constructor reads (solvers/structure_cache.hpp checks that): `assemble` then reads the
@@ -57,6 +62,8 @@ class LinearStructure {
 
   const Model* model_ = nullptr;
   std::vector<std::optional<LinearBeam>> beams_;
+  // The wrapped elements (empty when the model has none), in place of their plain beams.
+  std::vector<std::unique_ptr<FrameElement>> transformed_;
 };
 
 // External loads of the default load case over raw DOFs: nodal and joint loads, member loads

@@ -15,7 +15,8 @@ bool same(const Vec3& a, const Vec3& b) { return same(a[0], b[0]) && same(a[1], 
 bool same(const Node& a, const Node& b) { return a.id == b.id && same(a.x, b.x) && a.member == b.member; }
 bool same(const Element& a, const Element& b) {
   return a.id == b.id && a.type == b.type && a.nodes == b.nodes && a.material == b.material && a.section == b.section &&
-         same(a.orientation, b.orientation) && a.theory == b.theory && a.member == b.member;
+         same(a.orientation, b.orientation) && a.theory == b.theory && a.member == b.member &&
+         a.released == b.released && same(a.offsets[0], b.offsets[0]) && same(a.offsets[1], b.offsets[1]);
 }
 bool same(const Material& a, const Material& b) {
   return a.id == b.id && same(a.E, b.E) && same(a.G, b.G) && same(a.density, b.density);
@@ -24,7 +25,19 @@ bool same(const Section& a, const Section& b) {
   return a.id == b.id && same(a.A, b.A) && same(a.Iy, b.Iy) && same(a.Iz, b.Iz) && same(a.J, b.J) && same(a.ky, b.ky) &&
          same(a.kz, b.kz);
 }
-bool same(const Support& a, const Support& b) { return a.node == b.node && a.fixed == b.fixed; }
+bool same(const Support& a, const Support& b) {
+  if (!(a.node == b.node && a.fixed == b.fixed && a.skewed == b.skewed)) return false;
+  for (Eigen::Index i = 0; i < 9; ++i)
+    if (!same(a.axes.data()[i], b.axes.data()[i])) return false;
+  return true;
+}
+bool same(const Tie& a, const Tie& b) { return a.nodes == b.nodes && a.dofs == b.dofs; }
+bool same(const LinearConstraint& a, const LinearConstraint& b) {
+  if (a.terms.size() != b.terms.size() || !same(a.value, b.value)) return false;
+  for (std::size_t i = 0; i < a.terms.size(); ++i)
+    if (!(a.terms[i].dof == b.terms[i].dof && same(a.terms[i].coefficient, b.terms[i].coefficient))) return false;
+  return true;
+}
 bool same(const Prescribed& a, const Prescribed& b) { return a.dof == b.dof && same(a.value, b.value); }
 
 // A joint but its springs.
@@ -68,7 +81,8 @@ bool StructureKey::matches(const Model& model) const {
          all_same(sections_, model.sections) &&
          all_same(joints_, model.joints,
                   [&](const Joint& a, const Joint& b) { return same_kinematics(a, b) && (!springs || same_springs(a, b)); }) &&
-         all_same(supports_, model.supports) && all_same(prescribed_, model.prescribed);
+         all_same(supports_, model.supports) && all_same(prescribed_, model.prescribed) && all_same(ties_, model.ties) &&
+         all_same(constraints_, model.constraints);
 }
 
 void StructureKey::assign(const Model& model) {
@@ -79,6 +93,8 @@ void StructureKey::assign(const Model& model) {
   joints_ = model.joints;
   supports_ = model.supports;
   prescribed_ = model.prescribed;
+  ties_ = model.ties;
+  constraints_ = model.constraints;
   if (springs_ == Springs::Excluded) {
     for (auto& j : joints_) {  // not part of the key: no need to hold them
       j.stiffness.clear();

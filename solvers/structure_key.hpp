@@ -4,9 +4,9 @@
 // model equals this copy field by field, doubles compared by their bits (so -0.0 and 0.0 differ, as
 // they may in what is computed from them). Never stale by construction, as long as every field that
 // the cached constructors read is here: the DofMap and LinearStructure constructors read nodes,
-// elements, materials, sections, joints but their springs, supports and prescribed values; the
-// assembled stiffness (LinearSystem) reads the joint springs too. A field added to those structs
-// that a constructor reads must be added here (structure_key.cpp).
+// elements, materials, sections, joints but their springs, supports, prescribed values, ties and
+// linear constraints; the assembled stiffness (LinearSystem) reads the joint springs too. A field
+// added to those structs that a constructor reads must be added here (structure_key.cpp).
 #include <vector>
 
 #include "core/model.hpp"
@@ -36,6 +36,8 @@ class StructureKey {
   std::vector<Joint> joints_;
   std::vector<Support> supports_;
   std::vector<Prescribed> prescribed_;
+  std::vector<Tie> ties_;
+  std::vector<LinearConstraint> constraints_;
 };
 
 }  // namespace beamfea

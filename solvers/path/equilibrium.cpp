@@ -13,6 +13,51 @@ namespace {
 // Forces below this fraction of the stiffest element's force for a displacement of L are round-off:
 // the floor of the force scale of the convergence test on models loaded lightly or not at all.
 constexpr double kRoundOffForceRatio = 1e-5;
+
+// f(node, comp, coefficient) for each term of a constraint (a single DOF: coefficient 1).
+template <class F>
+void for_each_term(const ConstraintDef& c, F&& f) {
+  if (c.terms.empty()) {
+    f(c.node, c.comp, 1.0);
+    return;
+  }
+  for (const auto& t : c.terms) f(t.node, t.comp, t.coefficient);
+}
+
+// A general row from its terms (node, comp and coefficient each), held at `target`.
+ConstraintDef general_row(std::vector<ConstraintDef::Term> terms, double target) {
+  ConstraintDef c;
+  c.node = terms.front().node;
+  c.comp = terms.front().comp;
+  c.target = target;
+  c.terms = std::move(terms);
+  return c;
+}
+
+// The user rows of core/dof_map.hpp (skewed supports, ties, linear constraints) as constraints of
+// the path: exact on translations (linear in x - X); on rotations the same linear row on the
+// rotation vectors log(R) of the nodes, as a support on a slave node holds its rotation.
+void add_user_rows(const Model& m, std::vector<ConstraintDef>& cons) {
+  for (const auto& s : m.supports) {
+    if (!s.skewed) continue;
+    for (int k = 0; k < 6; ++k) {
+      if (!s.fixed[k]) continue;
+      const int offset = k < 3 ? 0 : 3;
+      std::vector<ConstraintDef::Term> terms;
+      for (int i = 0; i < 3; ++i)
+        if (s.axes(k - offset, i) != 0.0) terms.push_back({s.node, offset + i, s.axes(k - offset, i)});
+      cons.push_back(general_row(std::move(terms), 0.0));
+    }
+  }
+  for (const auto& t : m.ties)
+    for (int k = 0; k < 6; ++k)
+      if (t.dofs[k]) cons.push_back(general_row({{t.nodes[1], k, 1.0}, {t.nodes[0], k, -1.0}}, 0.0));
+  for (const auto& lc : m.constraints) {
+    std::vector<ConstraintDef::Term> terms;
+    for (const auto& t : lc.terms) terms.push_back({t.dof.index, t.dof.comp, t.coefficient});
+    cons.push_back(general_row(std::move(terms), lc.value));
+  }
+}
 }  // namespace
 
 PathSystem::PathSystem(const Model& model, const LoadSet& loads, const PathOptions& o) : ns_(model, loads), loads_(&loads) {
@@ -29,8 +74,10 @@ PathSystem::PathSystem(const Model& model, const LoadSet& loads, const PathOptio
   }
   for (int p = 0; p < map.prescribed_size(); ++p) {
     const auto& pv = map.prescribed()[p];
-    if (pv.dof.owner == DofRef::Owner::Node && map.is_slave(pv.dof.index)) cons_.push_back({pv.dof.index, pv.dof.comp, pv.value});
+    if (pv.constraint < 0 && pv.dof.owner == DofRef::Owner::Node && map.is_slave(pv.dof.index))
+      cons_.push_back({pv.dof.index, pv.dof.comp, pv.value, {}});
   }
+  add_user_rows(model, cons_);
   select_independent_constraints();
   f_ext_ = external_force(model, map, loads);
   has_loads_ = f_ext_.size() > 0 && f_ext_.cwiseAbs().maxCoeff() > 0.0;
@@ -39,7 +86,7 @@ PathSystem::PathSystem(const Model& model, const LoadSet& loads, const PathOptio
     if (map.prescribed_index(raw) >= 0)
       throw ModelError(model.describe({DofRef::Owner::Node, o.control_node, o.control_dof}),
                        "is supported or prescribed: it cannot be the controlled DOF");
-    ctrl_ = {o.control_node, o.control_dof, 0.0};
+    ctrl_ = {o.control_node, o.control_dof, 0.0, {}};
   }
   if (!has_loads_ && o.control != PathControl::Displacement)
     throw ModelError("loads", "path: the model has none; use displacement control to impose a motion");
@@ -85,8 +132,10 @@ void PathSystem::select_independent_constraints() {
   // Rows and coordinates in lengths: rotation rows and rotation coordinates scaled by L.
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, nfree);
   for (std::size_t c = 0; c < cons_.size(); ++c)
-    for (const auto& [g, v] : ns_.raw_row(s0, tw, cons_[c].node, cons_[c].comp))
-      if (gen_to_free_[g] >= 0) C(static_cast<Eigen::Index>(c), gen_to_free_[g]) += v * (cons_[c].comp < 3 ? 1.0 : L_);
+    for_each_term(cons_[c], [&](int node, int comp, double coefficient) {
+      for (const auto& [g, v] : ns_.raw_row(s0, tw, node, comp))
+        if (gen_to_free_[g] >= 0) C(static_cast<Eigen::Index>(c), gen_to_free_[g]) += coefficient * v * (comp < 3 ? 1.0 : L_);
+    });
   const SparseMatrix Cl = ns_.closure_jacobian(s0, tw);
   for (int j = 0; j < Cl.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(Cl, j); it; ++it)
@@ -123,8 +172,11 @@ double PathSystem::weighted_dot(const Eigen::VectorXd& a, const Eigen::VectorXd&
 }
 
 double PathSystem::constraint_value(const NonlinearState& st, const ConstraintDef& c) const {
-  if (c.comp < 3) return st.x[c.node][c.comp] - ns_.model().nodes[c.node].x[c.comp];
-  return log_so3(st.R[c.node])[c.comp - 3];
+  double value = 0.0;
+  for_each_term(c, [&](int node, int comp, double coefficient) {
+    value += coefficient * (comp < 3 ? st.x[node][comp] - ns_.model().nodes[node].x[comp] : log_so3(st.R[node])[comp - 3]);
+  });
+  return value;
 }
 
 Eigen::VectorXd PathSystem::delta_gens(const Eigen::VectorXd& u) const {
@@ -146,7 +198,8 @@ PathSystem::Eval PathSystem::state_of(const Converged& start, const StepSpec& s,
   e.lambda = s.kind == StepKind::Load ? s.lambda : (extra_is_lambda(s) ? u[nf_ + nc_] : 0.0);
   e.f_app = e.lambda * f_ext_;
   const DofMap& map = ns_.reference_map();
-  for (int c = 0; c < ncs_; ++c) e.f_app[map.raw_node(cons_[c].node, cons_[c].comp)] += u[nf_ + c];
+  for (int c = 0; c < ncs_; ++c)
+    for_each_term(cons_[c], [&](int node, int comp, double coefficient) { e.f_app[map.raw_node(node, comp)] += coefficient * u[nf_ + c]; });
   e.mu_closure = closure_multipliers(u.segment(nf_, nc_));
   if (s.kind == StepKind::Control && !has_loads_) e.f_app[map.raw_node(ctrl_.node, ctrl_.comp)] += u[nf_ + nc_];
   return e;
@@ -177,14 +230,17 @@ Eigen::VectorXd PathSystem::residual(const Converged& start, const StepSpec& s, 
 std::vector<std::pair<int, double>> PathSystem::constraint_row(const NonlinearState& st, const std::vector<Twist>& tw,
                                                                const ConstraintDef& c, const SparseMatrix* D) const {
   std::vector<std::pair<int, double>> out;
-  const auto row = ns_.raw_row(st, tw, c.node, c.comp);
+  std::vector<std::pair<int, double>> row;
+  for_each_term(c, [&](int node, int comp, double coefficient) {
+    for (const auto& [g, v] : ns_.raw_row(st, tw, node, comp)) row.emplace_back(g, coefficient * v);
+  });
   if (!D) {
     for (const auto& [g, v] : row)
       if (gen_to_free_[g] >= 0) out.emplace_back(gen_to_free_[g], v);
     return out;
   }
   Eigen::VectorXd r = Eigen::VectorXd::Zero(ns_.size());
-  for (const auto& [g, v] : row) r[g] = v;
+  for (const auto& [g, v] : row) r[g] += v;
   const Eigen::VectorXd rd = SparseMatrix(D->transpose()) * r;
   for (int k = 0; k < nf_; ++k)
     if (rd[free_[k]] != 0.0) out.emplace_back(k, rd[free_[k]]);

@@ -38,10 +38,18 @@
 
 namespace beamfea {
 
-// A raw DOF held at a value: supports or imposed values on slave nodes, or the controlled DOF.
+// A raw DOF held at a value: supports or imposed values on slave nodes, or the controlled DOF; or a
+// linear row of such values (the user rows of core/dof_map.hpp: a skewed support's axis, a tie, a
+// linear constraint): sum_i coefficient_i value(node_i, comp_i) = target, where a node's value is
+// its displacement x - X (comp 0..2) or its rotation vector log(R) (comp 3..5).
 struct ConstraintDef {
-  int node = -1, comp = 0;
+  int node = -1, comp = 0;  // the held DOF (a general row: its first term's)
   double target = 0.0;
+  struct Term {
+    int node = -1, comp = 0;
+    double coefficient = 1.0;
+  };
+  std::vector<Term> terms;  // a general row's terms; empty: value(node, comp) = target
 };
 
 enum class StepKind { Load, Control, Arc };

@@ -32,13 +32,14 @@ SparseMatrix deformed_raw_mass(const NonlinearStructure& ns, const NonlinearStat
       for (int b = 0; b < n; ++b)
         if (M(a, b) != 0.0) t.emplace_back(6 * nodes[a / 6] + a % 6, 6 * nodes[b / 6] + b % 6, M(a, b));
   };
-  for (const auto& el : model.elements) {
-    if (el.type != MemberType::Beam) continue;
+  for (int e = 0; e < static_cast<int>(model.elements.size()); ++e) {
+    const auto& el = model.elements[e];
+    const FrameElement* beam = ns.beam(e);
+    if (!beam) continue;
     const double rho = model.materials[el.material].density;
     if (!(rho > 0.0)) continue;
     const int n1 = el.nodes[0], n2 = el.nodes[1];
-    const CorotationalBeam beam(beam_section(model, el), model.nodes[n1].x, model.nodes[n2].x, el.orientation);
-    const Mat12 M = beam.mass_at({s.x[n1], s.x[n2], s.R[n1], s.R[n2]}, kind, rho);
+    const Mat12 M = beam->mass_at({s.x[n1], s.x[n2], s.R[n1], s.R[n2]}, kind, rho);
     const std::array<int, 2> nodes{n1, n2};
     add(nodes, M);
   }

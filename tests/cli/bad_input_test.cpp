@@ -155,4 +155,16 @@ TEST(AnalysisFailure, MechanismExitsWithOneAndNamesTheJoint) {
   EXPECT_TRUE(o.results_written());
 }
 
+// Found by outside fuzzing: arc-length limits that passed `check` and then ran 100,000 steps of
+// 1e-6. min above max, and an arc length below 1e-12 of the model's size, are exit 2 at the field.
+TEST(BadInput, ArcLengthLimitsThatCannotWorkAreNamed) {
+  json d = base();
+  d["analyses"] = {{{"id", "p"}, {"type", "path"}, {"control", {{"arc_length", 1e-3}, {"min", 1e-5}, {"max", 1e-6}}}}};
+  expect_bad(run_doc("arc_minmax", d), {"/analyses/0/control/min", "above max"});
+  d["analyses"] = {{{"id", "p"}, {"type", "path"}, {"control", {{"arc_length", 1e-300}}}}};
+  expect_bad(run_doc("arc_tiny", d), {"/analyses/0/control/arc_length", "below 1e-12 of the model's size"});
+  d["analyses"] = {{{"id", "p"}, {"type", "path"}, {"control", {{"arc_length", "auto"}, {"min", 1e-200}}}}};
+  expect_bad(run_doc("arc_tiny_min", d), {"/analyses/0/control/min", "below 1e-12"});
+}
+
 }  // namespace bad_input_test

@@ -112,6 +112,27 @@ TEST(SweepCommand, BadSweepFileExitsWithCode2AndNamesTheEntry) {
   EXPECT_NE(read(err).find("/grid/0/values/1"), std::string::npos) << read(err);
 }
 
+// Found by outside fuzzing: a pointer past any array's end (an index too large for an integer)
+// and a base that is a device, not a file. Both are exit 2 naming the field, nothing written.
+TEST(SweepCommand, APointerPastAnyIndexAndADeviceAsBaseAreBadInputNamingTheField) {
+  const auto dir = temp_dir("cli_bad_pointer");
+  const auto err = dir / "err.txt";
+  const json huge = {{"grid", {json{{"pointer", "/nodes/99999999999999999999"}, {"values", {1, 2}}}}}};
+  EXPECT_EQ(sh(exe() + " sweep " + write_sweep(dir, huge).string() + " --out " + (dir / "out").string() + " 2> " + err.string()), 2);
+  EXPECT_NE(read(err).find("/grid/0/pointer"), std::string::npos) << read(err);
+  EXPECT_NE(read(err).find("does not exist"), std::string::npos) << read(err);
+
+  json device = {{"grid", {json{{"pointer", "/materials/0/E"}, {"values", {1e9, 2e9}}}}}};
+  write(dir / "sweep_dev.json", json{{"base", "/dev/zero"}, {"grid", device["grid"]}}.dump());
+  EXPECT_EQ(sh(exe() + " sweep " + (dir / "sweep_dev.json").string() + " --out " + (dir / "out").string() + " 2> " + err.string()), 2);
+  EXPECT_NE(read(err).find("/base"), std::string::npos) << read(err);
+  EXPECT_NE(read(err).find("not a regular file"), std::string::npos) << read(err);
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  EXPECT_EQ(sh(exe() + " run /dev/zero --out " + (dir / "out").string() + " 2> " + err.string()), 2);
+  EXPECT_NE(read(err).find("not a regular file"), std::string::npos) << read(err);
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
 TEST(SweepCommand, PlainProgressLinesAndSummaryWhenNotATerminal) {
   const auto dir = temp_dir("cli_lines");
   const auto file = write_sweep(dir, load_length_grid(5, 4));

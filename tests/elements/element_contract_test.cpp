@@ -3,17 +3,22 @@
 // patch tests of constant strain and constant curvature, force = d(energy) and tangent = d(force)
 // by finite differences along the element's own increments (FrameElement::advance), objectivity,
 // mass totals, energy = u^T K u / 2, thermal loads, end conditions of the drawn shape.
-// A new element kind (or a wrapper) is one more line in ElementKinds.
+// A new element kind (or a wrapper) is one more line in ElementKinds; the prismatic member's own
+// physics (PlainBeamPhysics) and a wrapper's (ReleasedElementPhysics, OffsetElementPhysics) are suites of
+// their own.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
 #include <type_traits>
 
 #include "elements/corotational_beam.hpp"
+#include "elements/offset_element.hpp"
+#include "elements/released_element.hpp"
 #include "elements/span_loads.hpp"
 
 namespace beamfea::element_contract_test {
@@ -39,19 +44,64 @@ BeamSection test_section(bool shear) {
   return s;
 }
 
-template <class E, bool Shear>
+// End releases of the wrapped kinds (elements/released_element.hpp), in the local DOF order.
+enum class Release { None, PinnedStart, Sliding };
+Releases release_set(Release r) {
+  Releases out{};
+  if (r == Release::PinnedStart) out[4] = out[5] = true;                  // start: ry, rz
+  if (r == Release::Sliding) out[5] = out[6 + 1] = out[6 + 3] = true;     // start: rz; end: uy, rx
+  return out;
+}
+
+// Rigid arms of the offset kinds (elements/offset_element.hpp): eccentric, not along the member.
+const std::array<Vec3, 2> kArms{Vec3(0.05, 0.1, -0.08), Vec3(-0.1, 0.04, 0.12)};
+
+template <class E, bool Shear, Release R = Release::None, bool Arms = false>
 struct Kind {
   static constexpr bool corotational = std::is_same_v<E, CorotationalBeam>;
-  static std::unique_ptr<FrameElement> make() { return std::make_unique<E>(test_section(Shear), kX1, kX2, kOrientation); }
+  static constexpr Release release = R;
+  static constexpr bool arms = Arms;
+  static std::unique_ptr<FrameElement> make() {
+    const std::array<Vec3, 2> o = Arms ? kArms : std::array<Vec3, 2>{Vec3::Zero(), Vec3::Zero()};
+    auto beam = std::make_unique<E>(test_section(Shear), kX1 + o[0], kX2 + o[1], kOrientation);
+    std::unique_ptr<FrameElement> out;
+    if constexpr (R == Release::None) out = std::move(beam);
+    else out = std::make_unique<ReleasedElement>(std::move(beam), release_set(R));
+    if constexpr (Arms)
+      out = std::make_unique<OffsetElement>(std::move(out), o, corotational ? ArmKinematics::Finite : ArmKinematics::Linear);
+    return out;
+  }
+  // The reference position of the drawn member's end `end` and where it is at the state p.
+  static Vec3 drawn_end_motion(const NodalPoses& p, int end) {
+    const Vec3& X = end == 0 ? kX1 : kX2;
+    const Vec3& x = end == 0 ? p.x1 : p.x2;
+    const Mat3& Rn = end == 0 ? p.R1 : p.R2;
+    if constexpr (!Arms) return x - X;
+    else if constexpr (corotational) return x + Rn * kArms[end] - (X + kArms[end]);
+    else return x + log_so3(Rn).cross(kArms[end]) - X;
+  }
+  static int released_count() {
+    const Releases r = release_set(R);
+    return static_cast<int>(std::count(r.begin(), r.end(), true));
+  }
   static BeamSection section() { return test_section(Shear); }
   static std::string name() {
-    return std::string(Shear ? "Timoshenko" : "EulerBernoulli") + (corotational ? "Corotational" : "Linear");
+    return std::string(Shear ? "Timoshenko" : "EulerBernoulli") + (corotational ? "Corotational" : "Linear") +
+           (R == Release::PinnedStart ? "PinnedStart" : R == Release::Sliding ? "Sliding" : "") + (Arms ? "Offset" : "");
   }
 };
 using EulerBernoulliLinear = Kind<LinearBeam, false>;
 using TimoshenkoLinear = Kind<LinearBeam, true>;
 using EulerBernoulliCorotational = Kind<CorotationalBeam, false>;
 using TimoshenkoCorotational = Kind<CorotationalBeam, true>;
+using EulerBernoulliLinearPinnedStart = Kind<LinearBeam, false, Release::PinnedStart>;
+using TimoshenkoLinearSliding = Kind<LinearBeam, true, Release::Sliding>;
+using EulerBernoulliCorotationalSliding = Kind<CorotationalBeam, false, Release::Sliding>;
+using TimoshenkoCorotationalPinnedStart = Kind<CorotationalBeam, true, Release::PinnedStart>;
+using EulerBernoulliLinearOffset = Kind<LinearBeam, false, Release::None, true>;
+using TimoshenkoCorotationalOffset = Kind<CorotationalBeam, true, Release::None, true>;
+using EulerBernoulliCorotationalPinnedStartOffset = Kind<CorotationalBeam, false, Release::PinnedStart, true>;
+using TimoshenkoLinearSlidingOffset = Kind<LinearBeam, true, Release::Sliding, true>;
 
 double norm_max(const Mat12& K) { return K.cwiseAbs().maxCoeff(); }
 
@@ -98,10 +148,14 @@ Mat12 fd_force_jacobian(const FrameElement& e, const NodalPoses& p, double h) {
   return K;
 }
 
+// The contract itself: every kind, the wrappers included.
 template <class K>
 class ElementContract : public ::testing::Test {};
 using ElementKinds =
-    ::testing::Types<EulerBernoulliLinear, TimoshenkoLinear, EulerBernoulliCorotational, TimoshenkoCorotational>;
+    ::testing::Types<EulerBernoulliLinear, TimoshenkoLinear, EulerBernoulliCorotational, TimoshenkoCorotational,
+                     EulerBernoulliLinearPinnedStart, TimoshenkoLinearSliding, EulerBernoulliCorotationalSliding,
+                     TimoshenkoCorotationalPinnedStart, EulerBernoulliLinearOffset, TimoshenkoCorotationalOffset,
+                     EulerBernoulliCorotationalPinnedStartOffset, TimoshenkoLinearSlidingOffset>;
 struct KindName {
   template <class T>
   static std::string GetName(int) {
@@ -109,6 +163,14 @@ struct KindName {
   }
 };
 TYPED_TEST_SUITE(ElementContract, ElementKinds, KindName);
+
+// The prismatic member's physics (Hooke's law, constant curvature, thermal and member loads):
+// the plain kinds, whose ends follow their nodes.
+template <class K>
+class PlainBeamPhysics : public ::testing::Test {};
+using PlainKinds =
+    ::testing::Types<EulerBernoulliLinear, TimoshenkoLinear, EulerBernoulliCorotational, TimoshenkoCorotational>;
+TYPED_TEST_SUITE(PlainBeamPhysics, PlainKinds, KindName);
 
 TYPED_TEST(ElementContract, StiffnessIsSymmetricAndIsTheTangentAtTheReference) {
   const auto e = TypeParam::make();
@@ -120,11 +182,13 @@ TYPED_TEST(ElementContract, StiffnessIsSymmetricAndIsTheTangentAtTheReference) {
 
 TYPED_TEST(ElementContract, SixRigidBodyModesGiveNoForceAndNoEnergy) {
   const auto e = TypeParam::make();
-  // Exactly six zero eigenvalues of the unsupported stiffness.
+  // Exactly six zero eigenvalues of the unsupported stiffness, one more per released DOF (each
+  // release here frees one deformation mode).
   const Eigen::SelfAdjointEigenSolver<Mat12> es(e->stiffness());
   const auto& ev = es.eigenvalues();  // ascending
-  for (int i = 0; i < 6; ++i) EXPECT_LE(std::abs(ev[i]), 1e-12 * ev[11]) << "eigenvalue " << i;
-  EXPECT_GT(ev[6], 1e-6 * ev[11]);
+  const int zeros = 6 + TypeParam::released_count();
+  for (int i = 0; i < zeros; ++i) EXPECT_LE(std::abs(ev[i]), 1e-12 * ev[11]) << "eigenvalue " << i;
+  EXPECT_GT(ev[zeros], 1e-6 * ev[11]);
   for (const Vec3& w : {Vec3(0.3, -0.2, 0.5), Vec3(0.0, 0.0, 0.0), Vec3(-1.1, 0.7, 2.0)}) {
     const ElementResponse r = e->respond(rigid(TypeParam::corotational, Vec3(0.4, -0.3, 0.2), w), Evaluate::Force);
     EXPECT_LE(r.force.norm(), 1e-12 * norm_max(e->stiffness()));
@@ -133,7 +197,7 @@ TYPED_TEST(ElementContract, SixRigidBodyModesGiveNoForceAndNoEnergy) {
 }
 
 // Constant axial strain: N = EA du/L along the whole element, nothing else.
-TYPED_TEST(ElementContract, PureStretchGivesTheAxialForceOfHookesLaw) {
+TYPED_TEST(PlainBeamPhysics, PureStretchGivesTheAxialForceOfHookesLaw) {
   const auto e = TypeParam::make();
   const BeamSection s = TypeParam::section();
   const double L = e->length(), du = 0.01 * L, N = s.E * s.A * du / L;
@@ -149,7 +213,7 @@ TYPED_TEST(ElementContract, PureStretchGivesTheAxialForceOfHookesLaw) {
 
 // Constant curvature kappa in each plane (end rotations -+ kappa L/2, no deflection): a uniform
 // moment E I kappa and no shear, Timoshenko or not (no shear force, no shear strain).
-TYPED_TEST(ElementContract, ConstantCurvatureGivesAUniformMomentAndNoShear) {
+TYPED_TEST(PlainBeamPhysics, ConstantCurvatureGivesAUniformMomentAndNoShear) {
   const auto e = TypeParam::make();
   const BeamSection s = TypeParam::section();
   const double L = e->length(), kappa = 0.2 / L;
@@ -196,7 +260,9 @@ TYPED_TEST(ElementContract, TangentMatchesFiniteDifferencesOfInternalForce) {
 // their own.
 template <class K>
 class FiniteRotationContract : public ::testing::Test {};
-using FiniteRotationKinds = ::testing::Types<EulerBernoulliCorotational, TimoshenkoCorotational>;
+using FiniteRotationKinds =
+    ::testing::Types<EulerBernoulliCorotational, TimoshenkoCorotational, EulerBernoulliCorotationalSliding,
+                     TimoshenkoCorotationalPinnedStart, TimoshenkoCorotationalOffset, EulerBernoulliCorotationalPinnedStartOffset>;
 TYPED_TEST_SUITE(FiniteRotationContract, FiniteRotationKinds, KindName);
 
 TYPED_TEST(FiniteRotationContract, SuperposedRigidRotationRotatesTheForcesAndKeepsTheEnergy) {
@@ -241,7 +307,7 @@ TYPED_TEST(ElementContract, EnergyIsHalfTheStiffnessQuadraticFormAtSmallDisplace
 
 // Thermal loads reproduce the free thermal deformation: the cantilever (node 1 clamped) under
 // them lengthens by alpha dT L and turns its tip by the thermal curvature times L.
-TYPED_TEST(ElementContract, ThermalLoadsProduceTheFreeThermalDeformation) {
+TYPED_TEST(PlainBeamPhysics, ThermalLoadsProduceTheFreeThermalDeformation) {
   const auto e = TypeParam::make();
   const double L = e->length(), alpha = 1.2e-5;
   const Temperature t{alpha, 40.0, 25.0, -30.0};
@@ -269,7 +335,7 @@ TYPED_TEST(ElementContract, GeometricStiffnessIsSymmetricAndLinearInTheEndForces
 
 // Member loads: at the reference, the fixed-end forces of dead loads are the negated equivalent
 // nodal loads; a uniform load's equivalent loads are w L/2 and w L^2/12 (Przemieniecki 1968).
-TYPED_TEST(ElementContract, MemberLoadsGiveTheClassicalFixedEndForces) {
+TYPED_TEST(PlainBeamPhysics, MemberLoadsGiveTheClassicalFixedEndForces) {
   const auto e = TypeParam::make();
   const double L = e->length(), w = 2.0;
   ElementLoads loads;
@@ -281,12 +347,61 @@ TYPED_TEST(ElementContract, MemberLoadsGiveTheClassicalFixedEndForces) {
   EXPECT_LE((e->fixed_end_forces_at(e->reference_poses(), loads) + f).norm(), 1e-13 * f.norm());
 }
 
+// The drawn member meets its nodes, or the ends of its rigid arms.
 TYPED_TEST(ElementContract, DrawnShapeMeetsTheNodes) {
   const auto e = TypeParam::make();
   const NodalPoses p = deformed(exp_so3(Vec3(0.1, -0.2, 0.15)), Vec3(0.01, 0.02, -0.03));
-  EXPECT_LE((e->displacement_at(p, 0.0) - (p.x1 - kX1)).norm(), 1e-14);
-  EXPECT_LE((e->displacement_at(p, 1.0) - (p.x2 - kX2)).norm(), 1e-14);
+  EXPECT_LE((e->displacement_at(p, 0.0) - TypeParam::drawn_end_motion(p, 0)).norm(), 1e-14);
+  EXPECT_LE((e->displacement_at(p, 1.0) - TypeParam::drawn_end_motion(p, 1)).norm(), 1e-14);
   EXPECT_LE((e->displacement_at(e->reference_poses(), 0.4)).norm(), 1e-15);
+}
+
+// A released element's own physics: its released end forces vanish at any state, and a uniform
+// load on a member pinned at its start has the propped cantilever's fixed-end forces (Roark's
+// Formulas for Stress and Strain, 7th ed., Table 8.1 case 2e: pinned end R = 3wL/8, fixed end
+// R = 5wL/8 and M = wL^2/8).
+template <class K>
+class ReleasedElementPhysics : public ::testing::Test {};
+using ReleasedKinds =
+    ::testing::Types<EulerBernoulliLinearPinnedStart, TimoshenkoLinearSliding, EulerBernoulliCorotationalSliding,
+                     TimoshenkoCorotationalPinnedStart, EulerBernoulliCorotationalPinnedStartOffset, TimoshenkoLinearSlidingOffset>;
+TYPED_TEST_SUITE(ReleasedElementPhysics, ReleasedKinds, KindName);
+
+TYPED_TEST(ReleasedElementPhysics, ReleasedEndForcesVanish) {
+  const auto e = TypeParam::make();
+  const Releases r = release_set(TypeParam::release);
+  for (const NodalPoses& p : {deformed(), deformed(exp_so3(Vec3(0.4, -1.2, 0.9)), Vec3(0.5, 0.1, -0.3))}) {
+    const ElementResponse a = e->respond(p, Evaluate::Force);
+    for (int k = 0; k < 12; ++k) {
+      if (r[k]) {
+        EXPECT_LE(std::abs(a.local_end_forces[k]), 1e-12 * a.local_end_forces.norm()) << "DOF " << k;
+      }
+    }
+  }
+}
+
+template <class K>
+class PinnedStartPhysics : public ::testing::Test {};
+using PinnedStartKinds = ::testing::Types<EulerBernoulliLinearPinnedStart, TimoshenkoCorotationalPinnedStart>;
+TYPED_TEST_SUITE(PinnedStartPhysics, PinnedStartKinds, KindName);
+
+TYPED_TEST(PinnedStartPhysics, UniformLoadGivesTheProppedCantileversFixedEndForces) {
+  const auto e = TypeParam::make();
+  const double L = e->length(), w = 2.0;
+  ElementLoads loads;
+  loads.distributed.push_back({0.0, L, Vec3(0, -w, 0), Vec3(0, -w, 0)});
+  const Vec12 f = e->equivalent_loads(loads);  // the loads on the nodes
+  const double tol = 1e-12 * w * L * L;
+  // A Timoshenko member's fixed-end moment is w L^2 / (8 (1 + Phi/4)), Phi = 12 E Iz / (G Asy L^2)
+  // (the uniform load's fixed-fixed moments w L^2/12 carried over by the stiffness of
+  // Przemieniecki's eq. 5.116, carry-over factor (2 - Phi)/(4 + Phi)); Phi = 0 for Euler-Bernoulli.
+  const double phi = TypeParam::section().phi_y(L);
+  const double M2 = w * L * L / 8.0 / (1.0 + phi / 4.0);
+  EXPECT_NEAR(f(5), 0.0, tol);                  // pinned: no moment
+  EXPECT_NEAR(f(11), M2, tol);                  // on the node at the fixed end
+  EXPECT_NEAR(f(1) + f(7), -w * L, tol);        // equilibrium
+  EXPECT_NEAR(f(1), -(w * L / 2 - M2 / L), tol);  // pinned end: 3wL/8 at Phi = 0
+  EXPECT_LE((e->fixed_end_forces_at(e->reference_poses(), loads) + f).norm(), 1e-12 * f.norm());
 }
 
 }  // namespace

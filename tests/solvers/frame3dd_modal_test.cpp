@@ -20,12 +20,12 @@
 // src/coordtrans.c, atma) are commented out ("this needs work"). So each member with a radius is
 // the beam of length Le stretched between nodes L apart: stiffer (E I/Le^3 instead of E I/L^3), and
 // not free under a rigid rotation (the chord turns by theta L/Le where the ends turn by theta), which
-// is why Frame3DD's rigid-body modes 5 and 6 are not at zero. beamfea has no node radius: its
-// members are elastic over their full length, and its elastic frequencies are 11-13 % lower.
+// is why Frame3DD's rigid-body modes 5 and 6 are not at zero. beamfea's members without
+// "rigid_ends" are elastic over their full length, and its elastic frequencies are 11-13 % lower.
 // Verified below by rebuilding Frame3DD's matrices from beamfea's element matrices (stiffness at Le,
 // mass at L, transformation without offsets) and solving them: Frame3DD's printed frequencies
-// follow to 1e-5. A finite joint modelled physically (rigid links over the radii, the beam over Le)
-// is stiffer than beamfea's full-length members and softer than Frame3DD's.
+// follow to 1e-5. A finite joint modelled physically (rigid links over the radii or "rigid_ends",
+// the beam over Le) is stiffer than beamfea's full-length members and softer than Frame3DD's.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -155,7 +155,8 @@ TEST(Frame3ddExampleD, Frame3ddFrequenciesFollowFromTheElasticLengthShortenedByT
 // the rigid zones are massless. The frame stays free under rigid motions (six zero modes, where
 // Frame3DD's shortened elements give two at 0.016 and 0.033 Hz), and it is stiffer and lighter
 // than the full-length frame, so every elastic frequency is higher. It is not Frame3DD's model:
-// modes 7-12 come out 2-5 % above Frame3DD's, modes 13-14 7-10 % below (printed).
+// modes 7-12 come out 2-5 % above Frame3DD's, modes 13-14 7-10 % below (printed). The members'
+// "rigid_ends" state the same joints and give the same frequencies.
 TEST(Frame3ddExampleD, RigidJointZonesOverTheRadiiStiffenTheFrameButAreNotFrame3ddsModel) {
   json d = example_d();
   const json full = d;
@@ -196,6 +197,19 @@ TEST(Frame3ddExampleD, RigidJointZonesOverTheRadiiStiffenTheFrameButAreNotFrame3
               << ", Frame3DD " << kFrame3dd[k - 6] << " Hz\n";
     EXPECT_GT(rz.frequencies[k], rp.frequencies[k]) << "mode " << k + 1;
   }
+  // The same finite joints stated by "rigid_ends" (rigid arms inside the elements,
+  // elements/offset_element.hpp, instead of rigid links between extra nodes): the same frame.
+  json arms = full;
+  for (auto& e : arms["elements"]) {
+    const int i1 = e["nodes"][0].get<int>() - 1, i2 = e["nodes"][1].get<int>() - 1;
+    if (kRadius[i1] > 0.0 || kRadius[i2] > 0.0) e["rigid_ends"] = {kRadius[i1], kRadius[i2]};
+  }
+  Model with_arms = read_model(arms);
+  with_arms.materials[0].density = kDensity;
+  const ModalResult ra = solve_modal(with_arms, o);
+  ASSERT_EQ(ra.status, ModalStatus::Succeeded) << ra.message;
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(ra.kinds[static_cast<std::size_t>(k)], ModeKind::RigidBody);
+  for (int k = 6; k < 14; ++k) EXPECT_NEAR(ra.frequencies[k], rz.frequencies[k], 1e-8 * rz.frequencies[k]) << "mode " << k + 1;
 }
 
 // Frame3DD's example B (examples/exB.3dd, exB.out; N, mm, ton): a pyramid of four one-element
