@@ -349,6 +349,7 @@ SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepCom
     summary.ok = counts.ok;
     summary.analysis_failed = counts.analysis_failed;
     summary.bad_input = counts.bad_input;
+    if (options.keep) write_case_series(sweep, options.out_dir);
   }
   summary.wall_time_s = seconds_since(t_start);
   return summary;

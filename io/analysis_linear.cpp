@@ -7,12 +7,14 @@
 
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
+#include "io/ellipsoid_vtk.hpp"
 #include "io/json_util.hpp"
 #include "io/model_check.hpp"
 #include "io/load_reader.hpp"
 #include "io/model_reader.hpp"
 #include "io/result_status.hpp"
 #include "io/static_results.hpp"
+#include "io/stiffness_indices_output.hpp"
 #include "io/vtk_writer.hpp"
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/linear_static.hpp"
@@ -334,25 +336,50 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx, const LinearStatic
 
 // The keys of a stiffness result (type, node, load_case, about, geometric_stiffness, status, message, matrix, rank, null_space,
 // compliance, compliance_bounded, unbounded_directions, rigid_directions, statically_indeterminate,
-// length_scale, scaled_eigenvalues), and run_document's wall_time_s.
-constexpr std::size_t kStiffnessResultKeys = 18;
+// length_scale, scaled_eigenvalues, indices, ellipsoid), and run_document's wall_time_s.
+constexpr std::size_t kStiffnessResultKeys = 20;
 
 struct StiffnessSpec {
   int node = -1;
   std::string load_case;  // "": the linear stiffness; otherwise the loaded-mode one about this case
   PreloadOptions preload;  // about which equilibrium of the case, with which K_g
+  IndicesRequest indices;  // "directions", "reference_wrench"
+  bool ellipsoid = false;  // write DIR/<id>_ellipsoid.vtp
 };
 
 StiffnessSpec check_stiffness(const Model& model, const nlohmann::json& spec, const json_in::Pointer& p) {
   StiffnessSpec s;
   s.load_case = read_load_case(model, spec, p);
-  json_in::expect_keys(spec, p, {"id", "type", "description", "node", "load_case", "about", "geometric_stiffness"});
+  json_in::expect_keys(spec, p,
+                       {"id", "type", "description", "node", "load_case", "about", "geometric_stiffness", "directions",
+                        "reference_wrench", "ellipsoid"});
   s.preload = read_preload(spec, p, "stiffness", !s.load_case.empty());
   if (s.preload.about == Equilibrium::SecondOrder) check_nonlinear_model(model, p);
   s.node = node_ref(model, json_in::require(spec, p, "node", "stiffness analysis"), json_in::child(p, "node"));
+  s.indices = read_indices_request(spec, p);
+  if (const nlohmann::json* e = json_in::field(spec, "ellipsoid"))
+    s.ellipsoid = json_in::boolean(*e, json_in::child(p, "ellipsoid"), "stiffness ellipsoid");
   // Any node answers: where supports, loops or rigid links hold it, its compliance is zero and
   // rigid_directions names the directions (solvers/condensed_stiffness.hpp, node_compliance).
   return s;
+}
+
+// The translational compliance ellipsoid, written over `v`: {scale, semi_axes, axes, file}, and
+// DIR/<id>_ellipsoid.vtp when the run writes VTK files ("file" only then).
+void set_ellipsoid(ojson& v, const AnalysisContext& ctx, const CondensedStiffness& k, int node) {
+  const ComplianceAxes axes = compliance_axes(k.compliance.topLeftCorner<3, 3>());
+  const double scale = ellipsoid_scale(axes, ctx.model.length_scale());
+  ObjectFiller o(v, 4);
+  o.slot("scale") = scale;
+  set_numbers(o.slot("semi_axes"), axes.semi_axes.data(), 3);
+  auto& directions = set_array(o.slot("axes"), 3);
+  for (std::size_t i = 0; i < 3; ++i) set_numbers(directions[i], axes.axes.col(static_cast<Eigen::Index>(i)).data(), 3);
+  if (!ctx.out_dir.empty() && ctx.write_vtk) {
+    const std::string file = ctx.id + "_ellipsoid.vtp";
+    write_compliance_ellipsoid((ctx.out_dir / file).string(), ctx.model.nodes[node].x, axes, scale);
+    set_string(o.slot("file"), file);
+  }
+  o.finish();
 }
 
 AnalysisOutcome run_stiffness(const AnalysisContext& ctx, const StiffnessSpec& spec) {
@@ -405,6 +432,8 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx, const StiffnessSpec& s
   set_strings(r.slot("statically_indeterminate"), k.statically_indeterminate);
   r.slot("length_scale") = model.length_scale();
   set_numbers(r.slot("scaled_eigenvalues"), k.eigenvalues.data(), static_cast<std::size_t>(k.eigenvalues.size()));
+  set_indices(r.slot("indices"), k, model.length_scale(), spec.indices);
+  if (spec.ellipsoid) set_ellipsoid(r.slot("ellipsoid"), ctx, k, node);
   r.finish();
   return out;
 }
@@ -416,8 +445,9 @@ AnalysisType linear_static_analysis() {
                                              [](const std::string& id) { return AnalysisFiles{{id + ".vtu"}, {}}; });
 }
 AnalysisType stiffness_analysis() {
-  return register_analysis<StiffnessSpec>("stiffness", check_stiffness, run_stiffness,
-                                          [](const std::string&) { return AnalysisFiles{}; });  // no files
+  return register_analysis<StiffnessSpec>("stiffness", check_stiffness, run_stiffness, [](const std::string& id) {
+    return AnalysisFiles{{id + "_ellipsoid.vtp"}, {}};  // with "ellipsoid": true
+  });
 }
 
 }  // namespace beamfea

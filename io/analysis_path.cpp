@@ -13,7 +13,7 @@
 // Result analyses.<id>: type, status, termination, completed, free_dofs, control,
 // steps[] {step, load_factor, control, arc_length, iterations, chord_iterations, nodes.<tracked>.displacement,
 //          negative_eigenvalues, stable, min_eigenvalue, stiffness, compliance, compliance_bounded,
-//          rank, null_space, unbounded_directions, rigid_directions (when stiffness_node), reaction
+//          rank, null_space, unbounded_directions, rigid_directions, indices (when stiffness_node), reaction
 //          (imposed motion), frequencies (Hz, with "frequencies"; null and frequencies_failure when the
 //          eigen-solver failed), step_control (displacement control: "displacement", or "arc_length" through
 //          a snap-back of the controlled DOF)}, critical_points[] {type, load_factor, step, control,
@@ -28,6 +28,7 @@
 
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
+#include "io/stiffness_indices_output.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json_util.hpp"
 #include "io/model_check.hpp"
@@ -280,6 +281,9 @@ ojson step_json(const Model& model, const PathOptions& o, const PathStep& s, boo
     j["null_space"] = std::move(ns);
     j["unbounded_directions"] = std::move(ud);
     j["rigid_directions"] = std::move(rd);
+    ojson indices;  // null when the condensation failed
+    if (ok) set_indices(indices, *s.node_stiffness, model.length_scale());
+    j["indices"] = std::move(indices);
   }
   if (imposed) j["reaction"] = s.reaction;
   if (o.frequency_modes > 0) {

@@ -2,15 +2,19 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
+#include <filesystem>
 #include <optional>
 #include <string>
 
 #include "core/errors.hpp"
+#include "io/json_util.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
 #include "io/sweep_table.hpp"
+#include "io/vtk_writer.hpp"
 
 namespace beamfea {
 
@@ -196,6 +200,26 @@ void run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem
 void run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir,
                     SweepWorkspace& workspace, SweepCaseResult& into) {
   run_case(sweep, index, keep_dir, &workspace.document, &workspace.model, &workspace.report, into);
+}
+
+void write_case_series(const Sweep& sweep, const std::filesystem::path& out_dir) {
+  const nlohmann::json* analyses = json_in::field(sweep.base, "analyses");
+  if (!analyses || !analyses->is_array()) return;
+  for (const auto& a : *analyses) {
+    const nlohmann::json* type = json_in::field(a, "type");
+    const nlohmann::json* id = json_in::field(a, "id");
+    if (!type || *type != "stiffness" || !id || !id->is_string()) continue;
+    const std::string name = id->get<std::string>();
+    if (!sweep.analyses.empty() && std::find(sweep.analyses.begin(), sweep.analyses.end(), name) == sweep.analyses.end())
+      continue;
+    const std::string file = name + "_ellipsoid.vtp";
+    std::vector<std::pair<double, std::string>> entries;
+    for (std::size_t i = 0; i < sweep.size(); ++i) {
+      const std::filesystem::path relative = std::filesystem::path("cases") / sweep.case_id(i) / file;
+      if (std::filesystem::exists(out_dir / relative)) entries.emplace_back(static_cast<double>(i), relative.generic_string());
+    }
+    if (!entries.empty()) write_pvd((out_dir / (name + "_ellipsoid.pvd")).string(), entries);
+  }
 }
 
 }  // namespace beamfea

@@ -128,6 +128,11 @@ struct SweepCaseResult {
 };
 const char* to_string(SweepCaseResult::Status s);
 
+// After a sweep that kept each case's files (DIR/cases/<id>/): for each stiffness analysis whose
+// cases wrote a compliance ellipsoid, the series DIR/<analysis id>_ellipsoid.pvd of those files,
+// time = case index, so that ParaView plays the ellipsoid across the cases (a workspace map).
+void write_case_series(const Sweep& sweep, const std::filesystem::path& out_dir);
+
 // Runs one case in process. keep_dir non-empty: results.json and VTK files written there.
 // `documents` (may be null): the calling worker's SweepCaseDocument, reused from case to case.
 SweepCaseResult run_sweep_case(const Sweep& sweep, std::size_t index, const std::filesystem::path& keep_dir = {},
