@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
 #include "io/run.hpp"
+#include "support/errors.hpp"
 #include "support/models.hpp"
 
 namespace loads_input_test {
@@ -23,15 +24,7 @@ json base() {
   return doc;
 }
 
-// The pointer of the InputError that reading `doc` raises ("" if none).
-std::string error_pointer(const json& doc) {
-  try {
-    load_and_check(doc);
-  } catch (const InputError& e) {
-    return e.pointer();
-  }
-  return "(no error)";
-}
+std::string error_pointer(const json& doc) { return test::input_error_pointer(doc); }
 }  // namespace
 
 TEST(LoadsInput, BadInputNamesTheField) {

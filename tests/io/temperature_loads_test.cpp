@@ -10,6 +10,7 @@
 #include "io/analysis.hpp"
 #include "io/run.hpp"
 #include "support/cli_case.hpp"
+#include "support/errors.hpp"
 #include "support/models.hpp"
 
 namespace temperature_loads_test {
@@ -36,14 +37,7 @@ json run(const json& d) {
   return rep.results;
 }
 
-std::string error_pointer(const json& doc) {
-  try {
-    load_and_check(doc);
-  } catch (const InputError& e) {
-    return e.pointer();
-  }
-  return "(no error)";
-}
+std::string error_pointer(const json& doc) { return test::input_error_pointer(doc); }
 
 }  // namespace
 
