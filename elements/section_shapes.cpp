@@ -253,12 +253,17 @@ std::string section_shape_names() {
   return out;
 }
 
+std::string section_shape_dimensions(const SectionShape& shape) {
+  std::string takes;
+  for (const auto& k : shape.dimensions) takes.append(takes.empty() ? "" : ", ").append(k);
+  for (const auto& k : shape.optional) takes.append(takes.empty() ? "" : ", ").append(k).append(" (optional)");
+  return takes;
+}
+
 SectionProperties section_properties(std::string_view name, const std::vector<std::pair<std::string, double>>& dimensions) {
   const SectionShape* shape = find_section_shape(name);
   if (!shape) throw std::invalid_argument("unknown shape '" + std::string(name) + "' (expected " + section_shape_names() + ")");
-  std::string takes;
-  for (const auto& k : shape->dimensions) takes.append(takes.empty() ? "" : ", ").append(k);
-  for (const auto& k : shape->optional) takes.append(takes.empty() ? "" : ", ").append(k).append(" (optional)");
+  const std::string takes = section_shape_dimensions(*shape);
   ShapeDimensions d{};
   std::vector<char> given(shape->dimensions.size() + shape->optional.size(), 0);
   for (const auto& [key, value] : dimensions) {

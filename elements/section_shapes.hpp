@@ -82,6 +82,8 @@ const std::vector<SectionShape>& section_shapes();
 const SectionShape* find_section_shape(std::string_view name);
 // "rectangle, circle, tube, i, channel, tee, angle, box"
 std::string section_shape_names();
+// The dimensions a shape takes, for messages: "h, b, tw, tf, r (optional)".
+std::string section_shape_dimensions(const SectionShape& shape);
 
 // The properties of shape `name` of the named dimensions (the command line's and Python's way in;
 // the model reader checks the same with JSON pointers). Throws std::invalid_argument naming the

@@ -85,10 +85,8 @@ void read_section(const Fields& f, const json_in::Pointer& p, Section& sec, cons
     }
     for (const std::string_view key : kShapeDimensions) {
       if (!f.get(key) || std::ranges::count(shape->dimensions, key) || std::ranges::count(shape->optional, key)) continue;
-      std::string takes;
-      for (const auto& k : shape->dimensions) takes.append(takes.empty() ? "" : ", ").append(k);
-      for (const auto& k : shape->optional) takes.append(takes.empty() ? "" : ", ").append(k).append(" (optional)");
-      throw InputError(child(p, key), what + ": shape '" + shape_name + "' takes " + takes + ", not '" + std::string(key) + "'");
+      throw InputError(child(p, key), what + ": shape '" + shape_name + "' takes " + section_shape_dimensions(*shape) + ", not '" +
+                                          std::string(key) + "'");
     }
     if (const std::string bad = shape->check(d); !bad.empty()) {
       const std::string key = bad.substr(0, bad.find(':'));

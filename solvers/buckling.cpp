@@ -128,9 +128,7 @@ BucklingResult solve_buckling(const Model& model, const LoadSet& loads, const Bu
   const DofMap map(model);
   const LinearStructure structure(model);
   SystemAssembler ka(map);
-  ka.begin();
-  structure.assemble(map, ka);
-  ka.end();
+  structure.assemble_stiffness(map, ka);
   const SparseMatrix& K = ka.K_ff();
   SparseMatrix Kg = geometric_stiffness(model, map, structure, lin, loads, options.geometric_stiffness);
   Kg = SparseMatrix(0.5 * (SparseMatrix(Kg.transpose()) + Kg));

@@ -169,9 +169,7 @@ ModalResult solve_modal(const Model& model, const LoadSet& loads, const ModalOpt
   }
 
   SystemAssembler ka(map), ma(map);
-  ka.begin();
-  structure.assemble(map, ka);
-  ka.end();
+  structure.assemble_stiffness(map, ka);
   ma.begin();
   assemble_mass(structure, map, options.mass, ma);
   ma.end();

@@ -247,9 +247,7 @@ SecondOrderResult solve_second_order(const Model& model, const LoadSet& loads, c
   if (auto conflict = map.check_consistency(up); !conflict.empty()) throw ModelError("supports and prescribed values", conflict);
   const LinearStructure structure(model);
   SystemAssembler ka(map);
-  ka.begin();
-  structure.assemble(map, ka);
-  ka.end();
+  structure.assemble_stiffness(map, ka);
   const SparseMatrix& K = ka.K_ff();
   Increment increment(model, map, structure, options.geometric);
   ActiveSet set(model);

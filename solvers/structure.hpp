@@ -49,6 +49,13 @@ class LinearStructure {
     return beams_[element] ? &*beams_[element] : nullptr;
   }
   const Model& model() const { return *model_; }
+  // One whole assembly pass of the elastic stiffness into `ka` (begin, assemble, end): its K_ff
+  // and K_fp, the shared start of buckling, modal and second-order statics.
+  void assemble_stiffness(const DofMap& map, SystemAssembler& ka) const {
+    ka.begin();
+    assemble(map, ka);
+    ka.end();
+  }
   // Points the structure at `model`, which must equal the model it was built from in everything
   // the constructor reads (solvers/structure_cache.hpp checks that): `assemble` then reads the
   // joint springs of `model`, which the beams' matrices do not depend on.
