@@ -18,6 +18,7 @@ const char* joint_type_name(JointType t) {
     case JointType::Universal: return "universal";
     case JointType::Spherical: return "spherical";
     case JointType::VirtualSpring: return "virtual_spring";
+    case JointType::Prismatic: return "prismatic";
   }
   return "?";
 }
@@ -28,6 +29,7 @@ int joint_coordinate_count(JointType t) {
     case JointType::Universal: return 2;
     case JointType::Spherical: return 3;
     case JointType::VirtualSpring: return 6;
+    case JointType::Prismatic: return 1;
   }
   return 0;
 }

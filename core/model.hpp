@@ -103,7 +103,7 @@ struct Element {
   bool has_offsets() const { return !offsets[0].isZero(0.0) || !offsets[1].isZero(0.0); }
 };
 
-enum class JointType { Revolute, Universal, Spherical, VirtualSpring };
+enum class JointType { Revolute, Universal, Spherical, VirtualSpring, Prismatic };
 const char* joint_type_name(JointType t);
 int joint_coordinate_count(JointType t);
 
@@ -113,6 +113,8 @@ int joint_coordinate_count(JointType t);
 // A virtual spring (the 6-D virtual joint of the VJM, Pashkevich et al. 2010, eq. 1) has six
 // coordinates, three translations then three rotations along/about the axes of its frame:
 // T_3D(theta) = Tx Ty Tz Rx Ry Rz.
+// A prismatic joint has one translation q along its axis a (fixed in nodes[0]'s body):
+// x2 = x1 + R1 a q, R2 = R1 (a slider; the translation of a virtual spring with one coordinate).
 // stiffness[i] = 0 means a passive (free) coordinate, > 0 an actuator spring on q_i; a full
 // (symmetric) stiffness_matrix, when given, replaces the diagonal: energy 1/2 q^T K q.
 struct Joint {

@@ -1,4 +1,4 @@
-// Model reader, part 3: joints (revolute, universal, spherical, virtual springs).
+// Model reader, part 3: joints (revolute, prismatic, universal, spherical, virtual springs).
 #include <Eigen/Eigenvalues>
 
 #include "core/errors.hpp"
@@ -28,12 +28,13 @@ JointType joint_type(const std::string& type, const json_in::Pointer& p, const s
   if (type == "universal") return JointType::Universal;
   if (type == "spherical") return JointType::Spherical;
   if (type == "virtual_spring") return JointType::VirtualSpring;
-  throw InputError(p, what + ": unknown type '" + type + "' (expected revolute, universal, spherical, virtual_spring)");
+  if (type == "prismatic") return JointType::Prismatic;
+  throw InputError(p, what + ": unknown type '" + type + "' (expected revolute, prismatic, universal, spherical, virtual_spring)");
 }
 
 void read_axes(Joint& j, const Fields& f, const json_in::Pointer& p, const std::string& what, const std::string& type) {
   const int nc = joint_coordinate_count(j.type);
-  // Axes: one per rotation coordinate; a virtual spring gives its frame (x, y, z), used for its
+  // Axes: one per coordinate (a prismatic joint's is its sliding direction); a virtual spring gives its frame (x, y, z), used for its
   // three translations and its three rotations alike.
   const int naxes = j.type == JointType::VirtualSpring ? 3 : nc;
   // Read into j.axes (a recycled joint's storage reused).
@@ -66,6 +67,7 @@ void read_axes(Joint& j, const Fields& f, const json_in::Pointer& p, const std::
     j.translations = 3;
     for (int a = 0; a < 3; ++a) j.axes.push_back(j.axes[a]);  // room reserved above: no reallocation
   }
+  if (j.type == JointType::Prismatic) j.translations = 1;
 }
 
 void read_stiffness(Joint& j, const json& st, const json_in::Pointer& sp, const std::string& what) {
