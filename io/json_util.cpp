@@ -40,9 +40,9 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 // Keys longer than this are not compared (a suggestion for them would mean nothing anyway).
 constexpr std::size_t kMaxSuggestedKeyLength = 64;
 
-}  // namespace
-
-std::string nearest_key(std::string_view key, std::initializer_list<std::string_view> known) {
+// nearest_key over any range of names.
+template <class Names>
+std::string nearest_name(std::string_view key, const Names& known) {
   if (key.size() > kMaxSuggestedKeyLength) return "";
   std::string best;
   std::size_t best_d = std::numeric_limits<std::size_t>::max();
@@ -65,6 +65,12 @@ std::string nearest_key(std::string_view key, std::initializer_list<std::string_
   }
   return "";
 }
+
+}  // namespace
+
+std::string nearest_key(std::string_view key, std::initializer_list<std::string_view> known) { return nearest_name(key, known); }
+
+std::string nearest_key(std::string_view key, const std::vector<std::string>& known) { return nearest_name(key, known); }
 
 namespace {
 

@@ -26,6 +26,8 @@ using json = nlohmann::json;
 void expect_keys(const json& obj, const Pointer& pointer, std::initializer_list<std::string_view> known);
 // The known key nearest to `key` by edit distance, or "" when none is close enough to suggest.
 std::string nearest_key(std::string_view key, std::initializer_list<std::string_view> known);
+// The same over names known only at run time (the links of a robot description).
+std::string nearest_key(std::string_view key, const std::vector<std::string>& known);
 
 // The entity named in a message ("element 'e1' material"), up to three parts joined only when a
 // message is built: a reader names every field it reads and almost never needs the name. The parts

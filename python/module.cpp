@@ -17,6 +17,7 @@
 #include "elements/section_shapes.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
+#include "io/urdf_reader.hpp"
 #include "python/convert.hpp"
 #include "python/python_errors.hpp"
 #include "python/sweep_table_binding.hpp"
@@ -132,6 +133,23 @@ py::dict check(const py::object& model) {
   }
 }
 
+// A URDF file (and a side-car: none, a dict or a path) as a model document, returned as JSON text
+// (beamfea/__init__.py makes it plain Python objects).
+std::string urdf_model(const std::string& path, const py::object& sidecar) {
+  std::optional<nlohmann::json> car;
+  std::string car_source;
+  try {
+    if (!sidecar.is_none()) {
+      car = document_of(sidecar);
+      car_source = py::isinstance<py::dict>(sidecar) ? "(dict)" : "'" + std::string(py::str(py::module_::import("os").attr("fspath")(sidecar))) + "'";
+    }
+    py::gil_scoped_release release;
+    return urdf_file_to_model(path, car, car_source).dump();
+  } catch (const InputError& e) {
+    raise_input_error(e, nullptr);
+  }
+}
+
 py::object sweep(const py::object& spec, int jobs) {
   nlohmann::json doc;
   std::filesystem::path directory = std::filesystem::current_path();
@@ -210,4 +228,5 @@ PYBIND11_MODULE(_beamfea, m) {
   m.def("sweep", &sweep, py::arg("spec"), py::arg("jobs"));
   m.def("section_properties", &py_section_properties, py::arg("shape"), py::arg("dimensions"));
   m.def("section_shapes", &py_section_shapes);
+  m.def("urdf_model", &urdf_model, py::arg("path"), py::arg("sidecar"));
 }

@@ -7,6 +7,7 @@ packages=(
   g++ cmake ninja-build pkg-config
   libeigen3-dev libsuitesparse-dev libsundials-dev libvtk9-dev libspectra-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
+  liburdfdom-dev                # `beamfea urdf`: reading URDF robot descriptions (io/urdf_reader.cpp)
   libgtest-dev libbenchmark-dev
   libopenblas0-pthread          # CHOLMOD's supernodal factorisation is 6-14x faster than with reference BLAS
   openmpi-bin libopenmpi-dev    # `beamfea sweep` under mpirun

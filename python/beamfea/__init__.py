@@ -9,6 +9,7 @@ results.json (docs/python.md says how arrays become NumPy arrays). Errors:
 InputError(ValueError) with .pointer and .entity, ModelError with .entity. A failed analysis
 (a mechanism, no convergence) is not an exception: its result says so in "status".
 """
+import json
 import os
 from typing import Any, Dict, Iterable, Mapping, Optional, Union
 
@@ -16,7 +17,7 @@ from . import _beamfea
 from ._errors import Error, InputError, ModelError
 
 __version__: str = _beamfea.__version__
-__all__ = ["run", "check", "sweep", "blas", "section_properties", "section_shapes", "Error", "InputError", "ModelError", "__version__"]
+__all__ = ["run", "check", "sweep", "blas", "section_properties", "section_shapes", "from_urdf", "Error", "InputError", "ModelError", "__version__"]
 
 Model = Union[Mapping[str, Any], str, "os.PathLike[str]"]
 
@@ -127,6 +128,28 @@ def section_properties(shape: str, **dimensions: float) -> Dict[str, float]:
 def section_shapes() -> list:
     """The section shapes: a list of dicts {"shape", "dimensions", "optional", "description", "formulas"}."""
     return [dict(s) for s in _beamfea.section_shapes()]
+
+
+def from_urdf(path: Union[str, "os.PathLike[str]"],
+              sidecar: Union[None, Mapping[str, Any], str, "os.PathLike[str]"] = None) -> Dict[str, Any]:
+    """A URDF robot description as a model dict (docs/urdf.md), as `beamfea urdf` writes it.
+
+    Args:
+        path: the URDF file.
+        sidecar: what URDF lacks, as a dict or the path of a JSON file: {"joints": {name:
+            {"stiffness": [k]}}, "links": {name: {"beam": {...}}}, "materials", "sections",
+            "inertials"}; None: rigid links, passive joints.
+
+    Returns:
+        dict: the model (plain lists and numbers), ready for run() once analyses (and gravity
+        or loads) are added.
+
+    Raises:
+        InputError: a URDF the parser refuses (the element named), an unsupported joint type, or
+            a side-car field at fault (its JSON pointer).
+    """
+    car = None if sidecar is None else (os.fspath(sidecar) if _is_path(sidecar) else _as_dict(sidecar))
+    return json.loads(_beamfea.urdf_model(os.fspath(path), car))
 
 
 def sweep(spec: Union[Mapping[str, Any], str, "os.PathLike[str]"], jobs: Optional[int] = None) -> Any:
