@@ -91,7 +91,7 @@ struct Sidecar {
   std::string message = source + ": unknown " + what + " '" + name + "'";
   const std::string near = json_in::nearest_key(name, known);
   if (!near.empty()) message += " (did you mean '" + near + "'?)";
-  else if (known.empty()) message += " (the robot has none)";
+  else if (known.empty()) message += " (there are none)";
   throw InputError(pointer, message);
 }
 
@@ -343,7 +343,18 @@ nlohmann::ordered_json urdf_to_model(const std::string& urdf, const std::string&
   }
   const std::string what = "URDF " + source;
   check_names(*robot, what);
-  const Sidecar s = sidecar ? read_sidecar(*sidecar, sidecar_source, *robot) : Sidecar{};
+  Sidecar s;
+  if (sidecar) {
+    try {
+      s = read_sidecar(*sidecar, sidecar_source, *robot);
+    } catch (const InputError& e) {
+      // The key policy's messages ("unknown key ...") do not know which file they are about.
+      std::string message = e.what();
+      if (message.find("side-car") != std::string::npos) throw;
+      if (message.rfind(e.pointer() + ": ", 0) == 0) message.erase(0, e.pointer().size() + 2);
+      throw InputError(e.pointer(), "side-car " + sidecar_source + ": " + message);
+    }
+  }
   return Builder(*robot, s, what).build();
 }
 
