@@ -53,3 +53,33 @@ def test_a_pose_sweep_reports_the_unreachable_case_as_its_row():
     assert np.allclose([cols["tip[0]"][0], cols["tip[1]"][0]], tip(0.0, -1.0)[:2], atol=1e-14)
     assert np.allclose([cols["tip[0]"][2], cols["tip[1]"][2]], tip(0.0, 1.0)[:2], atol=1e-14)
     assert np.isnan(cols["tip[0]"][1])
+
+
+def bent_arm(beta0=0.5):
+    """The arm with its elbow bent by beta0 in the reference, driven by a target of its tip T."""
+    doc = arm()
+    t = [L1 + L2 * math.cos(beta0), L2 * math.sin(beta0), 0.0]
+    doc["nodes"][4]["xyz"] = t
+    doc["pose"] = {"nodes": [{"node": "T", "xyz": t}]}
+    return doc
+
+
+def test_a_sweep_over_a_target_solves_the_inverse_kinematics_of_the_reference_branch():
+    # Closed form: the elbow angle by the law of cosines, positive as in the reference (beta0 > 0);
+    # then the shoulder. x = 1.0 is beyond the arm's reach (L1 + L2 = 0.7).
+    xs = [0.45, 0.3, 1.0, 0.2]
+    y, beta0 = 0.35, 0.5
+    base = bent_arm(beta0)
+    base["pose"]["nodes"][0]["xyz"] = [xs[0], y, 0.0]
+    spec = {"model": base, "grid": [{"name": "x", "pointer": "/pose/nodes/0/xyz/0", "values": xs}],
+            "outputs": [{"name": "q1", "path": "pose.joints.q1"}, {"name": "q2", "path": "pose.joints.q2"}]}
+    cols = beamfea._beamfea.sweep(spec, 0)
+    assert cols["status"] == ["ok", "ok", "bad input", "ok"]
+    assert "node 'T'" in cols["message"][2] and "beyond reach" in cols["message"][2]
+    for n, x in enumerate(xs):
+        if n == 2:
+            continue
+        elbow = math.acos((x * x + y * y - L1 * L1 - L2 * L2) / (2 * L1 * L2))
+        shoulder = math.atan2(y, x) - math.atan2(L2 * math.sin(elbow), L1 + L2 * math.cos(elbow))
+        assert cols["q2"][n] == pytest.approx(elbow - beta0, abs=1e-10)
+        assert cols["q1"][n] == pytest.approx(shoulder, abs=1e-10)
