@@ -232,6 +232,28 @@ TEST(Pose, AnArmTargetWithARotationSolvesItsThreeActuators) {
   EXPECT_EQ(res["analyses"]["K"]["status"], "ok");
 }
 
+TEST(Pose, ABeamsSectionTurnsWithItsBody) {
+  // A cantilever along x behind a stiff revolute about x, its section stiffer in local z bending
+  // (Iz = 4 Iy, orientation z). Turned by 90 degrees about x, local z points along -y: a tip force
+  // along y bends it about local y, uy = P L^3 / (3 E Iy), and one along z about local z,
+  // uz = P L^3 / (3 E Iz) (the joint, about the beam's axis, takes no part).
+  constexpr double L = 1.2, Iy = 1e-7, Iz = 4e-7;
+  json doc = {{"nodes", {{{"id", "G"}, {"xyz", {0, 0, 0}}}, {{"id", "A"}, {"xyz", {0, 0, 0}}}, {{"id", "T"}, {"xyz", {L, 0, 0}}}}},
+              {"materials", {{{"id", "m"}, {"E", E}, {"G", E / 2.6}}}},
+              {"sections", {{{"id", "s"}, {"A", A}, {"Iy", Iy}, {"Iz", Iz}, {"J", 2 * Iy}}}},
+              {"elements", {{{"id", "b"}, {"type", "beam"}, {"nodes", {"A", "T"}}, {"material", "m"}, {"section", "s"}, {"orientation", {0, 0, 1}}}}},
+              {"joints", {{{"id", "r"}, {"type", "revolute"}, {"nodes", {"G", "A"}}, {"axes", {{1, 0, 0}}}, {"stiffness", {1e6}}}}},
+              {"supports", {{{"node", "G"}, {"fix", "all"}}}},
+              {"pose", {{"joints", {{"r", M_PI / 2}}}}},
+              {"analyses", {{{"id", "K"}, {"type", "stiffness"}, {"node", "T"}}}}};
+  const beamfea::ojson res = run(doc);
+  const auto& K = res["analyses"]["K"];
+  ASSERT_EQ(K["status"], "ok") << K.dump();
+  const double uy = L * L * L / (3 * E * Iy), uz = L * L * L / (3 * E * Iz);
+  EXPECT_NEAR(K["compliance"][1][1].get<double>(), uy, 1e-9 * uy);
+  EXPECT_NEAR(K["compliance"][2][2].get<double>(), uz, 1e-9 * uz);
+}
+
 // Bad poses: ModelError or InputError naming the joint or node.
 std::string error_of(const json& doc) {
   try {
