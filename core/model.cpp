@@ -153,6 +153,7 @@ void Model::clear() {
   default_case.gravity = Vec3::Zero();
   load_cases.clear();
   combinations.clear();
+  pose = Pose{};
   node_index.clear();
   member_index.clear();
   joint_index.clear();

@@ -125,6 +125,9 @@ struct Joint {
   int translations = 0;           // the first `translations` coordinates are translations
   std::vector<double> stiffness;  // one per coordinate
   Eigen::MatrixXd stiffness_matrix;  // empty, or coordinates() x coordinates()
+  // Range [lo, hi] of each coordinate, measured from the reference geometry (empty: none). Checked
+  // by poses (solvers/pose.hpp); analyses about a pose do not read them.
+  std::vector<std::array<double, 2>> limits;
   int coordinates() const { return static_cast<int>(axes.size()); }
   bool is_translation(int c) const { return c < translations; }
   // The stiffness as a matrix (the diagonal when no full matrix was given).
@@ -315,6 +318,23 @@ struct Combination {
   LoadSet loads;
 };
 
+// A pose (solvers/pose.hpp): joint coordinates measured from the reference geometry, and node
+// targets (a position, and optionally a rotation relative to the reference) that free the
+// actuator coordinates. After the model is posed, `solved` holds every joint's coordinates and
+// the model's geometry is the posed one.
+struct PoseTarget {
+  int node = -1;
+  Vec3 xyz = Vec3::Zero();
+  bool has_rotation = false;
+  Mat3 rotation = Mat3::Identity();
+};
+struct Pose {
+  bool given = false;                                   // the model has a "pose"
+  std::vector<std::pair<int, Eigen::VectorXd>> joints;  // (joint index, its coordinates)
+  std::vector<PoseTarget> nodes;
+  std::vector<Eigen::VectorXd> solved;                  // per joint, after posing
+};
+
 struct Model {
   std::vector<Node> nodes;
   std::vector<Material> materials;
@@ -332,6 +352,8 @@ struct Model {
   LoadSet default_case;
   std::vector<LoadCase> load_cases;
   std::vector<Combination> combinations;
+  // The pose the geometry was moved to (Pose::given false: the reference geometry as read).
+  Pose pose;
 
   // Appending with an index kept (ids must be unique: the caller checks; a repeated id is not
   // indexed and a later lookup finds the first). Each returns the new position.
@@ -403,6 +425,7 @@ inline void adopt_storage(Joint& to, Joint& from) {
   to.id.swap(from.id), to.id.clear();
   to.axes.swap(from.axes), to.axes.clear();
   to.stiffness.swap(from.stiffness), to.stiffness.clear();
+  to.limits.swap(from.limits), to.limits.clear();
 }
 template <class T>
 T recycled(std::vector<T>* spare, std::size_t i) {

@@ -4,6 +4,7 @@
 //   io/read_properties.cpp  nodes, materials, sections
 //   io/read_members.cpp     elements (members), meshed by core/meshing
 //   io/read_joints.cpp      joints
+//   io/read_pose.cpp        the pose (read last: it names joints and nodes)
 //   io/read_boundary.cpp    supports, loads (io/load_reader.cpp: nodal, joint and member loads,
 //                           gravity, masses, load cases, combinations), prescribed values, ties,
 //                           linear constraints
@@ -58,6 +59,8 @@ void read_supports(ReadState& s);
 void read_loads(ReadState& s);
 void read_prescribed(ReadState& s);
 void read_ties(ReadState& s);
+// "pose": into Model::pose (io/read_pose.cpp); the model is moved to it afterwards.
+void read_pose(ReadState& s);
 void read_constraints(ReadState& s);
 
 }  // namespace beamfea::reader

@@ -139,6 +139,20 @@ void read_stiffness_from_beam(Joint& j, const ReadState& s, const Fields& f, con
   for (int c = 0; c < j.coordinates(); ++c) j.stiffness[c] = j.stiffness_matrix(c, c);
 }
 
+// "limits": [[lo, hi], ...], one pair per coordinate (docs/poses.md).
+void read_limits(Joint& j, const json& v, const json_in::Pointer& lp, const std::string& what) {
+  const auto& pairs = array(v, lp, What(what, " limits"));
+  if (static_cast<int>(pairs.size()) != j.coordinates())
+    throw InputError(lp, what + ": expected " + std::to_string(j.coordinates()) + " limit pair(s) [lo, hi], one per coordinate");
+  j.limits.resize(pairs.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const auto pair = numbers(pairs[k], child(lp, k), What(what, " limits"));
+    if (pair.size() != 2) throw InputError(child(lp, k), what + ": a limit is a pair [lo, hi]");
+    if (!(pair[0] <= pair[1])) throw InputError(child(lp, k), what + ": a limit needs lo <= hi");
+    j.limits[k] = {pair[0], pair[1]};
+  }
+}
+
 }  // namespace
 
 void read_joints(ReadState& s) {
@@ -148,7 +162,7 @@ void read_joints(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/joints", i);
     const auto& o = object(arr[i], p, "joint");
-    const Fields f(o, p, {"id", "type", "nodes", "axes", "stiffness", "stiffness_from_beam"});
+    const Fields f(o, p, {"id", "type", "nodes", "axes", "stiffness", "stiffness_from_beam", "limits"});
     Joint j = s.item(&Model::joints, i);
     id_into(j.id, f.require("id", "joint"), child(p, "id"), "joint");
     check_unique(m.find_joint(j.id), "joint", "/joints", j.id, i);  // joint i is at position i
@@ -166,6 +180,7 @@ void read_joints(ReadState& s) {
     j.stiffness.assign(joint_coordinate_count(j.type), 0.0);
     if (const json* stiffness = f.get("stiffness")) read_stiffness(j, *stiffness, child(p, "stiffness"), what);
     if (f.get("stiffness_from_beam")) read_stiffness_from_beam(j, s, f, p, what);
+    if (const json* limits = f.get("limits")) read_limits(j, *limits, child(p, "limits"), what);
     m.add_joint(std::move(j));
   }
 }

@@ -65,6 +65,24 @@ AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx, co
   return o;
 }
 
+// "pose": every joint's coordinates (a number for a one-coordinate joint) and every node's posed
+// position (docs/poses.md).
+void write_pose(ojson& out, const Model& model) {
+  ObjectFiller pose(out, 2);
+  ObjectFiller joints(pose.slot("joints"), model.joints.size());
+  for (std::size_t j = 0; j < model.joints.size(); ++j) {
+    const Eigen::VectorXd& q = model.pose.solved[j];
+    ojson& v = joints.slot(model.joints[j].id);
+    if (q.size() == 1) v = q[0];
+    else set_numbers(v, q.data(), static_cast<std::size_t>(q.size()));
+  }
+  joints.finish();
+  ObjectFiller nodes(pose.slot("nodes"), model.nodes.size());
+  for (const auto& n : model.nodes) set_numbers(nodes.slot(n.id), n.x.data(), 3);
+  nodes.finish();
+  pose.finish();
+}
+
 // Both overloads: `workspace` null for a fresh run (nothing kept afterwards).
 void run_into(const Model& model, const nlohmann::json& document, const RunOptions& options, RunReport& report,
               RunWorkspace* workspace);
@@ -106,6 +124,7 @@ void run_into(const Model& model, const nlohmann::json& document, const RunOptio
   counts.slot("members") = model.members.size();
   counts.slot("joints") = model.joints.size();
   counts.finish();
+  if (model.pose.given) write_pose(results.slot("pose"), model);
   const auto& specs = document.at("analyses");
   report.outcomes.reserve(specs.size());
   for (std::size_t k = 0; k < options.only.size(); ++k) {

@@ -404,7 +404,8 @@ void read_analyses(const json& doc, const std::set<std::string>& analysis_ids, S
   }
 }
 
-// "outputs": paths into the results, each starting at 'analyses.<id>' (one that runs) or 'model'.
+// "outputs": paths into the results, each starting at 'analyses.<id>' (one that runs), 'model' or
+// 'pose' (a posed model's joint coordinates and node positions).
 void read_outputs(const json& doc, const std::set<std::string>& analysis_ids, Sweep& s) {
   if (!doc.contains("outputs")) return;
   const auto& os = json_in::array(doc["outputs"], "/outputs", "outputs");
@@ -412,8 +413,8 @@ void read_outputs(const json& doc, const std::set<std::string>& analysis_ids, Sw
     const json_in::Pointer p = child("/outputs", i);
     SweepOutput o = read_output(os[i], p);
     const auto& t = o.path;
-    if (t.empty() || (t[0].key != "analyses" && t[0].key != "model"))
-      throw InputError(p, "output '" + o.name + "': a path into the results starts with 'analyses.<id>' or 'model'");
+    if (t.empty() || (t[0].key != "analyses" && t[0].key != "model" && t[0].key != "pose"))
+      throw InputError(p, "output '" + o.name + "': a path into the results starts with 'analyses.<id>', 'model' or 'pose'");
     if (t[0].key == "analyses") {
       if (t.size() < 2 || !analysis_ids.count(t[1].key)) {
         std::string known;

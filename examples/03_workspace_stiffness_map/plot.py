@@ -1,13 +1,15 @@
 #!/usr/bin/python3
 """Heat map of the tip stiffness over the workspace, and a check against the joint springs.
 
-    /usr/bin/python3 plot.py                     # runs the sweep in process: beamfea.sweep(...)
+    /usr/bin/python3 plot.py                     # runs sweep.json in process: beamfea.sweep(...)
     /usr/bin/python3 plot.py --csv out/cases.csv # plots the table of `beamfea sweep sweep.json --out out`
     /usr/bin/python3 plot.py --quick             # every 3rd angle (the test suite's run)
 
-The table (one row per pose: theta1_deg, theta2_deg, K[0][0] .. K[5][5], status) comes either
-from beamfea.sweep, in process, on the sweep of make_cases.py, or from the program's CSV file;
-both are the same cases through the same engine.
+The table (one row per pose: theta1, theta2 in radians, K[0][0] .. K[5][5], the tip's posed
+position tip[0..2], status) comes either from beamfea.sweep, in process, on sweep.json, or from
+the program's CSV file; both are the same cases through the same engine. beamfea poses the arm
+itself (model.json's "pose", which the sweep's grid sets): no kinematics here but the check's
+rigid-link Jacobian.
 
 K (6x6, ux uy uz rx ry rz) is the stiffness of the tip node with its rotations kept, so the
 stiffness against a force alone (the tip free to rotate) is the inverse of the translational
@@ -19,6 +21,7 @@ at or below the rigid-link value, and close to it where the joints dominate.
 """
 import argparse
 import csv
+import json
 import math
 import os
 import sys
@@ -28,7 +31,6 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
 sys.path.insert(0, HERE)
-import make_cases  # noqa: E402
 from find_beamfea import import_beamfea  # noqa: E402
 
 L1, L2, k1, k2 = 0.4, 0.3, 2000.0, 1000.0
@@ -56,10 +58,16 @@ def main():
     if args.csv:
         cols = table_from_csv(args.csv)
     else:
-        spec = make_cases.sweep_spec(os.path.join(HERE, "model.json"), step=3 if args.quick else 1)
+        with open(os.path.join(HERE, "sweep.json")) as f:
+            spec = json.load(f)
+        spec["base"] = os.path.join(HERE, spec["base"])
+        if args.quick:
+            for axis in spec["grid"]:
+                axis["values"] = axis["values"][::3]
         cols = import_beamfea().sweep(spec)  # a DataFrame with pandas, else a dict of NumPy columns
-    t1 = np.asarray(cols["theta1_deg"], dtype=float)
-    t2 = np.asarray(cols["theta2_deg"], dtype=float)
+    r1 = np.asarray(cols["theta1"], dtype=float)
+    r2 = np.asarray(cols["theta2"], dtype=float)
+    t1, t2 = np.round(np.degrees(r1), 9), np.round(np.degrees(r2), 9)  # grid labels in degrees
     status = list(cols["status"])
     K_all = np.stack([np.stack([np.asarray(cols[f"K[{a}][{b}]"], dtype=float) for b in range(6)], axis=-1)
                       for a in range(6)], axis=-2)  # (cases, 6, 6)
@@ -68,6 +76,7 @@ def main():
     kmin = np.full((len(t1s), len(t2s)), np.nan)
     kyy = np.full((len(t1s), len(t2s)), np.nan)
     worst_ratio = 0.0
+    worst_tip = 0.0
     for n in range(len(status)):
         if status[n] != "ok":
             continue
@@ -75,7 +84,10 @@ def main():
         K2 = np.linalg.inv(np.linalg.inv(K_all[n])[:2, :2])
         kmin[i, j] = np.linalg.eigvalsh(K2)[0]
         kyy[i, j] = K2[1, 1]
-        a, b = math.radians(t1[n]), math.radians(t1[n] + t2[n])
+        # The posed tip from beamfea against the arm's geometry (links L1, L2 from the shoulder).
+        tip = np.array([float(cols[f"tip[{c}]"][n]) for c in range(2)])
+        a, b = r1[n], r1[n] + r2[n]
+        worst_tip = max(worst_tip, np.linalg.norm(tip - [L1 * math.cos(a) + L2 * math.cos(b), L1 * math.sin(a) + L2 * math.sin(b)]))
         J = np.array([[-L1 * math.sin(a) - L2 * math.sin(b), -L2 * math.sin(b)],
                       [L1 * math.cos(a) + L2 * math.cos(b), L2 * math.cos(b)]])
         C_rigid = J @ np.diag([1 / k1, 1 / k2]) @ J.T
@@ -86,7 +98,8 @@ def main():
     ok = sum(s == "ok" for s in status)
     print(f"{ok}/{len(status)} cases ok; weakest-direction stiffness {np.nanmin(kmin):.4g} .. {np.nanmax(kmin):.4g} N/m")
     print(f"largest ratio to the rigid-link joint-spring value (away from theta2 = 0): {worst_ratio:.4f} (must be <= 1)")
-    if ok != len(status) or worst_ratio > 1.0:
+    print(f"posed tip within {worst_tip:.1e} m of L1 (cos t1, sin t1) + L2 (cos(t1 + t2), sin(t1 + t2))")
+    if ok != len(status) or worst_ratio > 1.0 or worst_tip > 1e-12:
         sys.exit("check failed")
 
     import matplotlib
