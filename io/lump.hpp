@@ -9,8 +9,9 @@
 //   a node "<link>_spring" at the tip's position,
 //   a rigid link "<link>_rigid" from the base to it,
 //   a virtual spring "<link>_spring" from it to the tip, whose 6x6 stiffness (global axes, the
-//   spring's default frame) is the link's condensed tip stiffness (Klimchik et al.'s FEA-based VJM:
-//   solvers/condensed_stiffness.hpp on the link clamped at its base).
+//   spring's default frame) is the link's condensed tip stiffness (the FEA-based VJM,
+//   docs/analyses/superelement.md eq. 8: solvers/condensed_stiffness.hpp on the link clamped at
+//   its base).
 // Every other node, element, joint (actuators included), support, load, mass and analysis is kept
 // with its id. A link's other nodes disappear with it: a support, load, point mass, prescribed DOF,
 // tie, constraint, element or joint outside the link that names one is bad input, as is a member

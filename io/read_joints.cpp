@@ -153,9 +153,9 @@ struct LinkNesting {
   LinkNesting& operator=(const LinkNesting&) = delete;
 };
 
-// "stiffness_from_model": the FEA-based VJM spring (Klimchik, Pashkevich, Chablat et al.): the
-// stiffness of a link model clamped at `base` (all six DOFs, whatever its supports there say),
-// seen at `tip`: the static condensation of solvers/condensed_stiffness.hpp, in the link model's
+// "stiffness_from_model": the FEA-based VJM spring (Pashkevich, Klimchik & Chablat 2010,
+// introduction; docs/analyses/superelement.md eq. 8): the stiffness of a link model clamped at
+// `base` (all six DOFs, whatever its supports there say), seen at `tip`: the static condensation of solvers/condensed_stiffness.hpp, in the link model's
 // axes, which are the joint's frame (translations, then rotations, along/about its axes). A path is
 // relative to the folder of the file that names it (read_json_file resolves it), else to the
 // working folder.
