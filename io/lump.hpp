@@ -17,9 +17,11 @@
 // tie, constraint, element or joint outside the link that names one is bad input, as is a member
 // load on a link's element.
 //
-// For a serial chain (a tree) the condensation is exact: the lumped model's linear compliance at any
-// kept node equals the beam model's. For closed loops (parallel manipulators) it differs: each link
-// is condensed alone, clamped at its base, and the difference is what the comparison shows.
+// The linear statics of the lumped model are the beam model's (to rounding), closed loops included:
+// a link meets the rest only at its base and tip, and such a link's linear stiffness is its tip
+// spring carried rigidly from its base. Under load (path, buckling, loaded stiffness) the models
+// differ: the springs keep the reference pose's stiffness; that difference is what the comparison
+// of lumped and beam models shows.
 #include <nlohmann/json.hpp>
 
 namespace beamfea {
