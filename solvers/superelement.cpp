@@ -246,11 +246,18 @@ SuperelementResult reduce_superelement(const Model& model, const std::vector<int
   res.free_dofs = map.free_size();
   SystemAssembler ka(map, SystemAssembler::Passes::One), ma(map, SystemAssembler::Passes::One);
   structure.assemble_stiffness(map, ka);
-  ma.begin();
-  assemble_mass(structure, map, options.mass, ma);
-  ma.end();
   const SparseMatrix& K = ka.K_ff();
-  const SparseMatrix& M = ma.K_ff();
+  // The mass is assembled only where the model has some (a density, a point mass): a stiffness-only
+  // superelement costs one assembly, one factorisation and the solves.
+  const bool any_mass = !model.masses.empty() ||
+                        std::any_of(model.materials.begin(), model.materials.end(), [](const Material& m) { return m.density > 0.0; });
+  SparseMatrix M(map.free_size(), map.free_size());
+  if (any_mass) {
+    ma.begin();
+    assemble_mass(structure, map, options.mass, ma);
+    ma.end();
+    M = ma.K_ff();
+  }
   res.has_mass = M.nonZeros() > 0 && M.coeffs().cwiseAbs().maxCoeff() > 0.0;
 
   const InterfaceRows rows = interface_rows(model, map, interface, options);
