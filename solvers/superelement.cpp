@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -101,14 +102,13 @@ InterfaceRows interface_rows(const Model& model, const DofMap& map, const std::v
   // The directions the interface can move: the left singular vectors U_r of the scaled rows.
   out.picked.clear();
   out.coef.clear();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(scaled * scaled.transpose());
-  const Eigen::VectorXd& w = es.eigenvalues();  // ascending, singular values squared
-  const double top = w.size() > 0 ? w[w.size() - 1] : 0.0;
-  std::vector<Eigen::Index> keep;
-  for (Eigen::Index k = 0; k < w.size(); ++k)
-    if (w[k] > options.motion_tolerance * options.motion_tolerance * top && top > 0.0) keep.push_back(k);
-  Eigen::MatrixXd U(nd, static_cast<Eigen::Index>(keep.size()));
-  for (std::size_t i = 0; i < keep.size(); ++i) U.col(static_cast<Eigen::Index>(i)) = es.eigenvectors().col(keep[i]);
+  // An SVD of the rows themselves (not an eigen-decomposition of their Gram matrix, whose rounding,
+  // eps times the largest, would hide the zero singular values of dependent rows).
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeFullU);
+  const Eigen::VectorXd& sv = svd.singularValues();  // descending
+  Eigen::Index r = 0;
+  while (r < sv.size() && sv[r] > options.motion_tolerance * sv[0]) ++r;
+  const Eigen::MatrixXd U = svd.matrixU().leftCols(r);
   out.Q = U.transpose() * s.asDiagonal();
   out.P = s.cwiseInverse().asDiagonal() * U;
   out.A = out.Q * raw;

@@ -210,6 +210,34 @@ TEST(Superelement, FreeFreeBeamReportsSixRigidBodyModes) {
   EXPECT_LT((fit - ty).norm(), 1e-9);
 }
 
+// Two interface nodes that a rigid link ties (B, and C carried by B): the interface rows are
+// dependent (the saddle-point route). The reduced stiffness acts on the motions the interface can make,
+// d = (d_B, the rigid carry of d_B to C), with the energy of the cantilever's exact tip stiffness at B;
+// the fixed-interface modes are those of the interface B alone (holding B holds C).
+TEST(Superelement, RigidlyTiedInterfaceNodesReduceOnTheirCommonMotion) {
+  const double L = 1.3;
+  json d = cantilever(L, 5);
+  d["nodes"].push_back({{"id", "C"}, {"xyz", {L, 0.2, 0.1}}});
+  d["elements"].push_back({{"id", "r"}, {"type", "rigid"}, {"nodes", {"B", "C"}}});
+  const auto both = reduce(d, {"B", "C"}, 2);
+  ASSERT_EQ(both.status, beamfea::SuperelementStatus::Succeeded) << both.message;
+  const auto alone = reduce(cantilever(L, 5), {"B"}, 2);
+  ASSERT_EQ(alone.status, beamfea::SuperelementStatus::Succeeded) << alone.message;
+  ASSERT_EQ(both.stiffness.rows(), 14);
+  const Mat6 carry = transport(Vec3(0, 0.2, 0.1)).transpose();  // motion of B -> motion of C
+  for (int k = 0; k < 6; ++k) {
+    beamfea::Vec6 dB = beamfea::Vec6::Zero();
+    dB[k] = 1.0;
+    dB[(k + 2) % 6] = 0.5;
+    Eigen::VectorXd dd = Eigen::VectorXd::Zero(14);
+    dd.head(6) = dB;
+    dd.segment(6, 6) = carry * dB;
+    const double expected = dB.dot(alone.stiffness.topLeftCorner(6, 6) * dB);
+    EXPECT_NEAR(dd.dot(both.stiffness * dd) / expected, 1.0, 1e-9) << k;
+  }
+  for (int j = 0; j < 2; ++j) EXPECT_NEAR(both.frequencies[j] / alone.frequencies[j], 1.0, 1e-8) << j;
+}
+
 // Through the program: results, the .json and .npz files (a ZIP whose "stiffness.npy" holds the
 // 6x6 matrix), and a sub-structure of listed elements.
 TEST(Superelement, ProgramWritesResultsJsonAndNpz) {
