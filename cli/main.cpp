@@ -4,6 +4,7 @@
 //   beamfea sweep sweep.json --out DIR   many cases, one table DIR/cases.csv (cli/sweep_command.cpp)
 //   beamfea sections [shape key=value ...]  the section shapes, or one shape's properties
 //   beamfea urdf robot.urdf [--sidecar flex.json] -o model.json   a robot description as a model
+//   beamfea lump model.json --links links.json -o lumped.json   the lumped (VJM) model (cli/lump_command.cpp)
 // Exit codes: 0 success, 1 an analysis failed, 2 bad input (DIR left as it was).
 #include <CLI/CLI.hpp>
 
@@ -11,6 +12,7 @@
 
 #include "app/thread_tasks.hpp"
 #include "app/program_settings.hpp"
+#include "cli/lump_command.hpp"
 #include "cli/sections_command.hpp"
 #include "cli/sweep_command.hpp"
 #include "cli/urdf_command.hpp"
@@ -69,6 +71,7 @@ int main(int argc, char** argv) {
   const auto sweep = beamfea::cli::add_sweep_command(app);
   const auto sections = beamfea::cli::add_sections_command(app);
   const auto urdf = beamfea::cli::add_urdf_command(app);
+  const auto lump = beamfea::cli::add_lump_command(app);
 
   try {
     app.parse(argc, argv);
@@ -81,6 +84,7 @@ int main(int argc, char** argv) {
   if (*sweep->app) return beamfea::cli::run_sweep_command(*sweep);
   if (*sections->app) return beamfea::cli::run_sections_command(*sections);
   if (*urdf->app) return beamfea::cli::run_urdf_command(*urdf);
+  if (*lump->app) return beamfea::cli::run_lump_command(*lump);
   // Bad input (InputError, ModelError from validation) is exit 2 and writes nothing; anything
   // that escapes a run after validation is exit 1.
   try {

@@ -219,5 +219,6 @@ AnalysisType buckling_analysis();
 AnalysisType path_analysis();
 AnalysisType modal_analysis();
 AnalysisType second_order_analysis();
+AnalysisType superelement_analysis();
 
 }  // namespace beamfea

@@ -17,6 +17,7 @@ const std::vector<AnalysisType>& analysis_types() {
       path_analysis(),
       modal_analysis(),
       second_order_analysis(),
+      superelement_analysis(),
   };
   return types;
 }

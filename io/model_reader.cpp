@@ -74,7 +74,24 @@ json read_json_file(const std::string& path) {
   if (!in) throw InputError("", "cannot read file '" + path + "'");
   std::stringstream ss;
   ss << in.rdbuf();
-  return parse_json_text(ss.str(), path);
+  json doc = parse_json_text(ss.str(), path);
+  resolve_link_model_paths(doc, std::filesystem::path(path).parent_path());
+  return doc;
+}
+
+void resolve_link_model_paths(json& doc, const std::filesystem::path& folder) {
+  if (folder.empty() || !doc.is_object()) return;
+  const auto joints = doc.find("joints");
+  if (joints == doc.end() || !joints->is_array()) return;
+  for (auto& joint : *joints) {
+    if (!joint.is_object()) continue;
+    const auto from = joint.find("stiffness_from_model");
+    if (from == joint.end() || !from->is_object()) continue;
+    const auto model = from->find("model");
+    if (model == from->end() || !model->is_string()) continue;
+    const std::filesystem::path p(model->get<std::string>());
+    if (p.is_relative()) *model = (folder / p).lexically_normal().string();
+  }
 }
 
 int node_ref(const Model& m, const json& v, const json_in::Pointer& pointer) {

@@ -3,6 +3,7 @@
 // Every error is an InputError carrying the JSON pointer of the field at fault and naming the
 // entity (node, element, joint...). Nothing is analysed here.
 #include <cstdint>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -18,7 +19,12 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
 inline constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{1} << 30;
 // Reads and parses a file: a regular file of at most kMaxInputFileBytes, else an InputError
 // naming it (a device such as /dev/zero, a folder, a pipe).
+// A model file's relative link-model paths (joints' "stiffness_from_model": {"model": "link.json"})
+// are made relative to the file's folder (resolve_link_model_paths with the file's folder).
 nlohmann::json read_json_file(const std::string& path);
+// Rewrites every relative "model" path of the joints' "stiffness_from_model" in `doc` as `folder`/path
+// (nothing when `folder` is empty: paths stay relative to the working folder).
+void resolve_link_model_paths(nlohmann::json& doc, const std::filesystem::path& folder);
 
 // Builds the model from a parsed document (the "analyses" entry is not read here).
 Model read_model(const nlohmann::json& doc);

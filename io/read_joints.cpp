@@ -4,6 +4,8 @@
 #include "core/errors.hpp"
 #include "elements/beam.hpp"
 #include "io/json_util.hpp"
+#include "io/model_check.hpp"
+#include "solvers/condensed_stiffness.hpp"
 #include "io/model_reader.hpp"
 #include "io/model_reader_parts.hpp"
 
@@ -19,6 +21,9 @@ constexpr double kCoincident = 1e-9;
 constexpr double kParallelAxes = 1e-6;
 // |cos| above which a virtual spring's axes are not orthogonal.
 constexpr double kOrthogonalAxes = 1e-9;
+// Link models inside link models ("stiffness_from_model"): deeper nesting than this is taken for a
+// model that refers to itself (no real link is a link of links eight levels deep).
+constexpr int kMaxLinkNesting = 8;
 // Relative asymmetry / negative eigenvalue tolerated in a full stiffness matrix (round-off of
 // values the user computed elsewhere).
 constexpr double kMatrixTolerance = 1e-9;
@@ -153,6 +158,77 @@ void read_limits(Joint& j, const json& v, const json_in::Pointer& lp, const std:
   }
 }
 
+// The link models being read on this thread, innermost last: a guard against a link model that
+// refers to itself, directly or through others.
+thread_local int link_nesting = 0;
+struct LinkNesting {
+  LinkNesting() { ++link_nesting; }
+  ~LinkNesting() { --link_nesting; }
+  LinkNesting(const LinkNesting&) = delete;
+  LinkNesting& operator=(const LinkNesting&) = delete;
+};
+
+// "stiffness_from_model": the FEA-based VJM spring (Pashkevich, Klimchik & Chablat 2010,
+// introduction; docs/analyses/superelement.md eq. 8): the stiffness of a link model clamped at
+// `base` (all six DOFs, whatever its supports there say), seen at `tip`: the static condensation of solvers/condensed_stiffness.hpp, in the link model's
+// axes, which are the joint's frame (translations, then rotations, along/about its axes). A path is
+// relative to the folder of the file that names it (read_json_file resolves it), else to the
+// working folder.
+void read_stiffness_from_model(Joint& j, const Fields& f, const json_in::Pointer& p, const std::string& what) {
+  const json_in::Pointer bp = child(p, "stiffness_from_model");
+  if (j.type != JointType::VirtualSpring)
+    throw InputError(bp, what + ": stiffness_from_model needs a virtual_spring joint");
+  if (f.get("stiffness") || f.get("stiffness_from_beam"))
+    throw InputError(bp, what + ": give one of \"stiffness\", \"stiffness_from_beam\" and \"stiffness_from_model\"");
+  const auto& b = object(*f.get("stiffness_from_model"), bp, What(what, " stiffness_from_model"));
+  const Fields fb(b, bp, {"model", "base", "tip"});
+  const json_in::Pointer mp = child(bp, "model");
+  const json& given = fb.require("model", what);
+  if (link_nesting >= kMaxLinkNesting)
+    throw InputError(mp, what + ": link models nested more than " + std::to_string(kMaxLinkNesting) +
+                             " deep (does a link model refer to itself?)");
+  const LinkNesting nesting;
+  Model link;
+  try {
+    if (given.is_string()) {
+      const json doc = read_json_file(given.get<std::string>());
+      link = read_model(doc);
+      check_model(link, doc);
+    } else if (given.is_object()) {
+      link = read_model(given);
+      check_model(link, given);
+    } else {
+      throw InputError(mp, what + ": expected a file name or a model object");
+    }
+  } catch (const InputError& e) {
+    if (e.pointer() == mp.str()) throw;
+    throw InputError(mp, what + ": link model: " + e.what());
+  }
+  int ends[2];
+  const char* names[2] = {"base", "tip"};
+  for (int k = 0; k < 2; ++k) {
+    const json_in::Pointer np = child(bp, names[k]);
+    const std::string nid = json_in::id(fb.require(names[k], what), np, What(what, " ", names[k]));
+    ends[k] = link.find_node(nid);
+    if (ends[k] < 0) throw InputError(np, what + ": the link model has no node '" + nid + "'");
+  }
+  if (ends[0] == ends[1]) throw InputError(child(bp, "tip"), what + ": base and tip are one node");
+  // Clamped at the base: its supports replaced by a full one.
+  std::erase_if(link.supports, [&](const Support& s) { return s.node == ends[0]; });
+  Support clamp;
+  clamp.node = ends[0];
+  clamp.fixed.fill(true);
+  link.supports.push_back(clamp);
+  const CondensedStiffness c = linear_node_stiffness(link, ends[1]);
+  if (!c.ok || c.rank < 6 || !c.rigid_directions.empty())
+    throw InputError(bp, what + ": the link clamped at '" + link.nodes[ends[0]].id + "' gives node '" +
+                             link.nodes[ends[1]].id + "' a stiffness of rank " + std::to_string(c.rank) +
+                             " (a virtual spring needs a link that resists all six motions of its tip)" +
+                             (c.message.empty() ? "" : ": " + c.message));
+  j.stiffness_matrix = 0.5 * (c.K + c.K.transpose());
+  for (int k = 0; k < j.coordinates(); ++k) j.stiffness[k] = j.stiffness_matrix(k, k);
+}
+
 }  // namespace
 
 void read_joints(ReadState& s) {
@@ -162,7 +238,7 @@ void read_joints(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/joints", i);
     const auto& o = object(arr[i], p, "joint");
-    const Fields f(o, p, {"id", "type", "nodes", "axes", "stiffness", "stiffness_from_beam", "limits"});
+    const Fields f(o, p, {"id", "type", "nodes", "axes", "stiffness", "stiffness_from_beam", "limits", "stiffness_from_model"});
     Joint j = s.item(&Model::joints, i);
     id_into(j.id, f.require("id", "joint"), child(p, "id"), "joint");
     check_unique(m.find_joint(j.id), "joint", "/joints", j.id, i);  // joint i is at position i
@@ -181,6 +257,7 @@ void read_joints(ReadState& s) {
     if (const json* stiffness = f.get("stiffness")) read_stiffness(j, *stiffness, child(p, "stiffness"), what);
     if (f.get("stiffness_from_beam")) read_stiffness_from_beam(j, s, f, p, what);
     if (const json* limits = f.get("limits")) read_limits(j, *limits, child(p, "limits"), what);
+    if (f.get("stiffness_from_model")) read_stiffness_from_model(j, f, p, what);
     m.add_joint(std::move(j));
   }
 }

@@ -15,6 +15,7 @@
 #include "app/openblas.hpp"
 #include "app/thread_tasks.hpp"
 #include "elements/section_shapes.hpp"
+#include "io/lump.hpp"
 #include "io/model_reader.hpp"
 #include "io/run.hpp"
 #include "io/urdf_reader.hpp"
@@ -150,6 +151,29 @@ std::string urdf_model(const std::string& path, const py::object& sidecar) {
   }
 }
 
+// The lumped (VJM) model of a beam model (io/lump.hpp), as JSON text (the Python side parses it
+// into plain lists and dicts: a model to edit and dump, not arrays).
+std::string lump(const py::object& model, const py::object& links) {
+  nlohmann::json doc, links_doc;
+  try {
+    doc = document_of(model);
+  } catch (const InputError& e) {
+    const nlohmann::json ids = id_skeleton(model);
+    raise_input_error(e, &ids);
+  }
+  try {
+    links_doc = document_of(links);
+  } catch (const InputError& e) {
+    raise_input_error(e, nullptr);
+  }
+  try {
+    py::gil_scoped_release release;
+    return lump_model(doc, links_doc).dump();
+  } catch (const InputError& e) {
+    raise_input_error(e, e.pointer().rfind("/links", 0) == 0 ? nullptr : &doc);
+  }
+}
+
 py::object sweep(const py::object& spec, int jobs) {
   nlohmann::json doc;
   std::filesystem::path directory = std::filesystem::current_path();
@@ -226,6 +250,7 @@ PYBIND11_MODULE(_beamfea, m) {
   m.def("run", &run, py::arg("model"), py::arg("only"), py::arg("specs"), py::arg("out"), py::arg("vtk"));
   m.def("check", &check, py::arg("model"));
   m.def("sweep", &sweep, py::arg("spec"), py::arg("jobs"));
+  m.def("lump", &lump, py::arg("model"), py::arg("links"));
   m.def("section_properties", &py_section_properties, py::arg("shape"), py::arg("dimensions"));
   m.def("section_shapes", &py_section_shapes);
   m.def("urdf_model", &urdf_model, py::arg("path"), py::arg("sidecar"));

@@ -17,7 +17,7 @@ from . import _beamfea
 from ._errors import Error, InputError, ModelError
 
 __version__: str = _beamfea.__version__
-__all__ = ["run", "check", "sweep", "blas", "section_properties", "section_shapes", "from_urdf", "Error", "InputError", "ModelError", "__version__"]
+__all__ = ["run", "check", "lump", "sweep", "blas", "section_properties", "section_shapes", "from_urdf", "Error", "InputError", "ModelError", "__version__"]
 
 Model = Union[Mapping[str, Any], str, "os.PathLike[str]"]
 
@@ -88,6 +88,37 @@ def check(model: Model) -> Dict[str, int]:
         InputError, ModelError: as run() does.
     """
     return _beamfea.check(model if _is_path(model) else _as_dict(model))
+
+
+def lump(model: Model, links: Union[Mapping[str, Any], str, "os.PathLike[str]"],
+         out: Union[None, str, "os.PathLike[str]"] = None) -> Dict[str, Any]:
+    """The lumped (VJM) model of a beam model, as `beamfea lump model.json --links links.json -o out` writes it.
+
+    Each link (its elements, clamped at its base node) becomes a rigid link from the base to a node
+    "<link>_spring" at the tip and a 6-D virtual spring "<link>_spring" from there to the tip, whose
+    6x6 stiffness is the link's condensed tip stiffness; joints, actuators, supports, loads and
+    analyses are kept (docs/analyses/superelement.md, "Generated lumped models").
+
+    Args:
+        model: the beam model, a dict or the path of a model file.
+        links: {"links": [{"id": ..., "elements": [...], "base": node, "tip": node}, ...]}, a dict
+            or the path of a JSON file.
+        out: when given, the lumped model is also written there (JSON).
+
+    Returns:
+        dict: the lumped model in beamfea's JSON format (plain lists and dicts), ready for run().
+
+    Raises:
+        InputError: bad input (an unknown element or node, a link whose inside is named elsewhere;
+            .pointer is "/links/..." for the links document).
+        ModelError: as run() does.
+    """
+    text = _beamfea.lump(model if _is_path(model) else _as_dict(model), links if _is_path(links) else _as_dict(links))
+    result = json.loads(text)
+    if out is not None:
+        with open(os.fspath(out), "w", encoding="utf-8") as f:
+            f.write(json.dumps(result, indent=2) + "\n")
+    return result
 
 
 def blas() -> Dict[str, Any]:
