@@ -219,5 +219,7 @@ AnalysisType buckling_analysis();
 AnalysisType path_analysis();
 AnalysisType modal_analysis();
 AnalysisType second_order_analysis();
+AnalysisType frf_analysis();
+AnalysisType transient_analysis();
 
 }  // namespace beamfea

@@ -17,6 +17,8 @@ const std::vector<AnalysisType>& analysis_types() {
       path_analysis(),
       modal_analysis(),
       second_order_analysis(),
+      frf_analysis(),
+      transient_analysis(),
   };
   return types;
 }

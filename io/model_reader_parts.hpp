@@ -7,6 +7,7 @@
 //   io/read_boundary.cpp    supports, loads (io/load_reader.cpp: nodal, joint and member loads,
 //                           gravity, masses, load cases, combinations), prescribed values, ties,
 //                           linear constraints
+//   io/read_damping.cpp     the top-level damping of the dynamic analyses
 // Internal to io/: not installed as an API.
 #include <nlohmann/json.hpp>
 #include <string>
@@ -59,5 +60,6 @@ void read_loads(ReadState& s);
 void read_prescribed(ReadState& s);
 void read_ties(ReadState& s);
 void read_constraints(ReadState& s);
+void read_damping(ReadState& s);
 
 }  // namespace beamfea::reader
