@@ -115,7 +115,8 @@ TEST(DynamicsCli, StaticStartStaysAtRest) {
   d["analyses"] = {transient({{"initial", {{"displacement", "static"}}}})};
   const auto o = test::run_model("dyn_static_start", d);
   ASSERT_EQ(o.code, 0) << o.message;
-  for (const json& s : o.results()["analyses"]["t"]["steps"]) EXPECT_NEAR(s["nodes"]["B"]["displacement"][2].get<double>(), 10.0 / k, 1e-12);
+  const json results = o.results();
+  for (const json& s : results["analyses"]["t"]["steps"]) EXPECT_NEAR(s["nodes"]["B"]["displacement"][2].get<double>(), 10.0 / k, 1e-12);
 }
 
 // dt = 0.01 against the oscillator's 15.9 Hz: a warning with the numbers.
@@ -124,7 +125,7 @@ TEST(DynamicsCli, CoarseStepWarnsWithTheNumber) {
   d["analyses"] = {transient({{"dt", 0.01}, {"output_every", 1}, {"modes", 1}})};
   const auto o = test::run_model("dyn_coarse", d);
   ASSERT_EQ(o.code, 0) << o.message;
-  const json& w = o.results()["analyses"]["t"]["warnings"];
+  const json w = o.results()["analyses"]["t"]["warnings"];
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].get<std::string>().find("cannot resolve mode 1 (15.9155 Hz"), std::string::npos) << w[0];
 }
