@@ -7,6 +7,7 @@
 
 #include "support/cli_case.hpp"
 #include "support/models.hpp"
+#include "support/sweep_util.hpp"
 
 namespace dynamics_cli_test {
 
@@ -128,6 +129,32 @@ TEST(DynamicsCli, CoarseStepWarnsWithTheNumber) {
   const json w = o.results()["analyses"]["t"]["warnings"];
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].get<std::string>().find("cannot resolve mode 1 (15.9155 Hz"), std::string::npos) << w[0];
+}
+
+// Sweep columns: the FRF's peak (frequency and magnitude) and the transient's peak displacement
+// and settling time, per case. A mass of 4 halves f_n: the peaks sit on grid points 0.5 f_n(1) and
+// f_n(1), where |H| = 1 / (c w_n).
+TEST(DynamicsCli, SweepCollectsPeaks) {
+  json base = oscillator();
+  base["analyses"] = {frf(), transient()};
+  const json sweep = {{"grid", {{{"name", "m"}, {"pointer", "/masses/0/mass"}, {"values", {1.0, 4.0}}}}},
+                      {"outputs", {{{"name", "f_peak"}, {"path", "analyses.h.outputs[0].peak_frequency"}},
+                                   {{"name", "h_peak"}, {"path", "analyses.h.outputs[0].peak_magnitude"}},
+                                   {{"name", "x_peak"}, {"path", "analyses.t.peaks.B.peak_displacement"}},
+                                   {{"name", "t_settle"}, {"path", "analyses.t.peaks.B.settling_time"}}}}};
+  const auto dir = sweep_test::temp_dir("dyn_sweep");
+  const auto file = sweep_test::write_sweep(dir, sweep, base);
+  const auto r = test::run_cli("sweep " + file.string() + " --out " + (dir / "out").string() + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto csv = sweep_test::read_csv(dir / "out" / "cases.csv");
+  ASSERT_EQ(csv.rows.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const double mass = i == 0 ? 1.0 : 4.0, wn = std::sqrt(k / mass);
+    EXPECT_NEAR(std::stod(csv.rows[i][static_cast<std::size_t>(csv.col("f_peak"))]), wn / (2 * pi), 1e-9 * wn);
+    EXPECT_NEAR(std::stod(csv.rows[i][static_cast<std::size_t>(csv.col("h_peak"))]), 1.0 / (c * wn), 1e-9 / (c * wn));
+    EXPECT_GT(std::stod(csv.rows[i][static_cast<std::size_t>(csv.col("x_peak"))]), 10.0 / k);
+    EXPECT_GT(std::stod(csv.rows[i][static_cast<std::size_t>(csv.col("t_settle"))]), 0.0);
+  }
 }
 
 TEST(DynamicsCli, BadInputNamesTheField) {
