@@ -188,8 +188,8 @@ AnalysisOutcome run_frf(const AnalysisContext& ctx, const FrfSpec& spec) {
       entry["peak_magnitude"] = mag[peak];
       outputs.push_back(std::move(entry));
       std::string label = dof_label(model, spec.outputs[o]);
-      if (spec.all) label += "/" + dof_label(model, spec.inputs[i]);
-      for (const char* part : {"_real", "_imag", "_magnitude", "_phase_deg"}) csv += "," + label + part;
+      if (spec.all) label.append("/").append(dof_label(model, spec.inputs[i]));
+      for (const char* part : {"_real", "_imag", "_magnitude", "_phase_deg"}) csv.append(",").append(label).append(part);
       columns.push_back(&h);
     }
   out.result["outputs"] = std::move(outputs);
