@@ -4,7 +4,10 @@
 
 #include <cmath>
 #include <complex>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
+#include <regex>
 
 #include "solvers/frequency_response.hpp"
 #include "solvers/transient.hpp"
@@ -250,6 +253,36 @@ TEST(Transient, UndampedBeamUnderAStepLoadConservesEnergy) {
   ASSERT_EQ(rd.status, TransientStatus::Succeeded) << rd.message;
   EXPECT_LT(rd.max_energy_error, 1e-10);
   EXPECT_GT(rd.energy(rd.energy.rows() - 1, 2), 0.05 * rd.energy(rd.energy.rows() - 1, 3));
+}
+
+// El Centro 1940 N-S (OpenSees' EXAMPLES/verification/elCentro.dat, 0.02 s, in g) on single-DOF
+// systems of T_n = 0.5, 1, 2 s and 2 % damping, as a table time function times the inertia load
+// -m g a_g(t) (a load case of gravity): the peak deformations D = 2.67, 5.97, 7.47 in. of Chopra,
+// Dynamics of Structures, section 6.4 (Fig. 6.4.1; the case OpenSees' sdofTransient.tcl checks),
+// g = 386.4 in/s^2, dt = 0.002 s. Chopra integrates the piecewise-linear record exactly; average
+// acceleration at w dt <= 0.025 is within 1 %.
+TEST(Transient, ElCentroPeaksAreChoprasFigure641) {
+  const std::filesystem::path record = std::filesystem::path(BEAMFEA_SOURCE_DIR) / ".." / "shared" / "opensees" / "elCentro.dat";
+  if (!std::filesystem::exists(record)) GTEST_SKIP() << record << " is not here (the shared OpenSees data)";
+  std::ifstream in(record);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  TimeFunction ground;
+  ground.kind = TimeFunction::Kind::Table;
+  const std::regex number(R"(-?\d+\.\d+)");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), number); it != std::sregex_iterator(); ++it)
+    ground.points.push_back({0.02 * static_cast<double>(ground.points.size()), std::stod(it->str())});
+  ASSERT_EQ(ground.points.size(), 1559u);
+  const double g = 386.4, zeta = 0.02;
+  for (const auto& [Tn, D] : {std::pair{0.5, 2.67}, std::pair{1.0, 5.97}, std::pair{2.0, 7.47}}) {
+    const double w = 2 * pi / Tn;
+    json d = sdof(w * w, 1.0, 2 * zeta * w);
+    d.erase("loads");
+    d["load_cases"] = {{{"id", "ground"}, {"gravity", {-g, 0, 0}}}};
+    const Model model = test::model_from(d);
+    const TransientResult r = solve_transient(model, {{&model.loads_for("ground"), ground}}, sdof_options(0.002, 30.0));
+    ASSERT_EQ(r.status, TransientStatus::Succeeded) << r.message;
+    EXPECT_NEAR(r.displacement.col(0).cwiseAbs().maxCoeff(), D, 0.01 * D) << "T_n = " << Tn;
+  }
 }
 
 // Time functions: step, ramp, sine, table as documented.
