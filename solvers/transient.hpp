@@ -7,7 +7,7 @@
 //
 // Integrators: the generalized-alpha family of Chung & Hulbert (1993), which holds the others,
 //   M a_{n+1-am} + C v_{n+1-af} + K d_{n+1-af} = f_{n+1-af},  x_{n+1-a} = (1 - a) x_{n+1} + a x_n
-//   (Chung & Hulbert 1993, eqs. 2-4; f interpolated as d is), with Newmark's updates
+//   (the balance of Chung & Hulbert 1993, section 2; f interpolated as d is), with Newmark's updates
 //   d_{n+1} = d_n + dt v_n + dt^2 ((1/2 - beta) a_n + beta a_{n+1}),
 //   v_{n+1} = v_n + dt ((1 - gamma) a_n + gamma a_{n+1})   (Newmark 1959; Hughes, The Finite
 //   Element Method, 1987, section 9.1.1):
