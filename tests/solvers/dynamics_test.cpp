@@ -114,6 +114,32 @@ TEST(FrequencyResponse, CantileverDirectAndModalAgreeAndTruncationConverges) {
   }
 }
 
+// About a loaded state (K + K_g of a load case): a cantilever under an axial compression P has the
+// static tip compliance (tan(kL) - kL) / (P k), k = sqrt(P / EI) (Timoshenko & Gere, Theory of
+// Elastic Stability, 1961, chapter 1: beam-columns), which the receptance approaches at 0.01 Hz; direct and
+// modal (all modes) agree there too.
+TEST(FrequencyResponse, AboutALoadedStateTheCompressedCantileverIsSofter) {
+  json d = cantilever_beam();
+  const double EI = 2.1e11 * 1.3333e-8, L = 1.0, P = 3000.0;  // P = 0.43 P_cr, P_cr = pi^2 EI / (4 L^2)
+  d["load_cases"] = {{{"id", "axial"}, {"loads", {{{"node", "B"}, {"force", {-P, 0, 0}}}}}}};
+  const Model model = test::model_from(d);
+  const Eigen::VectorXd hz = Eigen::VectorXd::Constant(1, 0.01);
+  FrfOptions o;
+  o.system.preload = true;
+  const FrfResult loaded = frequency_response(model, {kBuz}, {kBuz}, hz, model.loads_for("axial"), o);
+  ASSERT_EQ(loaded.status, FrfStatus::Succeeded) << loaded.message;
+  const double k = std::sqrt(P / EI);
+  const double compliance = (std::tan(k * L) - k * L) / (P * k);
+  EXPECT_NEAR(std::abs(loaded.receptance[0](0, 0)), compliance, 1e-4 * compliance);
+  const FrfResult plain = frequency_response(model, {kBuz}, {kBuz}, hz, model.default_loads(), FrfOptions{});
+  EXPECT_NEAR(std::abs(plain.receptance[0](0, 0)), L * L * L / (3 * EI), 1e-4 * L * L * L / (3 * EI));
+  o.method = FrfMethod::Modal;
+  o.modes = 60;
+  const FrfResult modal = frequency_response(model, {kBuz}, {kBuz}, hz, model.loads_for("axial"), o);
+  ASSERT_EQ(modal.status, FrfStatus::Succeeded) << modal.message;
+  EXPECT_NEAR(std::abs(modal.receptance[0](0, 0) - loaded.receptance[0](0, 0)), 0.0, 1e-8 * compliance);
+}
+
 // Modal damping is no matrix: the direct method refuses it.
 TEST(FrequencyResponse, DirectMethodRefusesModalDamping) {
   json d = sdof();
