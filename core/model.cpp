@@ -147,6 +147,7 @@ void Model::clear() {
   ties.clear();
   constraints.clear();
   masses.clear();
+  damping = Damping{};
   default_case.nodal.clear();
   default_case.joint.clear();
   default_case.member.clear();

@@ -128,6 +128,7 @@ struct Joint {
   // Range [lo, hi] of each coordinate, measured from the reference geometry (empty: none). Checked
   // by poses (solvers/pose.hpp); analyses about a pose do not read them.
   std::vector<std::array<double, 2>> limits;
+  std::vector<double> damping;    // viscous coefficient per coordinate (empty: none); dynamics only
   int coordinates() const { return static_cast<int>(axes.size()); }
   bool is_translation(int c) const { return c < translations; }
   // The stiffness as a matrix (the diagonal when no full matrix was given).
@@ -188,6 +189,19 @@ struct PointMass {
   int node = -1;
   double mass = 0.0;
   Mat3 inertia = Mat3::Zero();
+};
+
+// The damping of the dynamic analyses (frequency response, transient), the top-level "damping":
+// Rayleigh, C = alpha M + beta K of the constrained system; or modal, a damping ratio per mode
+// (the last one given holds for the higher modes). Joints add their own viscous coefficients
+// (Joint::damping) to either.
+struct Damping {
+  enum class Kind { None, Rayleigh, Modal };
+  Kind kind = Kind::None;
+  double alpha = 0.0, beta = 0.0;
+  std::vector<double> modal;
+  // The damping ratio of mode k (0-based): modal[k], or the last ratio beyond; 0 when not modal.
+  double modal_ratio(std::size_t k) const { return modal.empty() ? 0.0 : modal[std::min(k, modal.size() - 1)]; }
 };
 
 // A generalised force (actuator torque or force) on a joint coordinate.
@@ -347,6 +361,7 @@ struct Model {
   std::vector<Tie> ties;
   std::vector<LinearConstraint> constraints;
   std::vector<PointMass> masses;
+  Damping damping;
   // The default load case: the top-level loads and gravity. Named cases and combinations are
   // selected by an analysis's "load_case" (loads_for).
   LoadSet default_case;
@@ -426,6 +441,7 @@ inline void adopt_storage(Joint& to, Joint& from) {
   to.axes.swap(from.axes), to.axes.clear();
   to.stiffness.swap(from.stiffness), to.stiffness.clear();
   to.limits.swap(from.limits), to.limits.clear();
+  to.damping.swap(from.damping), to.damping.clear();
 }
 template <class T>
 T recycled(std::vector<T>* spare, std::size_t i) {

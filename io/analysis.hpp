@@ -220,5 +220,7 @@ AnalysisType path_analysis();
 AnalysisType modal_analysis();
 AnalysisType second_order_analysis();
 AnalysisType superelement_analysis();
+AnalysisType frf_analysis();
+AnalysisType transient_analysis();
 
 }  // namespace beamfea

@@ -18,6 +18,8 @@ const std::vector<AnalysisType>& analysis_types() {
       modal_analysis(),
       second_order_analysis(),
       superelement_analysis(),
+      frf_analysis(),
+      transient_analysis(),
   };
   return types;
 }

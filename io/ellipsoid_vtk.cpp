@@ -25,7 +25,7 @@ namespace {
 constexpr int kLongitudes = 32;
 constexpr int kLatitudes = 16;
 
-vtkSmartPointer<vtkDoubleArray> field(const char* name, int components, std::initializer_list<double> values) {
+vtkSmartPointer<vtkDoubleArray> field_data_array(const char* name, int components, std::initializer_list<double> values) {
   auto a = vtkSmartPointer<vtkDoubleArray>::New();
   a->SetName(name);
   a->SetNumberOfComponents(components);
@@ -76,11 +76,11 @@ void write_compliance_ellipsoid(const std::string& path, const Vec3& centre, con
   poly->SetPolys(polys);
   poly->GetPointData()->AddArray(compliance);
   vtkFieldData* fd = poly->GetFieldData();
-  fd->AddArray(field("scale", 1, {scale}));
-  fd->AddArray(field("semi_axes", 1, {axes.semi_axes[0], axes.semi_axes[1], axes.semi_axes[2]}));
+  fd->AddArray(field_data_array("scale", 1, {scale}));
+  fd->AddArray(field_data_array("semi_axes", 1, {axes.semi_axes[0], axes.semi_axes[1], axes.semi_axes[2]}));
   const Mat3& a = axes.axes;
-  fd->AddArray(field("axes", 3, {a(0, 0), a(1, 0), a(2, 0), a(0, 1), a(1, 1), a(2, 1), a(0, 2), a(1, 2), a(2, 2)}));
-  fd->AddArray(field("centre", 3, {centre.x(), centre.y(), centre.z()}));
+  fd->AddArray(field_data_array("axes", 3, {a(0, 0), a(1, 0), a(2, 0), a(0, 1), a(1, 1), a(2, 1), a(0, 2), a(1, 2), a(2, 2)}));
+  fd->AddArray(field_data_array("centre", 3, {centre.x(), centre.y(), centre.z()}));
 
   write_atomic(path, [&](const std::filesystem::path& tmp) {
     vtkNew<vtkXMLPolyDataWriter> w;

@@ -8,6 +8,7 @@
 //   io/read_boundary.cpp    supports, loads (io/load_reader.cpp: nodal, joint and member loads,
 //                           gravity, masses, load cases, combinations), prescribed values, ties,
 //                           linear constraints
+//   io/read_damping.cpp     the top-level damping of the dynamic analyses
 // Internal to io/: not installed as an API.
 #include <nlohmann/json.hpp>
 #include <string>
@@ -62,5 +63,6 @@ void read_ties(ReadState& s);
 // "pose": into Model::pose (io/read_pose.cpp); the model is moved to it afterwards.
 void read_pose(ReadState& s);
 void read_constraints(ReadState& s);
+void read_damping(ReadState& s);
 
 }  // namespace beamfea::reader

@@ -107,6 +107,21 @@ void read_stiffness(Joint& j, const json& st, const json_in::Pointer& sp, const 
   }
 }
 
+// "damping": one non-negative viscous coefficient per coordinate (force per velocity, moment per
+// angular velocity), used by the dynamic analyses.
+void read_joint_damping(Joint& j, const json& d, const json_in::Pointer& dp, const std::string& what) {
+  const int nc = joint_coordinate_count(j.type);
+  if (!d.is_array()) throw InputError(dp, what + " damping: expected an array of " + std::to_string(nc) + " number(s)");
+  for (std::size_t c = 0; c < d.size(); ++c) number(d[c], child(dp, c), What(what, " damping"));
+  if (static_cast<int>(d.size()) != nc)
+    throw InputError(dp, what + ": expected " + std::to_string(nc) + " damping value(s), one per coordinate");
+  j.damping.resize(static_cast<std::size_t>(nc));
+  for (int c = 0; c < nc; ++c) {
+    j.damping[static_cast<std::size_t>(c)] = d[c].get<double>();
+    if (j.damping[static_cast<std::size_t>(c)] < 0.0) throw InputError(child(dp, c), what + ": damping must not be negative");
+  }
+}
+
 // "stiffness_from_beam": the tip stiffness of a cantilever (elements/beam.hpp), in the joint
 // frame (x along the link).
 void read_stiffness_from_beam(Joint& j, const ReadState& s, const Fields& f, const json_in::Pointer& p, const std::string& what) {
@@ -238,7 +253,7 @@ void read_joints(ReadState& s) {
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const json_in::Pointer p = child("/joints", i);
     const auto& o = object(arr[i], p, "joint");
-    const Fields f(o, p, {"id", "type", "nodes", "axes", "stiffness", "stiffness_from_beam", "limits", "stiffness_from_model"});
+    const Fields f(o, p, {"id", "type", "nodes", "axes", "stiffness", "stiffness_from_beam", "limits", "stiffness_from_model", "damping"});
     Joint j = s.item(&Model::joints, i);
     id_into(j.id, f.require("id", "joint"), child(p, "id"), "joint");
     check_unique(m.find_joint(j.id), "joint", "/joints", j.id, i);  // joint i is at position i
@@ -258,6 +273,7 @@ void read_joints(ReadState& s) {
     if (f.get("stiffness_from_beam")) read_stiffness_from_beam(j, s, f, p, what);
     if (const json* limits = f.get("limits")) read_limits(j, *limits, child(p, "limits"), what);
     if (f.get("stiffness_from_model")) read_stiffness_from_model(j, f, p, what);
+    if (const json* damping = f.get("damping")) read_joint_damping(j, *damping, child(p, "damping"), what);
     m.add_joint(std::move(j));
   }
 }
