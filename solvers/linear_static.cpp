@@ -1,5 +1,7 @@
 #include "solvers/linear_static.hpp"
 
+#include <limits>
+
 #include <fmt/format.h>
 
 #include <iterator>
@@ -96,6 +98,10 @@ LinearSystem::LinearSystem(const Model& model, const LinearStaticOptions& option
     // Ill-conditioned but without a zero-energy mode: the factorisation stands.
   }
   factorizations_ = 1;
+}
+
+double LinearSystem::rcond() const {
+  return impl_->factor.cholesky() ? impl_->factor.rcond() : std::numeric_limits<double>::quiet_NaN();
 }
 
 void LinearSystem::rebind(const Model& model) {
