@@ -3,18 +3,21 @@ as its units say. No tolerance, step size or rank decision of the engine may dep
 system: here lengths are scaled by a = 1e3 (m to mm) and forces by b = 1e-3 (N to kN), so that
 moduli scale by b/a^2, second moments by a^4, densities (mass = force time^2 / length) by b/a^4.
 
-Every analysis type but actuator_allocation (whose inputs are a lumped model's, see
-tests/solvers) runs on a space frame: four columns and four beams with a tip force and moment at
-a corner and self-weight; results compared after scaling back, to 1e-9 of each array's largest
+Every analysis type runs on a space frame (four columns and four beams with a force and a moment
+at a corner and self-weight), actuator_allocation on examples/02's planar 3-RRR manipulator with a
+payload; results compared after scaling back, to 1e-9 of each array's largest
 entry (the scaling by powers of ten rounds; a unit-dependent decision would differ by far more:
 another step count, another rank, another mode).
 """
 import copy
+import os
+import sys
 
 import numpy as np
 import pytest
 
 import beamfea
+from conftest import SOURCE_DIR
 
 A_LEN, B_FORCE = 1e3, 1e-3
 RTOL = 1e-9
@@ -127,3 +130,61 @@ def test_paths_take_the_same_steps_to_the_same_load_factors(both):
         close([np.asarray(s["nodes"]["t2"]["displacement"]) / DISP for s in s_mm],
               [s["nodes"]["t2"]["displacement"] for s in s_si], f"{id_} displacements")
         assert si["analyses"][id_]["termination"] == mm["analyses"][id_]["termination"]
+
+
+def bu_manipulator():
+    """examples/02's planar 3-RRR (Bu 2012) with a payload: actuator_allocation's model."""
+    sys.path.insert(0, os.path.join(SOURCE_DIR, "examples", "02_bu_planar_manipulator"))
+    try:
+        import bu_example
+    finally:
+        sys.path.pop(0)
+    poses = {k: bu_example.inverse_kinematics(y) for k, y in bu_example.POSES.items()}
+    m = bu_example.model(poses)
+    m["analyses"] = [a for a in m["analyses"] if a["id"] in ("all_terms", "payload")]
+    return m
+
+
+def scaled_bu(doc, a=A_LEN, b=B_FORCE):
+    d = copy.deepcopy(doc)
+    for n in d["nodes"]:
+        n["xyz"] = [a * x for x in n["xyz"]]
+    d["materials"][0]["E"] *= b / a**2
+    d["sections"][0]["r"] *= a
+    for case in d["load_cases"]:
+        for load in case["loads"]:
+            load["force"] = [b * f for f in load["force"]]
+    for an in d["analyses"]:
+        an["actuator_stiffness"] *= a * b  # a revolute actuator: moment per radian
+        an["poses"] = copy.deepcopy(an["poses"])  # the analyses share one list: scaled once each
+        for pose in an["poses"]:
+            for n in pose["nodes"]:
+                n["xyz"] = [a * x for x in n["xyz"]]
+    return d
+
+
+def test_actuator_allocation_stiffnesses_efforts_and_ranking_scale():
+    si, mm = beamfea.run(bu_manipulator()), beamfea.run(scaled_bu(bu_manipulator()))
+    # Directions rz, ux, uy: displacements scale by (1, a, a), forces by (a b, b, b).
+    D, W = np.array([1.0, A_LEN, A_LEN]), np.array([A_LEN * B_FORCE, B_FORCE, B_FORCE])
+    for id_ in ("all_terms", "payload"):
+        r_si, r_mm = si["analyses"][id_], mm["analyses"][id_]
+        assert r_si["status"] == r_mm["status"] == "ok"
+        assert [s["scheme"] for s in r_si["ranking"]] == [s["scheme"] for s in r_mm["ranking"]], id_
+        for s_si, s_mm in zip(r_si["schemes"], r_mm["schemes"]):
+            assert s_si["valid"] == s_mm["valid"]
+            for p_si, p_mm in zip(s_si["poses"], s_mm["poses"]):
+                where = f"{id_} {s_si['scheme']} {p_si['pose']}"
+                assert p_si["status"] == p_mm["status"], where
+                if p_si["status"] != "ok":
+                    continue
+                for part, key in (("actuated", "K_condensed"), ("structural", "K_fea"), ("total", "K_fea")):
+                    close(np.diag(1 / W) @ p_mm[part][key] @ np.diag(D), p_si[part][key], f"{where} {part}")
+                if id_ == "payload":
+                    close([e["effort"] / (A_LEN * B_FORCE) for e in p_mm["actuator_efforts"]],
+                          [e["effort"] for e in p_si["actuator_efforts"]], f"{where} efforts")
+                    u_si, u_mm = p_si["platform_displacement"]["total"], p_mm["platform_displacement"]["total"]
+                    close([u_mm["rz"], u_mm["ux"] / A_LEN, u_mm["uy"] / A_LEN], [u_si["rz"], u_si["ux"], u_si["uy"]],
+                          f"{where} displacement")
+                    close(np.diag(1 / W) @ p_mm["loaded_stiffness"]["total"] @ np.diag(D),
+                          p_si["loaded_stiffness"]["total"], f"{where} loaded")
