@@ -19,7 +19,7 @@ import os, sys, warnings
 import beamfea
 repo = sys.argv[1]
 where = os.path.dirname(beamfea.__file__)
-assert where.startswith(sys.prefix) and not where.startswith(os.path.join(repo, "build")), where
+assert where.startswith(sys.prefix + os.sep) and not where.startswith(os.path.join(repo, "build", "")), where
 L, P, E, Iz = 2.0, -1000.0, 2.1e11, 3e-6
 model = {
     "nodes": [{"id": "A", "xyz": [0, 0, 0]}, {"id": "B", "xyz": [L, 0, 0]}],

@@ -1,10 +1,9 @@
 #include "solvers/linear_static.hpp"
 
-#include <limits>
-
 #include <fmt/format.h>
 
 #include <iterator>
+#include <limits>
 
 #include "core/assembly.hpp"
 #include "core/errors.hpp"
