@@ -19,6 +19,7 @@
 #include "core/errors.hpp"
 #include "core/version.hpp"
 #include "io/model_reader.hpp"
+#include "io/model_warnings.hpp"
 #include "io/run.hpp"
 
 namespace {
@@ -91,6 +92,7 @@ int main(int argc, char** argv) {
     if (*check) {
       const auto doc = beamfea::read_json_file(check_path);
       const auto model = beamfea::load_and_check(doc);
+      for (const std::string& w : beamfea::model_warnings(model)) std::cerr << "beamfea: warning: " << w << "\n";
       std::cout << check_path << ": ok (" << model.nodes.size() << " nodes, " << model.elements.size()
                 << " elements, " << model.joints.size() << " joints)\n";
       return 0;

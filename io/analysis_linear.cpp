@@ -288,6 +288,11 @@ namespace {
 // and run_document's wall_time_s.
 constexpr std::size_t kLinearStaticResultKeys = 15;
 
+// Below this reciprocal condition estimate of the Jacobi-scaled stiffness (LinearSystem::rcond) a
+// linear solution is flagged as doubtful: the relative error bound eps / rcond passes about 2e-6,
+// so the last of the 6-7 significant digits results are read with may be wrong. Unit-free.
+constexpr double kDoubtfulRcond = 1e-10;
+
 AnalysisOutcome run_linear_static(const AnalysisContext& ctx, const LinearStaticSpec& spec) {
   const Model& model = ctx.model;
   // Tension-only and compression-only members: solved until their set stays the same.
@@ -327,6 +332,11 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx, const LinearStatic
     res.finish();
     return out;
   }
+  if (ctx.warning && system->rcond() < kDoubtfulRcond)
+    ctx.warning(fmt::format("analysis '{}': the stiffness is ill-conditioned (reciprocal condition estimate {:.3g} of the "
+                            "Jacobi-scaled K, about {:.0f} of 16 digits lost): the answer is doubtful; look for parts far "
+                            "stiffer or softer than the rest, or a near-mechanism",
+                            ctx.id, system->rcond(), std::ceil(-std::log10(system->rcond()))));
   auto held = kept ? std::shared_ptr<const LinearStaticResult>(std::shared_ptr<void>(), &kept->linear) : fresh;
   set_static_solution(res, ctx, held, stations, kept ? kept->stations : fresh_stations,
                       kept ? kept->station_positions : fresh_positions);

@@ -369,6 +369,10 @@ AnalysisOutcome run_path(const AnalysisContext& ctx, const PathSpec& spec) {
   // One line per step on stderr through the run's progress sink (silent with --quiet).
   if (ctx.progress) o.progress = [&](const std::string& s) { ctx.progress("path " + ctx.id + ": " + s); };
   const PathResult r = follow_path(model, loads, o);
+  if (ctx.warning && r.termination == PathTermination::MaxSteps)
+    ctx.warning(fmt::format("analysis '{}': the path used up max_steps ({}) before its target or a stop, at load "
+                            "factor {:.6g} (raise max_steps, or take longer steps)",
+                            ctx.id, o.max_steps, r.steps.empty() ? 0.0 : r.steps.back().load_factor));
   const bool imposed = o.control == PathControl::Displacement && r.steps.size() &&
                        std::any_of(r.steps.begin(), r.steps.end(), [](const PathStep& s) { return s.reaction != 0.0; });
 

@@ -11,6 +11,7 @@
 #include "io/json_writer.hpp"
 #include "io/model_check.hpp"
 #include "io/model_reader.hpp"
+#include "io/model_warnings.hpp"
 #include "io/result_status.hpp"
 #include "solvers/linear_static.hpp"
 
@@ -46,6 +47,8 @@ AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx, co
     o = type.run(ctx, spec);
   } catch (const InputError&) {
     throw;  // bad input found late is still bad input
+  } catch (const RunCancelled&) {
+    throw;  // the caller stopped the run: no result at all
   } catch (const std::exception& e) {
     o = AnalysisOutcome{};
     o.result["type"] = type.name;
@@ -83,6 +86,25 @@ void write_pose(ojson& out, const Model& model) {
   pose.finish();
 }
 
+// An analysis's statically indeterminate constraint rows (its result's "statically_indeterminate",
+// the DOF map's redundant closure rows) as a warning, or "" when it has none.
+std::string indeterminate_warning(const std::string& id, const ojson& result) {
+  const auto it = result.find("statically_indeterminate");
+  if (it == result.end() || !it->is_array() || it->empty()) return {};
+  std::string names;
+  std::size_t k = 0;
+  for (const auto& row : *it) {
+    if (k == kMaxIdsPerWarning) {
+      names += " and " + std::to_string(it->size() - k) + " more";
+      break;
+    }
+    names += (k++ ? ", " : "") + (row.is_string() ? row.get<std::string>() : row.dump());
+  }
+  return "analysis '" + id + "': " + std::to_string(it->size()) + " constraint row" + (it->size() == 1 ? " is" : "s are") +
+         " redundant (" + names + "): their reactions are statically indeterminate, and the ones reported are the "
+         "minimum-norm split";
+}
+
 // Both overloads: `workspace` null for a fresh run (nothing kept afterwards).
 void run_into(const Model& model, const nlohmann::json& document, const RunOptions& options, RunReport& report,
               RunWorkspace* workspace);
@@ -105,6 +127,16 @@ namespace {
 void run_into(const Model& model, const nlohmann::json& document, const RunOptions& options, RunReport& report,
               RunWorkspace* workspace) {
   report.failed = false;
+  report.warnings.clear();
+  const auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
+  MessageSink warn;
+  if (options.collect_warnings)
+    warn = [&](const std::string& s) {
+      report.warnings.push_back(s);
+      if (options.warning) options.warning(s);
+    };
+  if (options.collect_warnings)
+    for (const std::string& w : model_warnings(model)) warn(w);
   // The outcomes are written over the last run's, in order (their strings keep their storage);
   // those beyond this run's count are dropped at the end.
   std::size_t outcomes = 0;
@@ -147,18 +179,26 @@ void run_into(const Model& model, const nlohmann::json& document, const RunOptio
     const std::string id = json_in::id(spec.at("id"), "", "analysis");
     if (!options.only.empty() && std::find(options.only.begin(), options.only.end(), id) == options.only.end())
       continue;
+    if (cancelled()) throw RunCancelled();
     const AnalysisType* type = find_analysis_type(spec.at("type").get_ref<const std::string&>());
     ojson& result = analyses.slot(id);  // the last run's result of this id, or null
     std::string* previous_message = outcomes < report.outcomes.size() ? &report.outcomes[outcomes].second.message : nullptr;
     AnalysisContext ctx{model, json_in::child("/analyses", i), id, staging ? staging->path() : std::filesystem::path(),
-                        options.write_vtk, {}, options.warning, &cache, &result, previous_message, defer, options.parallel};
-    if (options.progress) ctx.progress = [&](const std::string& s) { options.progress("[" + id + "] " + s); };
+                        options.write_vtk, {}, warn, &cache, &result, previous_message, defer, options.parallel};
+    // The analyses' progress points are where a cancelled run stops.
+    if (options.progress || options.cancel)
+      ctx.progress = [&](const std::string& s) {
+        if (cancelled()) throw RunCancelled();
+        if (options.progress) options.progress("[" + id + "] " + s);
+      };
     const auto t0 = std::chrono::steady_clock::now();
     AnalysisOutcome o = run_one(*type, ctx, spec);
     const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     o.result["wall_time_s"] = dt;
     if (options.progress) options.progress("[" + id + "] " + o.brief_report() + " (" + std::to_string(dt) + " s)");
     report.failed = report.failed || o.failed();
+    if (warn)
+      if (std::string w = indeterminate_warning(id, o.result); !w.empty()) warn(w);
     result = std::move(o.result);
     o.result = ojson();
     if (outcomes < report.outcomes.size()) {
@@ -168,9 +208,12 @@ void run_into(const Model& model, const nlohmann::json& document, const RunOptio
       report.outcomes.emplace_back(id, std::move(o));
     }
     ++outcomes;
+    if (options.analyses_done) options.analyses_done->fetch_add(1);
   }
   analyses.finish();
+  if (cancelled()) throw RunCancelled();
   if (cache.linear) results.slot("factorizations") = cache.linear->factorizations();
+  if (options.collect_warnings) set_strings(results.slot("warnings"), report.warnings);
   results.finish();
   if (staging) {
     write_results_json_file(report.results, staging->path() / "results.json", options.parallel, defer);

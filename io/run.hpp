@@ -3,8 +3,10 @@
 // analysis's own files. Outputs are staged inside DIR and moved into place when the run ends:
 // bad input (InputError, exit 2) leaves DIR as it was; an analysis that fails (exit 1) still
 // gives results.json and the files of the others.
+#include <atomic>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -20,7 +22,19 @@ struct RunOptions {
   bool write_vtk = true;
   std::vector<std::string> only;     // run only these analysis ids (empty: all); unknown: InputError
   MessageSink progress;              // progress lines (empty: silent)
-  MessageSink warning;               // warnings (empty: dropped)
+  MessageSink warning;               // warnings (empty: dropped); each is also in RunReport::warnings
+  // Whether the run looks for warnings at all (io/model_warnings.hpp, and the analyses': a path that
+  // used up max_steps, an ill-conditioned stiffness, statically indeterminate constraint rows).
+  // true: each goes to `warning` and into RunReport::warnings and results.json's "warnings" (an
+  // array, empty when there are none). false (a sweep case: its base model's warnings are the
+  // same every case): none is looked for and results.json has no "warnings".
+  bool collect_warnings = true;
+  // May be null. Set from another thread (a Python binding's, on Ctrl-C) to stop the run at its next
+  // check: between analyses, at each step of a path, at each scheme of an actuator allocation.
+  // run_document then throws RunCancelled and writes nothing (the staged files are removed).
+  const std::atomic<bool>* cancel = nullptr;
+  // May be null: incremented as each analysis ends (a progress display's count; read from any thread).
+  std::atomic<std::size_t>* analyses_done = nullptr;
   ParallelTasks parallel;            // the program's threads (core/parallel_tasks.hpp; app/thread_tasks.hpp):
                                      // a linear analysis's element matrices beside its ordering, a large
                                      // results.json formatted in slices; empty: all on the calling thread
@@ -31,10 +45,17 @@ struct RunOptions {
   bool results_in_memory = true;
 };
 
+// Thrown by run_document when RunOptions::cancel is set.
+class RunCancelled : public std::runtime_error {
+ public:
+  RunCancelled() : std::runtime_error("the run was cancelled") {}
+};
+
 struct RunReport {
   ojson results;        // the whole results.json (less the deferred objects: RunOptions::results_in_memory)
   bool failed = false;  // some analysis failed (exit code 1)
   std::vector<std::pair<std::string, AnalysisOutcome>> outcomes;  // per analysis run, in order (result moved to `results`)
+  std::vector<std::string> warnings;  // the run's warnings, in order (RunOptions::collect_warnings)
   // Kept from run to run by run_document's overload that writes over a report (null until then):
   // what the analyses reuse (io/analysis.hpp). Not part of the results.
   std::unique_ptr<RunWorkspace> workspace;

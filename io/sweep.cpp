@@ -143,6 +143,8 @@ void run_case(const Sweep& sweep, std::size_t index, const std::filesystem::path
     opt.out_dir = keep_dir;
     opt.write_vtk = !keep_dir.empty();
     opt.only = sweep.analyses;
+    // A case's row has no place for warnings; the results.json of a kept case lists them.
+    opt.collect_warnings = !keep_dir.empty();
     RunReport fresh_report;
     RunReport& report = reports ? *reports : fresh_report;
     run_document(model, doc, opt, report);

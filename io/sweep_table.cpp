@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -378,7 +379,7 @@ SweepResume resume_sweep_table(const Sweep& s, const std::filesystem::path& tabl
 
 SweepTableAppender::SweepTableAppender(std::filesystem::path table) : path_(std::move(table)) {
   fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-  if (fd_ < 0) throw Error("cannot append to '" + path_.string() + "'");
+  if (fd_ < 0) throw Error("cannot append to '" + path_.string() + "': " + std::strerror(errno));
 }
 
 SweepTableAppender::~SweepTableAppender() {
@@ -392,7 +393,8 @@ void SweepTableAppender::append(const std::string& rows) {
     const ssize_t n = ::write(fd_, p, left);
     if (n < 0) {
       if (errno == EINTR) continue;
-      throw Error("error writing '" + path_.string() + "'");
+      throw Error("error writing '" + path_.string() + "': " + std::strerror(errno) +
+                  "; the rows written before are kept, and --resume runs the others");
     }
     p += n;
     left -= static_cast<std::size_t>(n);

@@ -3,7 +3,9 @@
 // load_and_check and run_document, as the program does, so the answers are the program's.
 //
 // The GIL is held while Python objects are converted to JSON and the results back to Python,
-// and released while the engine runs: threads of a ThreadPoolExecutor run cases in parallel.
+// and released while the engine runs: threads of a ThreadPoolExecutor run cases in parallel. On
+// the main thread (or with a progress callback) the engine runs on a thread of its own, so that
+// Ctrl-C stops it (python/interruptible.hpp).
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -20,6 +22,7 @@
 #include "io/run.hpp"
 #include "io/urdf_reader.hpp"
 #include "python/convert.hpp"
+#include "python/interruptible.hpp"
 #include "python/python_errors.hpp"
 #include "python/sweep_table_binding.hpp"
 
@@ -82,7 +85,7 @@ void check_ids(const nlohmann::json& doc, const std::vector<std::string>& only) 
 }
 
 py::object run(const py::object& model, const std::vector<std::string>& only, const py::object& specs,
-               const std::optional<std::string>& out, bool vtk) {
+               const std::optional<std::string>& out, bool vtk, const py::object& progress_callback) {
   nlohmann::json doc;
   try {
     doc = document_of(model);
@@ -93,18 +96,29 @@ py::object run(const py::object& model, const std::vector<std::string>& only, co
     raise_input_error(e, &ids);
   }
   RunReport report;
+  std::atomic<bool> cancel{false};
+  Progress progress;
+  const bool want_progress = !progress_callback.is_none();
   try {
-    py::gil_scoped_release release;
-    const Model m = load_and_check(doc);
-    check_ids(doc, only);
-    RunOptions options;
-    if (out) options.out_dir = *out;
-    options.write_vtk = vtk;
-    options.only = only;
-    // As the program does: a large results.json formatted on all cores (app/thread_tasks.hpp;
-    // a small one, as in a ThreadPoolExecutor of many cases, starts no threads).
-    if (out) options.parallel = app::thread_tasks();
-    report = run_document(m, doc, options);
+    // On a thread of its own, Ctrl-C and the progress callback served meanwhile (python/interruptible.hpp).
+    run_interruptible(
+        [&] {
+          const Model m = load_and_check(doc);
+          check_ids(doc, only);
+          progress.total = only.empty() ? doc.at("analyses").size() : only.size();
+          RunOptions options;
+          if (out) options.out_dir = *out;
+          options.write_vtk = vtk;
+          options.only = only;
+          options.cancel = &cancel;
+          options.analyses_done = &progress.done;
+          if (want_progress) options.progress = [&](const std::string& line) { progress.set_message(line); };
+          // As the program does: a large results.json formatted on all cores (app/thread_tasks.hpp;
+          // a small one, as in a ThreadPoolExecutor of many cases, starts no threads).
+          if (out) options.parallel = app::thread_tasks();
+          report = run_document(m, doc, options);
+        },
+        cancel, progress, progress_callback);
   } catch (const InputError& e) {
     raise_input_error(e, &doc);
   }
@@ -174,7 +188,7 @@ std::string lump(const py::object& model, const py::object& links) {
   }
 }
 
-py::object sweep(const py::object& spec, int jobs) {
+py::object sweep(const py::object& spec, int jobs, const py::object& progress) {
   nlohmann::json doc;
   std::filesystem::path directory = std::filesystem::current_path();
   try {
@@ -191,7 +205,7 @@ py::object sweep(const py::object& spec, int jobs) {
   }
   try {
     const Sweep s = read_sweep(doc, directory);
-    return sweep_columns(s, jobs);
+    return sweep_columns(s, jobs, progress);
   } catch (const InputError& e) {
     raise_input_error(e, &doc);
   }
@@ -247,9 +261,9 @@ PYBIND11_MODULE(_beamfea, m) {
   });
   init_conversions();
   register_error_translator();
-  m.def("run", &run, py::arg("model"), py::arg("only"), py::arg("specs"), py::arg("out"), py::arg("vtk"));
+  m.def("run", &run, py::arg("model"), py::arg("only"), py::arg("specs"), py::arg("out"), py::arg("vtk"), py::arg("progress"));
   m.def("check", &check, py::arg("model"));
-  m.def("sweep", &sweep, py::arg("spec"), py::arg("jobs"));
+  m.def("sweep", &sweep, py::arg("spec"), py::arg("jobs"), py::arg("progress"));
   m.def("lump", &lump, py::arg("model"), py::arg("links"));
   m.def("section_properties", &py_section_properties, py::arg("shape"), py::arg("dimensions"));
   m.def("section_shapes", &py_section_shapes);

@@ -11,6 +11,7 @@
 
 #include "io/sweep_table.hpp"
 #include "python/convert.hpp"
+#include "python/interruptible.hpp"
 
 namespace py = pybind11;
 
@@ -18,7 +19,8 @@ namespace beamfea::python {
 
 namespace {
 
-std::vector<SweepCaseResult> run_cases(const Sweep& sweep, int jobs) {
+// Stops handing out cases once `cancel` is set (the running ones finish).
+std::vector<SweepCaseResult> run_cases(const Sweep& sweep, int jobs, const std::atomic<bool>& cancel, Progress& progress) {
   const std::size_t n = sweep.size();
   std::vector<SweepCaseResult> results(n);
   if (jobs <= 0) jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -26,7 +28,10 @@ std::vector<SweepCaseResult> run_cases(const Sweep& sweep, int jobs) {
   std::atomic<std::size_t> next{0};
   auto work = [&] {
     SweepWorkspace workspace(sweep);  // this thread's document, model and results, case after case
-    for (std::size_t i = next++; i < n; i = next++) run_sweep_case(sweep, i, {}, workspace, results[i]);
+    for (std::size_t i = next++; i < n && !cancel.load(std::memory_order_relaxed); i = next++) {
+      run_sweep_case(sweep, i, {}, workspace, results[i]);
+      progress.done.fetch_add(1);
+    }
   };
   std::vector<std::thread> workers;
   for (int w = 1; w < jobs; ++w) workers.emplace_back(work);
@@ -80,12 +85,13 @@ py::object parameter_column(const std::vector<nlohmann::ordered_json>& values) {
 
 }  // namespace
 
-py::dict sweep_columns(const Sweep& sweep, int jobs) {
+py::dict sweep_columns(const Sweep& sweep, int jobs, const py::object& progress_callback) {
   std::vector<SweepCaseResult> results;
-  {
-    py::gil_scoped_release release;
-    results = run_cases(sweep, jobs);
-  }
+  std::atomic<bool> cancel{false};
+  Progress progress;
+  progress.total = sweep.size();
+  progress.set_message("sweep of " + std::to_string(sweep.size()) + " cases");
+  run_interruptible([&] { results = run_cases(sweep, jobs, cancel, progress); }, cancel, progress, progress_callback);
   const std::size_t n = results.size();
   py::dict table;
   py::list ids;

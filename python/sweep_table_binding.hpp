@@ -9,7 +9,9 @@
 namespace beamfea::python {
 
 // Runs every case on `jobs` threads (0: all cores) with the GIL released; returns a dict of
-// columns in table order.
-pybind11::dict sweep_columns(const Sweep& sweep, int jobs);
+// columns in table order. Ctrl-C stops it after the running cases (KeyboardInterrupt);
+// `progress` (None: none) is called as progress(cases done, cases, message)
+// (python/interruptible.hpp).
+pybind11::dict sweep_columns(const Sweep& sweep, int jobs, const pybind11::object& progress);
 
 }  // namespace beamfea::python

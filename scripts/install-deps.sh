@@ -14,6 +14,7 @@ packages=(
   python3-matplotlib python3-numpy  # plots of the examples (Debian's /usr/bin/python3)
   pybind11-dev python3-pybind11 python3-dev python3-pytest  # the Python module (python/) and its tests
   python3-vtk9                  # tests read the .vtu files back with VTK's own reader
+  python3-pandas                # optional for users: the tests of beamfea.sweep's DataFrame
   clang-14 libclang-rt-14-dev   # the libFuzzer targets (tests/fuzz, -DBEAMFEA_BUILD_FUZZERS=ON)
   libomp-14-dev                 # clang's OpenMP: a dependency's CMake config asks for OpenMP_CXX
 )

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <iterator>
+#include <limits>
 
 #include "core/assembly.hpp"
 #include "core/errors.hpp"
@@ -96,6 +97,10 @@ LinearSystem::LinearSystem(const Model& model, const LinearStaticOptions& option
     // Ill-conditioned but without a zero-energy mode: the factorisation stands.
   }
   factorizations_ = 1;
+}
+
+double LinearSystem::rcond() const {
+  return impl_->factor.cholesky() ? impl_->factor.rcond() : std::numeric_limits<double>::quiet_NaN();
 }
 
 void LinearSystem::rebind(const Model& model) {

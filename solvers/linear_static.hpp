@@ -84,6 +84,10 @@ class LinearSystem {
   // case of a small model (dense factor) allocates nothing once they have their sizes.
   void solve(const LoadSet& loads, LinearStaticResult& into, LinearSolveScratch& scratch) const;
   int factorizations() const { return factorizations_; }
+  // The reciprocal condition estimate of the Jacobi-scaled K_ff's Cholesky factor L, (min L_ii /
+  // max L_ii)^2 (CHOLMOD's estimate, and the dense factor's the same way); NaN when K_ff was not
+  // factorised by Cholesky (a mechanism, an indefinite K). Unit-free: the scaling takes the units out.
+  double rcond() const;
   const Model& model() const { return *model_; }
   int solves() const { return solves_; }
   // Points the system at `model`, which must equal the model it was built from in everything the

@@ -7,19 +7,24 @@
 The model format is the program's (docs/input-format.md); results have the structure of
 results.json (docs/python.md says how arrays become NumPy arrays). Errors:
 InputError(ValueError) with .pointer and .entity, ModelError with .entity. A failed analysis
-(a mechanism, no convergence) is not an exception: its result says so in "status".
+(a mechanism, no convergence) is not an exception: its result says so in "status". The engine's
+warnings are raised as BeamfeaWarning (a UserWarning) through the warnings module. Ctrl-C stops
+a run or a sweep (KeyboardInterrupt); progress=callable reports where it stands.
 """
 import json
 import os
-from typing import Any, Dict, Iterable, Mapping, Optional, Union
+import warnings
+from typing import Any, Callable, Dict, Iterable, Mapping, Optional, Union
 
 from . import _beamfea
-from ._errors import Error, InputError, ModelError
+from ._errors import BeamfeaWarning, Error, InputError, ModelError
 
 __version__: str = _beamfea.__version__
-__all__ = ["run", "check", "lump", "sweep", "blas", "section_properties", "section_shapes", "from_urdf", "Error", "InputError", "ModelError", "__version__"]
+__all__ = ["run", "check", "lump", "sweep", "blas", "section_properties", "section_shapes", "from_urdf", "Error", "InputError",
+           "ModelError", "BeamfeaWarning", "__version__"]
 
 Model = Union[Mapping[str, Any], str, "os.PathLike[str]"]
+Progress = Optional[Callable[[int, int, str], Any]]
 
 
 def _is_path(x: Any) -> bool:
@@ -27,7 +32,8 @@ def _is_path(x: Any) -> bool:
 
 
 def run(model: Model, analyses: Union[None, str, Iterable[Any]] = None,
-        out: Union[None, str, "os.PathLike[str]"] = None, *, vtk: bool = True) -> Dict[str, Any]:
+        out: Union[None, str, "os.PathLike[str]"] = None, *, vtk: bool = True,
+        progress: Progress = None) -> Dict[str, Any]:
     """Run the analyses of a model and return its results.
 
     Args:
@@ -41,10 +47,15 @@ def run(model: Model, analyses: Union[None, str, Iterable[Any]] = None,
             are written there, as `beamfea run model.json --out DIR` does. When None, nothing
             at all is written.
         vtk: with `out`, also write the VTK files (False: as `--no-vtk`).
+        progress: None, or a callable called as progress(done, total, message) while the run
+            goes on: done of total analyses finished, and the engine's last progress line
+            ("[p] path p: step 12: load factor 0.37, ..."). Called from the calling thread when
+            the progress changes (at most five times a second), at least once a second, and once
+            at the end. An exception it raises stops the run and is raised here.
 
     Returns:
         dict: the structure of results.json: {"beamfea": version, "model": {...counts},
-        "analyses": {id: result}}. Every array of numbers is a float64 numpy.ndarray, an array
+        "analyses": {id: result}, "warnings": [...]}. Every array of numbers is a float64 numpy.ndarray, an array
         of equal-length arrays a 2-D one (stiffness and compliance matrices, Jacobians; deeper
         nesting gives more dimensions); null inside such an array is NaN. Other arrays are
         lists, objects dicts, a non-finite number None (as in results.json). Each analysis
@@ -55,6 +66,11 @@ def run(model: Model, analyses: Union[None, str, Iterable[Any]] = None,
         InputError: bad input (.pointer is the JSON pointer of the field at fault, .entity the
             node, element, analysis... it belongs to).
         ModelError: a model that cannot be analysed as given (.entity names what).
+        KeyboardInterrupt: Ctrl-C; the run stops within a second or so (at the next step of a
+            path, between analyses) and nothing is written to `out`.
+
+    Warns:
+        BeamfeaWarning: each of the run's warnings (also in the result's "warnings").
 
     The engine runs with the GIL released: cases run on a ThreadPoolExecutor run in parallel.
     """
@@ -72,7 +88,10 @@ def run(model: Model, analyses: Union[None, str, Iterable[Any]] = None,
             raise TypeError("analyses: a list of analysis ids (str) or of analysis specs (dict), not a mix")
     if out is not None:
         out = os.fspath(out)
-    return _beamfea.run(model if _is_path(model) else _as_dict(model), only, specs, out, bool(vtk))
+    result = _beamfea.run(model if _is_path(model) else _as_dict(model), only, specs, out, bool(vtk), progress)
+    for message in result.get("warnings", ()):
+        warnings.warn(message, BeamfeaWarning, stacklevel=2)
+    return result
 
 
 def check(model: Model) -> Dict[str, int]:
@@ -183,13 +202,16 @@ def from_urdf(path: Union[str, "os.PathLike[str]"],
     return json.loads(_beamfea.urdf_model(os.fspath(path), car))
 
 
-def sweep(spec: Union[Mapping[str, Any], str, "os.PathLike[str]"], jobs: Optional[int] = None) -> Any:
+def sweep(spec: Union[Mapping[str, Any], str, "os.PathLike[str]"], jobs: Optional[int] = None,
+          progress: Progress = None) -> Any:
     """Run a sweep (docs/sweep.md): many cases of one base model, in process, into one table.
 
     Args:
         spec: a sweep document as a dict (a relative "base" path is taken from the current
             folder) or the path of a sweep file (relative to the file's folder).
         jobs: worker threads; None or 0: all cores.
+        progress: None, or a callable called as progress(done, total, message): done of total
+            cases finished (as run()'s: from the calling thread, at least once a second).
 
     Returns:
         The table of `beamfea sweep` (DIR/cases.csv) as columns, in its order: "case", the
@@ -200,12 +222,13 @@ def sweep(spec: Union[Mapping[str, Any], str, "os.PathLike[str]"], jobs: Optiona
 
     Raises:
         InputError: a bad sweep document (a bad case is a row with status "bad input").
+        KeyboardInterrupt: Ctrl-C; the sweep stops after the cases running then.
     """
     if jobs is None:
         jobs = 0
     if int(jobs) < 0:
         raise ValueError("jobs must be at least 1 (or 0/None for all cores)")
-    columns = _beamfea.sweep(spec if _is_path(spec) else _as_dict(spec), int(jobs))
+    columns = _beamfea.sweep(spec if _is_path(spec) else _as_dict(spec), int(jobs), progress)
     try:
         import pandas
     except ImportError:

@@ -35,3 +35,10 @@ class ModelError(Error):
 
     def __reduce__(self):
         return (type(self), (str(self), self.entity))
+
+
+class BeamfeaWarning(UserWarning):
+    """A warning of the engine: something in the model or the answer that is probably not what
+    was meant (a material never used, a load on a fully supported node, a path that used up
+    max_steps, an ill-conditioned stiffness, statically indeterminate constraint rows). The run
+    goes on; results.json lists the same lines in "warnings"."""

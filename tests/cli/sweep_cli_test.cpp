@@ -85,6 +85,15 @@ bool wait_for_lines(const fs::path& path, std::size_t lines, std::chrono::second
 constexpr std::size_t kUnderWay = 3;
 constexpr auto kStartTimeout = std::chrono::seconds(60);
 
+// The table's text without its last column, wall_time_s (the only one that may differ between two
+// runs of the same sweep): lines cut at their last comma.
+std::string text_without_time(const fs::path& table) {
+  std::istringstream in(read(table));
+  std::string out;
+  for (std::string line; std::getline(in, line);) out += line.substr(0, line.rfind(',')) + "\n";
+  return out;
+}
+
 // Rows in case order, each case once, every line complete.
 void expect_sorted_valid(const Csv& t, bool well_formed) {
   EXPECT_TRUE(well_formed);
@@ -172,6 +181,69 @@ TEST(SweepCommand, KilledSweepLeavesAValidTableAndResumeCompletesIt) {
   std::size_t kept = 0;
   for (const auto& r : full.rows) kept += before.count(r[0] + "," + r.back());
   EXPECT_EQ(kept, partial.rows.size());
+  // And the table is byte for byte that of an uninterrupted run, but for the wall times.
+  EXPECT_EQ(sh(exe() + " sweep " + file.string() + " --out " + (dir / "whole").string() + " --jobs 2 -q"), 0);
+  EXPECT_TRUE(text_without_time(out / "cases.csv") == text_without_time(dir / "whole" / "cases.csv"));
+}
+
+// A row torn by a kill in the middle of its write (or by a full disk) is found by --resume, dropped
+// and its case run again: the table ends byte for byte as an uninterrupted run's, each case once.
+TEST(SweepCommand, ResumeDropsATornLastRowAndRunsItsCaseAgain) {
+  const auto dir = temp_dir("cli_torn");
+  const auto file = write_sweep(dir, load_length_grid(3, 4));
+  const auto out = dir / "out";
+  ASSERT_EQ(sh(exe() + " sweep " + file.string() + " --out " + out.string() + " -q"), 0);
+  const std::string whole = read(out / "cases.csv");
+  const std::string expected = text_without_time(out / "cases.csv");
+  // The header, five rows and half of the sixth.
+  std::size_t cut = 0;
+  for (int line = 0; line < 6; ++line) cut = whole.find('\n', cut) + 1;
+  const std::size_t sixth_end = whole.find('\n', cut);
+  write(out / "cases.csv", whole.substr(0, cut + (sixth_end - cut) / 2));
+  ASSERT_EQ(sh(exe() + " sweep " + file.string() + " --out " + out.string() + " --resume -q"), 0);
+  bool well_formed = false;
+  const Csv t = read_csv(out / "cases.csv", &well_formed);
+  ASSERT_EQ(t.rows.size(), 12u);
+  expect_sorted_valid(t, well_formed);
+  EXPECT_EQ(text_without_time(out / "cases.csv"), expected);
+}
+
+// An output folder that cannot be made is exit 2 at the start, naming it, with nothing run.
+TEST(SweepCommand, AnUnwritableOutIsAnErrorAtTheStartNamingIt) {
+  const auto dir = temp_dir("cli_unwritable");
+  const auto file = write_sweep(dir, load_length_grid(3, 4));
+  write(dir / "plain_file", "x");
+  const auto out = dir / "plain_file" / "out";  // under a regular file: no folder can be made there
+  const auto err = dir / "err.txt";
+  EXPECT_EQ(sh(exe() + " sweep " + file.string() + " --out " + out.string() + " 2> " + err.string()), 2);
+  EXPECT_NE(read(err).find(out.string()), std::string::npos) << read(err);
+  EXPECT_EQ(read(dir / "plain_file"), "x");
+}
+
+// A write that fails half way (a full disk, here a file size limit with SIGXFSZ ignored, so that
+// write(2) fails with EFBIG as on ENOSPC) ends the sweep with exit 1 naming the table; the rows
+// written before it stay, and --resume, with room again, completes the table as an uninterrupted
+// run writes it.
+TEST(SweepCommand, AFailingWriteKeepsTheRowsWrittenAndResumeCompletesThem) {
+  const auto dir = temp_dir("cli_full");
+  const auto file = write_sweep(dir, load_length_grid(40, 50));
+  const auto out = dir / "out";
+  const auto err = dir / "err.txt";
+  // bash's ulimit -f counts 1024-byte blocks: 48 KiB, a small part of the 2,000 rows.
+  EXPECT_EQ(sh("bash -c \"trap '' XFSZ; ulimit -f 48; exec " + exe() + " sweep " + file.string() + " --out " +
+               out.string() + " --jobs 1 -q\" 2> " + err.string()),
+            1);
+  EXPECT_NE(read(err).find("cases.csv"), std::string::npos) << read(err);
+  const std::size_t written = read_csv(out / "cases.csv").rows.size();
+  EXPECT_GT(written, 10u);
+  EXPECT_LT(written, 2000u);
+  ASSERT_EQ(sh(exe() + " sweep " + file.string() + " --out " + out.string() + " --resume -q"), 0);
+  bool well_formed = false;
+  const Csv t = read_csv(out / "cases.csv", &well_formed);
+  ASSERT_EQ(t.rows.size(), 2000u);
+  expect_sorted_valid(t, well_formed);
+  ASSERT_EQ(sh(exe() + " sweep " + file.string() + " --out " + (dir / "whole").string() + " -q"), 0);
+  EXPECT_TRUE(text_without_time(out / "cases.csv") == text_without_time(dir / "whole" / "cases.csv"));
 }
 
 TEST(SweepCommand, InterruptStopsCleanlyWithASortedTableOfTheFinishedCases) {

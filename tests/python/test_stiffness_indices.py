@@ -55,7 +55,7 @@ def test_indices_are_sweep_columns(tmp_path):
                         {"name": "d_min", "path": "analyses.K.indices.translational.directions[0]"},
                         "analyses.K.indices.condition_translational"]}
     (tmp_path / "sweep.json").write_text(json.dumps(spec))
-    cols = beamfea._beamfea.sweep(str(tmp_path / "sweep.json"), 1)
+    cols = beamfea._beamfea.sweep(str(tmp_path / "sweep.json"), 1, None)
     Ls = np.array(lengths)
     np.testing.assert_allclose(cols["k_min"], 3 * E * Iy / Ls**3, rtol=1e-9)
     np.testing.assert_allclose(cols["d_min[2]"], [1.0, 1.0], atol=1e-12)

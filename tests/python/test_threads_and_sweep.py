@@ -67,7 +67,7 @@ def test_sweep_columns_equal_the_program_table(tmp_path):
     with open(tmp_path / "out" / "cases.csv") as f:
         rows = list(csv.DictReader(f))
     import beamfea as bf
-    cols = bf._beamfea.sweep(str(spec), 2)  # the dict of columns, with or without pandas
+    cols = bf._beamfea.sweep(str(spec), 2, None)  # the dict of columns, with or without pandas
     assert list(cols) == list(rows[0].keys())
     assert len(cols["case"]) == len(rows) == 6
     for name, col in cols.items():
@@ -90,7 +90,7 @@ def test_sweep_from_a_dict_reports_bad_cases_as_rows(chdir_tmp):
     spec = sweep_spec("base.json")
     spec["grid"][1]["values"] = [2.1e11, -1.0]  # E < 0: bad input in half the cases
     spec["outputs"] = spec["outputs"][:1]
-    cols = beamfea._beamfea.sweep(spec, 0)
+    cols = beamfea._beamfea.sweep(spec, 0, None)
     assert cols["status"] == ["ok", "bad input"] * 3
     assert np.isnan(cols["uy"][1::2]).all() and np.isfinite(cols["uy"][0::2]).all()
     assert all("/materials/0/E" in m for m in cols["message"][1::2])
