@@ -47,7 +47,7 @@ def test_a_pose_beyond_a_limit_raises_naming_the_joint():
 def test_a_pose_sweep_reports_the_unreachable_case_as_its_row():
     spec = {"model": arm(), "grid": [{"name": "q2", "pointer": "/pose/joints/q2", "values": [-1.0, 3.0, 1.0]}],
             "outputs": [{"name": "tip", "path": "pose.nodes.T"}]}
-    cols = beamfea._beamfea.sweep(spec, 0)
+    cols = beamfea._beamfea.sweep(spec, 0, None)
     assert cols["status"] == ["ok", "bad input", "ok"]
     assert "joint 'q2'" in cols["message"][1] and "limits" in cols["message"][1]
     assert np.allclose([cols["tip[0]"][0], cols["tip[1]"][0]], tip(0.0, -1.0)[:2], atol=1e-14)
@@ -73,7 +73,7 @@ def test_a_sweep_over_a_target_solves_the_inverse_kinematics_of_the_reference_br
     base["pose"]["nodes"][0]["xyz"] = [xs[0], y, 0.0]
     spec = {"model": base, "grid": [{"name": "x", "pointer": "/pose/nodes/0/xyz/0", "values": xs}],
             "outputs": [{"name": "q1", "path": "pose.joints.q1"}, {"name": "q2", "path": "pose.joints.q2"}]}
-    cols = beamfea._beamfea.sweep(spec, 0)
+    cols = beamfea._beamfea.sweep(spec, 0, None)
     assert cols["status"] == ["ok", "ok", "bad input", "ok"]
     assert "node 'T'" in cols["message"][2] and "beyond reach" in cols["message"][2]
     for n, x in enumerate(xs):
