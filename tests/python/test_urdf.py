@@ -95,3 +95,40 @@ def test_a_bad_sidecar_is_an_input_error_at_its_pointer(tmp_path):
     with pytest.raises(beamfea.InputError) as e:
         beamfea.from_urdf(tmp_path / "missing.urdf")
     assert "missing.urdf" in str(e.value)
+
+
+def test_a_urdf_arm_at_a_pose_is_the_product_of_its_transforms_and_keeps_its_limits(tmp_path):
+    """pose.joints names the URDF's joints: the tool goes where the chain of URDF transforms with
+    the joint motions puts it (planar here: angles add about z, the slide runs along the forearm),
+    its compliance is J(q) K^-1 J(q)^T, and a value outside a URDF <limit> is bad input naming it."""
+    robot = tmp_path / "rrp.urdf"
+    robot.write_text(URDF)
+    model = beamfea.from_urdf(robot, sidecar=SIDECAR)
+    q = {"shoulder": 0.3, "elbow": -0.4, "slide": 0.2}
+    model["pose"] = {"joints": dict(q)}
+    model["analyses"] = [{"id": "k", "type": "stiffness", "node": "tool"}]
+    res = beamfea.run(model)
+    a1 = 0.5 + q["shoulder"]
+    a2 = a1 - 1.1 + q["elbow"]
+    e1, e2 = np.array([np.cos(a1), np.sin(a1), 0]), np.array([np.cos(a2), np.sin(a2), 0])
+    p1 = np.array([0, 0, 0.2])
+    p2 = p1 + 0.6 * e1
+    tool = p2 + (0.4 + q["slide"]) * e2
+    np.testing.assert_allclose(res["pose"]["nodes"]["tool"], tool, atol=1e-12)
+    for name, v in q.items():
+        assert res["pose"]["joints"][name] == pytest.approx(v, abs=1e-14)
+    z = np.array([0, 0, 1.0])
+    J = np.zeros((6, 3))
+    J[:3, 0], J[3:, 0] = np.cross(z, tool - p1), z
+    J[:3, 1], J[3:, 1] = np.cross(z, tool - p2), z
+    J[:3, 2] = e2
+    C = J @ np.diag([1 / K["shoulder"], 1 / K["elbow"], 1 / K["slide"]]) @ J.T
+    k = res["analyses"]["k"]
+    assert k["status"] == "ok"
+    np.testing.assert_allclose(k["compliance"], C, rtol=0, atol=1e-9 * np.abs(C).max())
+
+    for name, bad in (("elbow", 2.5), ("slide", 0.4)):
+        model["pose"] = {"joints": {name: bad}}
+        with pytest.raises(beamfea.InputError) as e:
+            beamfea.run(model)
+        assert name in str(e.value) and "limit" in str(e.value)
