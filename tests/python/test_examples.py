@@ -75,3 +75,10 @@ def test_05_report_critical_force_in_process(tmp_path):
     assert how == "buckling" and v == pytest.approx(1.0, rel=1e-9)
     w, _ = report.critical_force(EXE, f, str(tmp_path / "cli"), lambda s: None)
     assert v == w
+
+
+def test_11_bu_platform_poses(tmp_path):
+    """The 3-RRR driven by platform targets: the example exits 1 when the solved joint coordinates
+    miss the closed-form inverse kinematics or the compliance misses J K^-1 J^T."""
+    out = run([os.path.join(EX, "11_bu_platform_poses", "platform_poses.py"), "--no-plots"])
+    assert out.count("| J1J2J3 | P") == 5 and out.count("| J1J2J6 | P") == 5
