@@ -125,14 +125,18 @@ py::object run(const py::object& model, const std::vector<std::string>& only, co
   return python_from_json(report.results);
 }
 
-py::dict check(const py::object& model) {
-  nlohmann::json doc;
+// A model given from Python as a JSON document; an error names the field with the model's ids.
+nlohmann::json model_document(const py::object& model) {
   try {
-    doc = document_of(model);
+    return document_of(model);
   } catch (const InputError& e) {
     const nlohmann::json ids = id_skeleton(model);
     raise_input_error(e, &ids);
   }
+}
+
+py::dict check(const py::object& model) {
+  const nlohmann::json doc = model_document(model);
   try {
     py::gil_scoped_release release;
     const Model m = load_and_check(doc);
@@ -168,13 +172,8 @@ std::string urdf_model(const std::string& path, const py::object& sidecar) {
 // The lumped (VJM) model of a beam model (io/lump.hpp), as JSON text (the Python side parses it
 // into plain lists and dicts: a model to edit and dump, not arrays).
 std::string lump(const py::object& model, const py::object& links) {
-  nlohmann::json doc, links_doc;
-  try {
-    doc = document_of(model);
-  } catch (const InputError& e) {
-    const nlohmann::json ids = id_skeleton(model);
-    raise_input_error(e, &ids);
-  }
+  const nlohmann::json doc = model_document(model);
+  nlohmann::json links_doc;
   try {
     links_doc = document_of(links);
   } catch (const InputError& e) {
