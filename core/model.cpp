@@ -148,6 +148,7 @@ void Model::clear() {
   constraints.clear();
   masses.clear();
   damping = Damping{};
+  solver = SolverChoice{};
   default_case.nodal.clear();
   default_case.joint.clear();
   default_case.member.clear();

@@ -204,6 +204,19 @@ struct Damping {
   double modal_ratio(std::size_t k) const { return modal.empty() ? 0.0 : modal[std::min(k, modal.size() - 1)]; }
 };
 
+// The linear solver of every analysis that solves with the stiffness, the top-level "solver"
+// (docs/analyses/solver.md): a direct sparse factorisation, an iterative Krylov solve with an
+// algebraic multigrid preconditioner (PETSc), or the choice made from the model's size (Auto).
+struct SolverChoice {
+  enum class Type { Auto, Direct, Iterative };
+  enum class Preconditioner { Gamg, Hypre };
+  Type type = Type::Auto;
+  double rtol = 1e-10;                  // relative residual ||F - K u|| / ||F|| an iterative solve must reach
+  Preconditioner preconditioner = Preconditioner::Gamg;
+  int max_iterations = 10000;           // an iterative solve that needs more has not converged
+  bool given = false;                   // the model has a "solver"
+};
+
 // A generalised force (actuator torque or force) on a joint coordinate.
 struct JointLoad {
   int joint = -1;
@@ -362,6 +375,7 @@ struct Model {
   std::vector<LinearConstraint> constraints;
   std::vector<PointMass> masses;
   Damping damping;
+  SolverChoice solver;
   // The default load case: the top-level loads and gravity. Named cases and combinations are
   // selected by an analysis's "load_case" (loads_for).
   LoadSet default_case;

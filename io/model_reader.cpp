@@ -152,7 +152,7 @@ void read_model_into(const json& doc, Model& m, Model* spare, std::string& what)
   // Top-level keys of a model file (docs/input-format.md). Add a new collection here.
   expect_keys(doc, "", {"nodes", "materials", "sections", "elements", "joints", "supports", "loads", "prescribed",
                         "analyses", "units", "title", "name", "description", "gravity", "masses", "load_cases",
-                        "combinations", "ties", "constraints", "pose", "damping"});
+                        "combinations", "ties", "constraints", "pose", "damping", "solver"});
   reader::ReadState s{doc, m, spare, 1.0, what};
   reader::read_nodes(s);
   s.length_scale = m.length_scale();  // meshing adds nodes on members only: the box stays the same
@@ -166,6 +166,7 @@ void read_model_into(const json& doc, Model& m, Model* spare, std::string& what)
   reader::read_ties(s);
   reader::read_constraints(s);
   reader::read_damping(s);
+  reader::read_solver(s);
   reader::read_pose(s);
   pose_model(m);  // the posed geometry becomes the reference of every analysis (solvers/pose.hpp)
 }

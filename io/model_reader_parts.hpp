@@ -9,6 +9,7 @@
 //                           gravity, masses, load cases, combinations), prescribed values, ties,
 //                           linear constraints
 //   io/read_damping.cpp     the top-level damping of the dynamic analyses
+//   io/read_solver.cpp      the top-level linear solver choice
 // Internal to io/: not installed as an API.
 #include <nlohmann/json.hpp>
 #include <string>
@@ -64,5 +65,6 @@ void read_ties(ReadState& s);
 void read_pose(ReadState& s);
 void read_constraints(ReadState& s);
 void read_damping(ReadState& s);
+void read_solver(ReadState& s);
 
 }  // namespace beamfea::reader
