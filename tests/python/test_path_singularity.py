@@ -6,6 +6,7 @@ import os
 import sys
 import warnings
 
+import numpy as np
 import pytest
 
 import beamfea
@@ -64,3 +65,45 @@ def test_bu_path_ends_at_the_singular_pose_of_its_passive_dyad_in_any_units():
     si, mm = runs
     assert mm["critical_points"][-1]["load_factor"] == pytest.approx(si["critical_points"][-1]["load_factor"], rel=1e-9)
     assert len(mm["steps"]) == len(si["steps"])
+
+
+def change_point_four_bar():
+    """A four-bar at its change point (crank 0.3 + ground 0.7 = coupler 0.5 + rocker 0.5) driven by a
+    prescribed crank rotation from 2.6 rad through pi, where coupler and rocker line up."""
+    a, g, b, c, th = 0.3, 0.7, 0.5, 0.5, 2.6
+    B = np.array([a * np.cos(th), a * np.sin(th)])
+    D = np.array([g, 0.0])
+    d = np.linalg.norm(D - B)  # C: the circles |C - D| = c, |C - B| = b, left of D -> B
+    e = (B - D) / d
+    x = (c * c - b * b + d * d) / (2 * d)
+    C = D + x * e + np.sqrt(c * c - x * x) * np.array([-e[1], e[0]])
+    pts = {"A": [0.0, 0.0], "B": B, "C": C, "D": D}
+    nodes = []
+    for k, p in pts.items():
+        nodes += [{"id": k, "xyz": [float(p[0]), float(p[1]), 0.0]}, {"id": k + "1", "xyz": [float(p[0]), float(p[1]), 0.0]}]
+    z = [[0, 0, 1]]
+    return {"nodes": nodes,
+            "elements": [{"id": "crank", "type": "rigid", "nodes": ["A1", "B"]},
+                         {"id": "coupler", "type": "rigid", "nodes": ["B1", "C"]},
+                         {"id": "rocker", "type": "rigid", "nodes": ["D1", "C1"]}],
+            "joints": [{"id": "jA", "type": "revolute", "nodes": ["A", "A1"], "axes": z, "stiffness": [5.0]},
+                       {"id": "jB", "type": "revolute", "nodes": ["B", "B1"], "axes": z},
+                       {"id": "jC", "type": "revolute", "nodes": ["C", "C1"], "axes": z},
+                       {"id": "jD", "type": "revolute", "nodes": ["D", "D1"], "axes": z}],
+            "supports": [{"node": "A", "fix": "all"}, {"node": "D", "fix": "all"}],
+            "analyses": [{"id": "drive", "type": "path", "track": ["C"],
+                          "control": {"node": "A1", "dof": "rz", "to": 1.0, "increments": 10}}]}
+
+
+def test_a_passed_singular_pose_is_reported_and_warned():
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        r = beamfea.run(change_point_four_bar())["analyses"]["drive"]
+    assert r["completed"] is True
+    sing = [c for c in r["critical_points"] if c["type"] == "singularity"]
+    assert len(sing) == 1
+    assert sorted(sing[0]["joints"]) == ["jB", "jC", "jD"]
+    assert sing[0]["passed"] is True
+    assert sing[0]["control"] == pytest.approx(np.pi - 2.6, abs=1e-4)
+    msgs = [str(w.message) for w in caught if issubclass(w.category, beamfea.BeamfeaWarning)]
+    assert any("passed a singular pose" in m and "'jB'" in m for m in msgs), msgs
