@@ -195,7 +195,7 @@ bool PathRun::cut(PathTermination why, const std::string& what) {
   // Displacement control at a snap-back of the controlled DOF: on under arc length, with the
   // arc length of the last accepted step.
   const Eigen::VectorXd& d = predictor_.previous_direction();
-  if (d.size() && control_.fall_back_to_arc_length(cur_, std::sqrt(sys_.arc_dot(d, d)))) {
+  if (sys_.has_loads() && d.size() && control_.fall_back_to_arc_length(cur_, std::sqrt(sys_.arc_dot(d, d)))) {
     cuts_ = 0;
     say(fmt::format("step {}: the controlled DOF turns back: arc length from here (ds {:.4g})", step_ + 1,
                     control_.h()));

@@ -33,8 +33,7 @@ ChordOutcome chord_correct(const PathSystem& sys, FactorCache& factors, const Co
   // The factor is of the step's own system (load control; imposed motion, whose tangent system holds
   // the controlled DOF), or of its leading block (the extra unknown is the load factor): bordered.
   const bool bordered = m == n - 1 && sys.extra_is_lambda(s);
-  // An imposed motion's arc-length step (the controlled DOF released) has no factor of its own.
-  if ((m != n && !bordered) || (s.kind == StepKind::Arc && !sys.has_loads())) {
+  if (m != n && !bordered) {
     out.why = "the start factor does not fit the step";
     return out;
   }
@@ -128,7 +127,7 @@ StepSolution Corrector::solve(const Converged& start, const StepSpec& s, Eigen::
     c.state = e.st;
     c.lambda = e.lambda;
     c.mu = uu.segment(sys_.nf(), sys_.nc());
-    c.extra_mu = (s.kind != StepKind::Load && !sys_.has_loads()) ? uu[sys_.nf() + sys_.nc()] : 0.0;
+    c.extra_mu = (s.kind == StepKind::Control && !sys_.has_loads()) ? uu[sys_.nf() + sys_.nc()] : 0.0;
     out.converged = true;
     return c;
   };

@@ -116,10 +116,9 @@ class PathSystem {
   double psi2() const { return psi2_; }
 
   int unknowns(const StepSpec& s) const { return nf_ + nc_ + (s.kind == StepKind::Load ? 0 : 1); }
-  // The extra unknown is the load factor (with loads), or the controlled DOF's reaction (imposed
-  // motion: under an arc-length step, the snap-back fall-back, the controlled DOF is released and
-  // loaded by it, and the arc length measures the motion alone).
-  bool extra_is_lambda(const StepSpec& s) const { return s.kind != StepKind::Load && has_loads_; }
+  bool extra_is_lambda(const StepSpec& s) const {
+    return s.kind == StepKind::Arc || (s.kind == StepKind::Control && has_loads_);
+  }
   // Arc-length weight of a free coordinate: 1 on translations, L^2 on rotations.
   double weight(int gen) const { return ns_.is_rotation(gen) ? L_ * L_ : 1.0; }
   // sum_k W_k a_k b_k over the free coordinates of a and b (the first nf entries).

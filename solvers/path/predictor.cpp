@@ -62,15 +62,12 @@ StepPrediction Predictor::arc_step(const Converged& c, double h, const Eigen::Ve
   Eigen::VectorXd& u = out.u;
   u = P.start_unknowns(c, s);
   Eigen::VectorXd d;  // [Delta_f, dlambda] direction
-  // Imposed motion (no loads): the tangent is the motion per unit value of the held controlled DOF,
-  // the load factor stays 0 and the reaction follows the tangent.
-  const bool imposed = !P.has_loads();
   if (direction) {
     d = *direction;
   } else if (t.size()) {
     d.resize(nf + 1);
     d.head(nf) = t.head(nf);
-    d[nf] = imposed ? 0.0 : 1.0;
+    d[nf] = 1.0;
     if (previous_.size() && P.arc_dot(d, previous_) < 0.0) d = -d;
   } else if (previous_.size()) {
     d = previous_;  // secant predictor where the tangent is singular
@@ -80,11 +77,6 @@ StepPrediction Predictor::arc_step(const Converged& c, double h, const Eigen::Ve
   }
   const double a = h / std::sqrt(std::max(P.arc_dot(d, d), kTinyPredictorRate));
   u.head(nf) += a * d.head(nf);
-  if (imposed) {
-    // The multipliers and the reaction along the tangent, oriented like the motion.
-    if (t.size() && !direction) u.segment(nf, nc + 1) += a * (d.head(nf).dot(t.head(nf)) < 0.0 ? -1.0 : 1.0) * t.segment(nf, nc + 1);
-    return out;
-  }
   u[nf + nc] += a * d[nf];
   if (t.size() && !direction) u.segment(nf, nc) += a * d[nf] * t.segment(nf, nc);
   return out;
