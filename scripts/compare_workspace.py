@@ -51,6 +51,7 @@ import itertools
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -218,6 +219,8 @@ def compare(spec, base, out, exe, log=lambda s: print(s, file=sys.stderr, flush=
                                        for n in ("C0", "CL", "along0", "alongL", "lambda")}} for k, q in vals.items()}})
         if (i + 1) % 10 == 0 or i + 1 == len(poses):
             log(f"  {i + 1}/{len(poses)} poses")
+    if run.tmp:
+        shutil.rmtree(run.tmp, ignore_errors=True)
     os.makedirs(out, exist_ok=True)
     columns = list(rows[0]) if rows else []
     with open(os.path.join(out, "workspace.csv"), "w", newline="") as f:
