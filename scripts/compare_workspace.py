@@ -286,7 +286,8 @@ def plot(spec, rows, path):
     else:
         xs = list(range(len(rows)))
         for ax, (c, title) in zip(axs, panels):
-            ax.plot(xs, [val(r, c) for r in rows], "o-")
+            ys = [np.nan if c.startswith("dCL") and beyond_critical(r, key, ref) else val(r, c) for r in rows]
+            ax.plot(xs, ys, "o-")
             ax.set_xticks(xs, [r["pose"] for r in rows], rotation=45, fontsize=7)
             ax.set_title(title, fontsize=9)
             ax.grid(alpha=0.3)
