@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The five-bar's generated lumped model against its beam model over the workspace: an error map.
 
-    /usr/bin/python3 examples/08_five_bar_lumped_vs_beam/workspace_map.py [--beamfea PATH] [--out DIR] [--quick]
+    /usr/bin/python3 examples/08_five_bar_lumped_vs_beam/workspace_map.py [--beamfea PATH] [--out DIR] [--quick] [--no-plots]
 
 1. `beamfea.lump` condenses each rod of models/beam.json (links.json) into a 6-D virtual spring:
    models/generated_lumped.json (the same as `beamfea lump models/beam.json --links links.json -o ...`).
@@ -56,6 +56,7 @@ def main():
     ap.add_argument("--beamfea", default=None, help="run this beamfea program (default: the Python module)")
     ap.add_argument("--out", default=os.path.join(HERE, "out", "workspace"))
     ap.add_argument("--quick", action="store_true", help="3 x 3 poses, nothing written beside the script")
+    ap.add_argument("--no-plots", action="store_true")
     args = ap.parse_args()
     bf = import_beamfea()
     folder = args.out if args.quick else HERE
@@ -70,6 +71,8 @@ def main():
     cmd = [sys.executable, os.path.join(ROOT, "scripts", "compare_models.py"), spec_file, "--out", args.out]
     if args.beamfea:
         cmd += ["--beamfea", args.beamfea]
+    if args.no_plots:
+        cmd += ["--no-plots"]
     if subprocess.run(cmd).returncode:
         sys.exit("compare_models.py failed")
     with open(os.path.join(args.out, "workspace.csv")) as f:
