@@ -25,6 +25,7 @@ json slider() {
                              {"orientation", {0, 0, 1}}});
   doc["joints"] = json::array({{{"id", "slide"}, {"type", "prismatic"}, {"nodes", {"B", "C"}}, {"axes", {{1, 0, 0}}},
                                 {"stiffness", {1e5}}, {"limits", {{-0.01, 0.02}}}}});
+  doc["analyses"] = json::array({{{"id", "lin"}, {"type", "linear_static"}}});
   return doc;
 }
 
@@ -48,7 +49,7 @@ TEST(PrescribedJointInput, WrongJointsCoordinatesAndValuesAreNamedByPointer) {
   EXPECT_EQ(at({{"joint", "slide"}, {"value", std::numeric_limits<double>::infinity()}}), "/prescribed/0/value");
   EXPECT_EQ(at({{"joint", "slide"}, {"value", 1e300}}), "/prescribed/0/value");
   EXPECT_EQ(at({{"joint", "slide"}, {"value", "0.01"}}), "/prescribed/0/value");
-  EXPECT_EQ(at({{"joint", "slide"}}), "/prescribed/0");  // no value
+  EXPECT_EQ(at({{"joint", "slide"}}), "/prescribed/0/value");  // missing: the key's pointer
   EXPECT_EQ(at({{"joint", "slide"}, {"cordinate", 0}, {"value", 0.0}}), "/prescribed/0/cordinate");
 }
 
