@@ -5,7 +5,8 @@
 # runs the target with its dictionary over its seed corpus (tests/fuzz/corpus or corpus_sweep, read
 # only) and the inputs it found before (fuzz-work/<target>/corpus, where new ones go), one process
 # at a time (-fork=1) at a low priority, going on after a crash, a hang or running out of memory.
-# Each finding is saved in fuzz-work/<target>/crashes/ (crash-*, timeout-*, oom-*); replay one with
+# Each finding is saved in fuzz-work/<target>/crashes/ (crash-*, timeout-*, oom-*, leak-*; slow-unit-*
+# for an input over 10 s, not counted as a finding); replay one with
 #   build-fuzz/tests/fuzz/fuzz_<target> fuzz-work/<target>/crashes/crash-<hash>
 # The run's log is fuzz-work/<target>/fuzz.log: its last "#<n> ... cov: ... ft: ..." lines give the
 # inputs run, the coverage and the features reached. Environment: BEAMFEA_FUZZ_BUILD (the build
@@ -45,6 +46,10 @@ ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}" LSAN_OPTIONS="suppressions=$root/
   -dict="$root/tests/fuzz/$dict" -artifact_prefix="$work/crashes/" "$@" \
   "$work/corpus" "$root/tests/fuzz/$seeds" > "$work/fuzz.log" 2>&1 || status=$?
 grep -E "^#[0-9]+" "$work/fuzz.log" | tail -n 1 >&2 || true
-found=$(find "$work/crashes" -type f | wc -l)
-echo "fuzz_$target: exit $status, $found finding(s) in $work/crashes" >&2
+# Findings: crashes (sanitizer reports and broken rules included), hangs, memory exhaustion, leaks.
+# A slow-unit-* file (an input over libFuzzer's 10 s mark: on a busy machine often only starved of
+# CPU) is listed apart: replay it to see whether it is slow alone.
+found=$(find "$work/crashes" -type f \( -name 'crash-*' -o -name 'timeout-*' -o -name 'oom-*' -o -name 'leak-*' \) | wc -l)
+slow=$(find "$work/crashes" -type f -name 'slow-unit-*' | wc -l)
+echo "fuzz_$target: exit $status, $found finding(s) and $slow slow input(s) in $work/crashes" >&2
 [ "$found" -eq 0 ]
