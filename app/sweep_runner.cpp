@@ -34,6 +34,13 @@ constexpr auto kCollectPeriod = std::chrono::milliseconds(50);
 // that comes before kCollectPeriod: the rows' buffer stays small and is reused (a buffer of 50 ms
 // of a small model's rows is megabytes, new pages each time it grows).
 constexpr std::size_t kInlineRowBytes = 64 * 1024;
+// A rank other than 0 sends at least this often (an empty batch when it has no rows): rank 0 tells a
+// live rank from a lost one by it (SweepOptions::rank_timeout_s).
+constexpr auto kHeartbeat = std::chrono::milliseconds(200);
+// Once the stop flag is set, a rank silent this long is lost (a live one sends every kHeartbeat).
+constexpr double kStoppedRankSilence_s = 0.5;
+// Case ids listed per lost rank in the one-line report (the count says how many more).
+constexpr std::size_t kLostCasesListed = 20;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -252,6 +259,7 @@ WorkerPool::Batch decode_batch(const std::string& text) {
 
 void SweepOptions::validate() const {
   if (out_dir.empty()) throw InputError("", "sweep: the output folder must not be empty");
+  if (!(rank_timeout_s > 0.0)) throw InputError("", "sweep: the rank timeout must be positive");
   if (jobs < 0) throw InputError("", "sweep: --jobs must be at least 1 (or 0 for all cores)");
   if (ranks_on_host < 1) throw InputError("", "sweep: the number of processes on this host must be at least 1");
 }
@@ -263,9 +271,23 @@ std::string SweepSummary::report() const {
                      interrupted ? " (interrupted: the table holds the finished cases)" : "", table.string());
 }
 
+std::string SweepSummary::lost_report() const {
+  std::string text;
+  for (const auto& l : lost) {
+    std::string ids;
+    for (std::size_t k = 0; k < l.cases.size() && k < kLostCasesListed; ++k) ids += (k ? ", " : "") + l.cases[k];
+    if (l.cases.size() > kLostCasesListed) ids += fmt::format(" and {} more", l.cases.size() - kLostCasesListed);
+    text += fmt::format("rank {} stopped answering (it died or its host did); ", l.rank) +
+            (l.cases.empty() ? std::string("every case it held is in the table\n")
+                             : fmt::format("{} case(s) it held are not in the table: {} (--resume runs them)\n",
+                                           l.cases.size(), ids));
+  }
+  return text;
+}
+
 int SweepSummary::exit_code() const {
   if (interrupted) return 130;
-  return analysis_failed + bad_input > 0 ? 1 : 0;
+  return analysis_failed + bad_input > 0 || !lost.empty() ? 1 : 0;
 }
 
 SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepComm* comm) {
@@ -303,12 +325,21 @@ SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepCom
   SweepTableCounts written = plan.probe_counts;
   WorkerPool pool(sweep, options, plan.columns, pending, workers, run_inline, workspace);
   const auto t_cases = std::chrono::steady_clock::now();
-  int ranks_finished = 0;
+  // Rank 0: per rank, whether its last batch came, and when it was last heard from.
+  std::vector<char> rank_ended(static_cast<std::size_t>(ranks), 0), rank_lost(static_cast<std::size_t>(ranks), 0);
+  rank_ended[0] = 1;
+  std::vector<std::chrono::steady_clock::time_point> heard(static_cast<std::size_t>(ranks), t_cases);
+  int ranks_finished = 0;  // ended or lost
+  auto last_sent = t_cases;
   WorkerPool::Batch mine;
   for (;;) {
     pool.take(kCollectPeriod, mine);
     if (!root) {
-      if (!mine.rows.empty() || mine.all_done) comm->send(encode_batch(mine), mine.all_done);
+      const auto now = std::chrono::steady_clock::now();
+      if (!mine.rows.empty() || mine.all_done || now - last_sent >= kHeartbeat) {
+        comm->send(encode_batch(mine), mine.all_done);
+        last_sent = now;
+      }
       if (mine.all_done) break;
       continue;
     }
@@ -323,10 +354,23 @@ SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepCom
     add(mine);
     std::string remote;
     bool last = false;
-    while (ranks > 1 && comm->receive(remote, last)) {
+    int from = 0;
+    while (ranks > 1 && comm->receive(remote, last, from)) {
+      if (from <= 0 || from >= ranks || rank_ended[from] || rank_lost[from]) continue;  // a lost rank's late rows
       add(decode_batch(remote));
-      if (last) ++ranks_finished;
+      heard[from] = std::chrono::steady_clock::now();
+      if (last) {
+        rank_ended[from] = 1;
+        ++ranks_finished;
+      }
     }
+    // Ranks silent too long are lost: the table is finished without them.
+    const double silence_limit = stop_requested(options) ? kStoppedRankSilence_s : options.rank_timeout_s;
+    for (int k = 1; k < ranks; ++k)
+      if (!rank_ended[k] && !rank_lost[k] && seconds_since(heard[k]) > silence_limit) {
+        rank_lost[k] = 1;
+        ++ranks_finished;
+      }
     progress.elapsed_s = seconds_since(t_cases);
     if (options.progress) options.progress(progress);
     if (mine.all_done && ranks_finished == ranks - 1) break;
@@ -350,6 +394,16 @@ SweepSummary run_sweep(const Sweep& sweep, const SweepOptions& options, SweepCom
     summary.analysis_failed = counts.analysis_failed;
     summary.bad_input = counts.bad_input;
     if (options.keep) write_case_series(sweep, options.out_dir);
+    if (std::find(rank_lost.begin(), rank_lost.end(), 1) != rank_lost.end()) {
+      const SweepResume in_table = resume_sweep_table(sweep, table);
+      for (int k = 1; k < ranks; ++k) {
+        if (!rank_lost[k]) continue;
+        SweepSummary::LostRank l{k, {}};
+        for (const std::size_t i : share(sweep.size(), plan, k, ranks))
+          if (!in_table.done[i]) l.cases.push_back(sweep.case_id(i));
+        summary.lost.push_back(std::move(l));
+      }
+    }
   }
   summary.wall_time_s = seconds_since(t_start);
   return summary;

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "io/sweep.hpp"
 
@@ -27,8 +28,11 @@ class SweepComm {
   virtual void broadcast(std::string& text) = 0;
   // Not rank 0: sends a batch of rows to rank 0; `last` marks this rank's final batch.
   virtual void send(const std::string& batch, bool last) = 0;
-  // Rank 0: receives one pending batch if there is one (does not block).
-  virtual bool receive(std::string& batch, bool& last) = 0;
+  // Rank 0: receives one pending batch if there is one (does not block); `from`: its rank.
+  virtual bool receive(std::string& batch, bool& last, int& from) = 0;
+  // Rank 0, after a run that lost ranks (SweepSummary::lost): ends the transport without waiting
+  // for them (MPI: the job is aborted rather than finalized).
+  virtual void abandon() {}
 };
 
 // Where the cases stand, for a progress display. Counts are of the cases to run now (all
@@ -54,6 +58,13 @@ struct SweepOptions {
   // table: every few tens of milliseconds at most, more often when a single worker's rows fill
   // their buffer first) and once with final = true at the end. May be empty.
   std::function<void(const SweepProgress&)> progress;
+  // Several ranks: every rank sends rank 0 a message at least every few hundred milliseconds while
+  // it runs (rows, or nothing but that it is alive). A rank silent this long is lost (it died, or
+  // its host did): rank 0 stops waiting for it, finishes the table with the other ranks' rows and
+  // names it and the cases it held that are not in the table (SweepSummary::lost). Once the stop
+  // flag is set, a rank silent for half a second is lost (OpenMPI's mpirun, when one rank dies,
+  // sends the others SIGTERM and a second later SIGKILL).
+  double rank_timeout_s = 30.0;
   void validate() const;
 };
 
@@ -64,10 +75,19 @@ struct SweepSummary {
   std::size_t ok = 0, analysis_failed = 0, bad_input = 0;  // over the whole table
   int processes = 1;         // ranks
   bool interrupted = false;  // the stop flag was set: the table holds the finished cases
+  // Ranks that stopped answering (rank 0's summary): each with the ids of its cases that are not
+  // in the table (--resume runs them).
+  struct LostRank {
+    int rank = 0;
+    std::vector<std::string> cases;
+  };
+  std::vector<LostRank> lost;
   double wall_time_s = 0.0;
   std::filesystem::path table;
   std::string report() const;  // one line
-  // 0 every case ok; 1 some case failed (see the table); 130 interrupted.
+  // What became of the lost ranks (empty when none): one line each.
+  std::string lost_report() const;
+  // 0 every case ok; 1 some case failed (see the table) or a rank was lost; 130 interrupted.
   int exit_code() const;
 };
 

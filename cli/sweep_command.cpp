@@ -144,8 +144,14 @@ class MpiComm : public SweepComm {
     MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    // A rank that dies is found by rank 0's heartbeat timeout (app/sweep_runner.hpp), not by an
+    // error that aborts the job from inside a receive.
+    MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
   }
-  ~MpiComm() override { MPI_Finalize(); }
+  ~MpiComm() override {
+    if (abandoned_) MPI_Abort(MPI_COMM_WORLD, 1);  // a lost rank would never join MPI_Finalize
+    MPI_Finalize();
+  }
   MpiComm(const MpiComm&) = delete;
   MpiComm& operator=(const MpiComm&) = delete;
 
@@ -163,22 +169,26 @@ class MpiComm : public SweepComm {
     MPI_Send(batch.data(), static_cast<int>(batch.size()), MPI_CHAR, 0, last ? kLast : kRows, MPI_COMM_WORLD);
   }
 
-  bool receive(std::string& batch, bool& last) override {
+  bool receive(std::string& batch, bool& last, int& from) override {
     int flag = 0;
     MPI_Status st;
-    MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
-    if (!flag) return false;
+    if (MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st) != MPI_SUCCESS || !flag) return false;
     int n = 0;
     MPI_Get_count(&st, MPI_CHAR, &n);
     batch.resize(n);
-    MPI_Recv(batch.data(), n, MPI_CHAR, st.MPI_SOURCE, st.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (MPI_Recv(batch.data(), n, MPI_CHAR, st.MPI_SOURCE, st.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE) != MPI_SUCCESS)
+      return false;
     last = st.MPI_TAG == kLast;
+    from = st.MPI_SOURCE;
     return true;
   }
+
+  void abandon() override { abandoned_ = true; }
 
  private:
   static constexpr int kRows = 1, kLast = 2;
   int rank_ = 0, size_ = 1;
+  bool abandoned_ = false;
 };
 #endif
 
@@ -229,6 +239,17 @@ int run_sweep_command(const SweepCommand& cmd) {
     const SweepSummary summary = run_sweep(sweep, opt, comm.get());
     if (!root) return summary.interrupted ? 130 : 0;
     if (!cmd.quiet) std::cerr << "beamfea sweep: " << summary.report() << "\n";
+    // Said even with --quiet: the run is not whole.
+    const std::string lost = summary.lost_report();
+    for (std::size_t at = 0; at < lost.size();) {
+      const std::size_t nl = lost.find('\n', at);
+      std::cerr << "beamfea: error: " << lost.substr(at, nl - at) << "\n";
+      at = nl + 1;
+    }
+    if (!summary.lost.empty()) {
+      std::cerr.flush();
+      comm->abandon();
+    }
     return summary.exit_code();
   } catch (const InputError& e) {
     if (root) std::cerr << "beamfea: error: " << cmd.sweep_path << ": " << e.what() << "\n";

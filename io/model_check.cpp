@@ -51,6 +51,26 @@ void check_model(const Model& m, const nlohmann::json&) {
                                                     " but the support at " + child("/supports", s).str() +
                                                     " fixes it at 0; give one of them");
   }
+  // A prescribed joint motion moves the coordinate from the pose (the reference geometry without one)
+  // by its value: where the joint has limits, the coordinate it reaches must lie within them.
+  for (std::size_t i = 0; i < m.prescribed.size(); ++i) {
+    const auto& p = m.prescribed[i];
+    if (p.dof.owner != DofRef::Owner::Joint) continue;
+    const Joint& j = m.joints[p.dof.index];
+    if (static_cast<std::size_t>(p.dof.comp) >= j.limits.size()) continue;
+    const auto& posed = m.pose.solved;
+    const bool from_pose = m.pose.given && static_cast<std::size_t>(p.dof.index) < posed.size() &&
+                           p.dof.comp < posed[p.dof.index].size();
+    const double start = from_pose ? posed[p.dof.index][p.dof.comp] : 0.0;
+    const double reached = start + p.value;
+    const auto [lo, hi] = j.limits[p.dof.comp];
+    if (reached < lo || reached > hi)
+      throw InputError(child(child("/prescribed", i), "value"),
+                       m.describe(p.dof) + ": prescribed " + json_in::json(p.value).dump() +
+                           (from_pose ? " from the pose's " + json_in::json(start).dump() : std::string()) +
+                           " reaches " + json_in::json(reached).dump() + ", outside the joint's limits [" +
+                           json_in::json(lo).dump() + ", " + json_in::json(hi).dump() + "]");
+  }
   // Supports and prescribed values on one rigid body must agree (DofMap finds the redundant ones).
   // Supports hold at 0: when every prescribed value is 0 as well, all agree whatever the rows, and
   // the map (a third of the check of a small model) is not built.

@@ -153,6 +153,15 @@ void read_prescribed(ReadState& s) {
     const json_in::Pointer p = child("/prescribed", i);
     const auto& o = object(arr[i], p, "prescribed value");
     expect_keys(o, p, {"node", "dof", "joint", "coordinate", "value"});
+    // A node DOF (node, dof) or a joint coordinate (joint, coordinate): never a mix of both.
+    if (o.contains("joint")) {
+      for (const char* key : {"node", "dof"})
+        if (o.contains(key))
+          throw InputError(child(p, key), std::string("prescribed value: '") + key +
+                                              "' beside 'joint': give a joint and its coordinate, or a node and its dof");
+    } else if (o.contains("coordinate")) {
+      throw InputError(child(p, "coordinate"), "prescribed value: 'coordinate' without 'joint': a node's DOF is given by 'dof'");
+    }
     Prescribed pr;
     pr.dof = read_dof_target(m, o, p, "prescribed value");
     pr.value = number(require(o, p, "value", "prescribed " + m.describe(pr.dof)), child(p, "value"), "prescribed value");

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -383,7 +384,9 @@ SweepTableAppender::SweepTableAppender(std::filesystem::path table) : path_(std:
 }
 
 SweepTableAppender::~SweepTableAppender() {
-  if (fd_ >= 0) ::close(fd_);
+  if (fd_ < 0) return;
+  ::fdatasync(fd_);  // best effort here: the table is rewritten (and synced) when the sweep ends
+  ::close(fd_);
 }
 
 void SweepTableAppender::append(const std::string& rows) {
@@ -399,6 +402,19 @@ void SweepTableAppender::append(const std::string& rows) {
     p += n;
     left -= static_cast<std::size_t>(n);
   }
+  // Each batch is in the kernel once write(2) returns: a killed process loses no row. A crash of the
+  // machine loses what the disk has not got yet: flushed at most kSyncPeriod apart (and at the end).
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_sync_ >= kSyncPeriod) {
+    sync();
+    last_sync_ = now;
+  }
+}
+
+void SweepTableAppender::sync() {
+  if (::fdatasync(fd_) != 0 && errno != EINVAL && errno != EROFS)  // EINVAL, EROFS: a file that cannot be synced
+    throw Error("error writing '" + path_.string() + "': " + std::strerror(errno) +
+                "; the rows written before are kept, and --resume runs the others");
 }
 
 SweepTableCounts finish_sweep_table(const Sweep& s, const std::filesystem::path& table) {

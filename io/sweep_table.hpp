@@ -5,6 +5,7 @@
 // builds the same columns from the same functions.
 //
 //   case, <parameters...>, <outputs, arrays flattened: name[i][j]...>, status, message, wall_time_s
+#include <chrono>
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -78,7 +79,10 @@ struct SweepResume {
 SweepResume resume_sweep_table(const Sweep& s, const std::filesystem::path& table);
 
 // Appends whole rows to an existing table, each batch in one write(2), so that the file is valid
-// CSV at every moment. Throws beamfea::Error when the file cannot be opened or written.
+// CSV at every moment. Throws beamfea::Error when the file cannot be opened or written (a full disk,
+// a file size limit: the rows written before stay, a torn last one is cut by --resume). A row is safe
+// from a kill of the process once append returns, and from a crash of the machine (power loss) once
+// synced: fdatasync at most kSyncPeriod apart and when the appender closes.
 class SweepTableAppender {
  public:
   explicit SweepTableAppender(std::filesystem::path table);
@@ -86,10 +90,13 @@ class SweepTableAppender {
   SweepTableAppender(const SweepTableAppender&) = delete;
   SweepTableAppender& operator=(const SweepTableAppender&) = delete;
   void append(const std::string& rows);
+  static constexpr std::chrono::seconds kSyncPeriod{1};
 
  private:
+  void sync();
   std::filesystem::path path_;
   int fd_ = -1;
+  std::chrono::steady_clock::time_point last_sync_ = std::chrono::steady_clock::now();
 };
 
 // Sorts the table by case order, one row per case (the last written wins), rewrites it

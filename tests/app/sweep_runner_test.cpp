@@ -282,3 +282,52 @@ TEST(SweepRunner, StopFlagEndsTheSweepWithASortedTableOfTheFinishedCases) {
 }
 
 }  // namespace sweep_runner_test
+
+namespace sweep_runner_test {
+
+// Two ranks whose rank 1 never answers (it died as the sweep started): rank 0's side of the
+// transport, nothing ever received.
+class SilentPeer : public beamfea::SweepComm {
+ public:
+  int rank() const override { return 0; }
+  int size() const override { return 2; }
+  void broadcast(std::string&) override {}
+  void send(const std::string&, bool) override {}
+  bool receive(std::string&, bool&, int&) override { return false; }
+};
+
+// A rank that stops answering is lost after the rank timeout: rank 0 finishes the table with its
+// own rows, names the rank and the cases it held (every other case of the grid: rank r runs the
+// cases r modulo 2 after the probe's case 0), exits 1, and --resume completes the table as an
+// uninterrupted run writes it.
+TEST(SweepRunner, ALostRankIsNamedWithItsCasesAndTheTableResumes) {
+  const auto dir = temp_dir("lost_rank");
+  std::vector<double> loads;
+  for (int i = 0; i < 10; ++i) loads.push_back(-10.0 * (i + 1));
+  const json sweep = {{"grid", {json{{"name", "P"}, {"pointer", "/loads/0/force/1"}, {"values", loads}}}},
+                      {"outputs", {"analyses.lin.nodes.B.displacement[1]"}}};
+  const Sweep s = beamfea::read_sweep_file(write_sweep(dir, sweep).string());
+  auto opt = quiet_options(dir / "out");
+  opt.rank_timeout_s = 0.2;
+  SilentPeer peer;
+  const SweepSummary summary = beamfea::run_sweep(s, opt, &peer);
+  ASSERT_EQ(summary.lost.size(), 1u);
+  EXPECT_EQ(summary.lost[0].rank, 1);
+  EXPECT_EQ(summary.lost[0].cases, (std::vector<std::string>{"1", "3", "5", "7", "9"}));
+  EXPECT_EQ(summary.exit_code(), 1);
+  EXPECT_NE(summary.lost_report().find("rank 1 "), std::string::npos) << summary.lost_report();
+  EXPECT_NE(summary.lost_report().find("1, 3, 5, 7, 9"), std::string::npos) << summary.lost_report();
+  bool well_formed = false;
+  EXPECT_EQ(read_csv(dir / "out" / "cases.csv", &well_formed).rows.size(), 5u);
+  EXPECT_TRUE(well_formed);
+
+  opt.resume = true;
+  const SweepSummary resumed = beamfea::run_sweep(s, opt);
+  EXPECT_EQ(resumed.skipped, 5u);
+  EXPECT_EQ(resumed.ok, 10u);
+  EXPECT_TRUE(resumed.lost.empty());
+  beamfea::run_sweep(s, quiet_options(dir / "whole"));
+  EXPECT_EQ(read_csv(dir / "out" / "cases.csv").without_time(), read_csv(dir / "whole" / "cases.csv").without_time());
+}
+
+}  // namespace sweep_runner_test

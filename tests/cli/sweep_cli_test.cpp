@@ -303,4 +303,44 @@ TEST(SweepCommand, UnderMpirunRanksShareTheCasesAndWriteTheSerialTable) {
   }
 }
 
+// A rank killed with SIGKILL while the cases run: mpirun ends the job (it sends the other ranks
+// SIGTERM, then SIGKILL a second later), and rank 0, which has not heard from the dead rank since,
+// finishes the table in that second and names the rank and the cases it held that are not in the
+// table. The table is whole rows, and --resume completes it as an uninterrupted run writes it.
+// Rank 1 is killed from outside the program, by the shell that starts it, once the table is under way.
+TEST(SweepCommand, UnderMpirunADeadRankIsNamedWithItsCasesAndTheTableResumes) {
+  ASSERT_EQ(sh("command -v mpirun > /dev/null"), 0) << "mpirun not found";
+  const auto dir = temp_dir("cli_mpi_dead");
+  const auto file = write_sweep(dir, load_length_grid(kLongLoads, kLongLengths));
+  const auto out = dir / "out";
+  const auto err = dir / "err.txt";
+  const auto table = out / "cases.csv";
+  write(dir / "rank.sh", "#!/bin/sh\n"
+                         "if [ \"$OMPI_COMM_WORLD_RANK\" = 1 ]; then\n"
+                         "  (while [ \"$(cat " + table.string() + " 2>/dev/null | wc -l)\" -lt " +
+                             std::to_string(kUnderWay) + " ]; do sleep 0.02; done; kill -9 $$) &\n"
+                         "fi\n"
+                         "exec " + exe() + " \"$@\"\n");
+  ASSERT_EQ(sh("chmod +x " + (dir / "rank.sh").string()), 0);
+  const int rc = sh(std::string(kRankEnv) + "timeout 120 mpirun --allow-run-as-root --oversubscribe -n 2 " +
+                    (dir / "rank.sh").string() + " sweep " + file.string() + " --out " + out.string() +
+                    " --jobs 1 -q > " + err.string() + " 2>&1");
+  EXPECT_NE(rc, 0);
+  EXPECT_NE(rc, 124) << "the run hung after its rank died:\n" << read(err);
+  const std::string log = read(err);
+  EXPECT_NE(log.find("rank 1 stopped answering"), std::string::npos) << log;
+  EXPECT_NE(log.find("not in the table"), std::string::npos) << log;
+  bool well_formed = false;
+  const Csv partial = read_csv(table, &well_formed);
+  EXPECT_TRUE(well_formed);
+  EXPECT_LT(partial.rows.size(), kLongCases);
+
+  ASSERT_EQ(sh(exe() + " sweep " + file.string() + " --out " + out.string() + " --resume -q"), 0);
+  const Csv full = read_csv(table, &well_formed);
+  ASSERT_EQ(full.rows.size(), kLongCases);
+  expect_sorted_valid(full, well_formed);
+  ASSERT_EQ(sh(exe() + " sweep " + file.string() + " --out " + (dir / "whole").string() + " -q"), 0);
+  EXPECT_TRUE(text_without_time(table) == text_without_time(dir / "whole" / "cases.csv"));
+}
+
 }  // namespace sweep_cli_test
