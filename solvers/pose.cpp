@@ -340,8 +340,8 @@ class PoseProblem {
   // Newton at lambda from q (the predictor), in place. False: not converged. The Jacobian's
   // decomposition is kept from iterate to iterate and from step to step (a chord iteration,
   // Kelley 2003, "Solving Nonlinear Equations with Newton's Method", sec. 1.8 and 2.3) while
-  // each residual is at most kChordContraction times the one before; otherwise it is made anew at
-  // the current iterate. Steps short of the pose converge to kStepTolerance and their rank is
+  // each residual is at most kChordContraction times the one before (at a rate that reaches the
+  // goal within the iterations allowed); otherwise it is made anew at the current iterate. Steps short of the pose converge to kStepTolerance and their rank is
   // checked on the decomposition in hand (a nearby point's). At the pose (lambda = 1) the Jacobian
   // is made at the converged iterate, its rank checked, and one Newton step taken with it: the
   // solution is then accurate to rounding (quadratic convergence), not just to the tolerance.
@@ -361,14 +361,20 @@ class PoseProblem {
       if (!std::isfinite(norm)) return false;
       if (first < 0.0) first = norm;
       const bool last_step = lambda == 1.0;
-      if (norm <= (last_step ? o_.tolerance : std::max(o_.tolerance, kStepTolerance))) {
+      const double goal = last_step ? o_.tolerance : std::max(o_.tolerance, kStepTolerance);
+      if (norm <= goal) {
         if (!decomposed_ || last_step) decompose(q, s);
         if (cod_.rank() < n) singular(J_);
         if (last_step) update(q, s);
         return true;
       }
       if (it == o_.max_newton_iterations || norm > kDivergence * std::max(first, o_.tolerance)) return false;
-      if (!decomposed_ || norm > kChordContraction * last) decompose(q, s);
+      // A chord step that shrank the residual too little, or at a rate that would not reach the
+      // goal within the iterations left, gives way to a Jacobian at the iterate.
+      const double rate = norm / last;
+      if (!decomposed_ || rate > kChordContraction ||
+          (rate > 0.0 && std::log(goal / norm) / std::log(rate) > o_.max_newton_iterations - it))
+        decompose(q, s);
       update(q, s);
       last = norm;
     }
