@@ -110,7 +110,8 @@ void read_structural_terms(const json& spec, const json_in::Pointer& p, const st
   }
 }
 
-// "poses" (optional; one "reference" pose without): node positions, each a valid geometry.
+// "poses" (optional; without, one pose "reference", or "pose" for a posed model): node positions,
+// each a valid geometry.
 void read_poses(const Model& model, const json& spec, const json_in::Pointer& p, const std::string& what, Spec& s) {
   if (spec.contains("poses")) {
     const json_in::Pointer pp = child(p, "poses");
@@ -154,7 +155,8 @@ void read_poses(const Model& model, const json& spec, const json_in::Pointer& p,
       s.poses.push_back(std::move(pose));
     }
   } else {
-    s.poses.push_back({"reference", {}});
+    // The model as given: its reference geometry, or the geometry of its top-level "pose".
+    s.poses.push_back({model.pose.given ? "pose" : "reference", {}});
   }
 }
 

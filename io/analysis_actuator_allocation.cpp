@@ -135,7 +135,7 @@ ojson links_json(const Model& model, const AllocationOptions& o, const Structura
   return links;
 }
 
-ojson structural_json(const StructuralStiffness& S) {
+ojson structural_json(const StructuralStiffness& S, const std::vector<int>& directions) {
   ojson ks;
   ks["message"] = S.message;
   if (!S.modes.empty()) {
@@ -150,7 +150,14 @@ ojson structural_json(const StructuralStiffness& S) {
     for (int t = 0; t < kStructuralTermCount; ++t) vf[to_string(static_cast<StructuralTerm>(t))] = matrix_to_json(S.C_terms[t]);
     ks["C_virtual_force"] = vf;
     ks["C"] = matrix_to_json(S.C);
-    ks["K"] = matrix_to_json(stiffness_of_compliance(S.C));
+    if (S.held.empty()) {
+      ks["K"] = matrix_to_json(stiffness_of_compliance(S.C));
+    } else {
+      // C_S is zero in the held directions: K_S is unbounded there, no matrix.
+      ojson held = ojson::array();
+      for (int d : S.held) held.push_back(kDofNames[directions[d]]);
+      ks["held_directions"] = held;
+    }
     ks["virtual_force_vs_fea"] = S.fea_mismatch;
   }
   return ks;
@@ -183,7 +190,7 @@ ojson scheme_at_pose(const AnalysisContext& ctx, const Spec& s, const Model& m, 
   const auto& A = r.actuated_stiffness;
   po["actuated"] = actuated_json(A);
   const auto& S = r.structural;
-  po["structural"] = structural_json(S);
+  po["structural"] = structural_json(S, o.directions);
   if (S.ok) {
     worst_mismatch = std::max(worst_mismatch, S.fea_mismatch);
     po["structural"]["links"] = links_json(model, o, S, name, pose, csv.links);

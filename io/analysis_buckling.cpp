@@ -1,11 +1,13 @@
 // Analysis "buckling": linearised buckling load factors and modes (solvers/buckling.hpp).
 //   {"id": "b", "type": "buckling", "modes": 4, "load_case": ..., "geometric_stiffness": "full" | "axial"}
-// Result analyses.<id>: type, load_case, geometric_stiffness, status, message, free_dofs, load_factors (ascending),
+// Result analyses.<id>: type, load_case, geometric_stiffness, status, message, free_dofs, solver
+// (io/eigen_solver_report.hpp), load_factors (ascending),
 // modes[] {mode, load_factor, nodes.<id>.displacement (6, normalised: largest translation 1)},
 // vtk (the .pvd) and files DIR/<id>_mode<k>.vtu, DIR/<id>.pvd (time = mode number).
 
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
+#include "io/eigen_solver_report.hpp"
 #include "io/mode_shapes_vtk.hpp"
 #include "io/json_util.hpp"
 #include "io/load_reader.hpp"
@@ -39,18 +41,20 @@ AnalysisOutcome run_buckling(const AnalysisContext& ctx, const BucklingSpec& spe
   // The reference load: the analysis's load case, or the default loads.
   const BucklingResult r = solve_buckling(model, model.loads_for(spec.load_case), spec.options);
   AnalysisOutcome out;
-  // Room for every key (type, load_case, geometric_stiffness, status, message, free_dofs, load_factors, modes, vtk,
-  // vtk_scale, wall_time_s): an ordered_json object that grows deep copies what it holds.
-  out.result = object_with_capacity(11);
+  // Room for every key (type, load_case, geometric_stiffness, status, message, free_dofs, solver, load_factors, modes,
+  // vtk, vtk_scale, wall_time_s): an ordered_json object that grows deep copies what it holds.
+  out.result = object_with_capacity(12);
   out.result["type"] = "buckling";
   if (!spec.load_case.empty()) out.result["load_case"] = spec.load_case;
   out.result["geometric_stiffness"] = spec.options.geometric_stiffness == GeometricStiffness::Full ? "full" : "axial";
   out.result["status"] = result_status(r.status);
   out.result["message"] = r.message;
   out.result["free_dofs"] = r.free_dofs;
+  out.result["solver"] = eigen_solver_json(r.solver);
   out.message = r.message;
   if (r.status != BucklingStatus::Succeeded) {
     if (r.status == BucklingStatus::Mechanism) out.termination = AnalysisTermination::Mechanism;
+    else if (r.status == BucklingStatus::NotConverged) out.termination = AnalysisTermination::NotConverged;
     else if (r.status != BucklingStatus::NoCompression) out.termination = AnalysisTermination::Failed;
     out.result["load_factors"] = ojson::array();
     return out;

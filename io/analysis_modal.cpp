@@ -1,13 +1,14 @@
 // Analysis "modal": natural frequencies and mode shapes (solvers/modal.hpp).
 //   {"id": "m", "type": "modal", "modes": 10, "mass": "consistent" | "lumped", "load_case": ...,
 //    "about": "linear_static" | "second_order", "geometric_stiffness": "full" | "axial"}
-// Result analyses.<id>: type, status, message, free_dofs, mass, load_case, about, geometric_stiffness, frequencies (Hz,
+// Result analyses.<id>: type, status, message, free_dofs, solver (io/eigen_solver_report.hpp), mass, load_case, about, geometric_stiffness, frequencies (Hz,
 // ascending), eigenvalues (omega^2), kinds, total_mass {ux..rz}, effective_mass {ux..rz: one per
 // mode}, effective_mass_sum {ux..rz}, modes[] {mode, frequency, kind, participation[6],
 // effective_mass[6], nodes.<id>.displacement (6, mass-normalised)}, vtk, vtk_scale; files
 // DIR/<id>_mode<k>.vtu and DIR/<id>.pvd (time = mode number).
 #include "core/errors.hpp"
 #include "io/analysis.hpp"
+#include "io/eigen_solver_report.hpp"
 #include "io/json_util.hpp"
 #include "io/load_reader.hpp"
 #include "io/mode_shapes_vtk.hpp"
@@ -58,9 +59,9 @@ AnalysisOutcome run_modal(const AnalysisContext& ctx, const ModalSpec& spec) {
   const ModalOptions& opt = spec.options;
   const ModalResult r = solve_modal(model, model.loads_for(spec.load_case), opt);
   AnalysisOutcome out;
-  // Room for every key (18 with run_document's wall_time_s): an ordered_json object that grows
+  // Room for every key (19 with run_document's wall_time_s): an ordered_json object that grows
   // deep copies what it holds.
-  out.result = object_with_capacity(18);
+  out.result = object_with_capacity(19);
   out.result["type"] = "modal";
   out.result["status"] = result_status(r.status);
   out.result["message"] = r.message;
@@ -71,6 +72,7 @@ AnalysisOutcome run_modal(const AnalysisContext& ctx, const ModalSpec& spec) {
     out.result["about"] = opt.about_state.about == Equilibrium::SecondOrder ? "second_order" : "linear_static";
     out.result["geometric_stiffness"] = opt.about_state.geometric_stiffness == GeometricStiffness::Full ? "full" : "axial";
   }
+  out.result["solver"] = eigen_solver_json(r.solver);
   out.message = r.message;
   if (r.status != ModalStatus::Succeeded) {
     out.termination = r.status == ModalStatus::MasslessMechanism ? AnalysisTermination::Mechanism

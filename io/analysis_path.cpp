@@ -18,7 +18,7 @@
 //          eigen-solver failed), step_control (displacement control: "displacement", or "arc_length" through
 //          a snap-back of the controlled DOF)}, critical_points[] {type, load_factor, step, control,
 //          negative_before, negative_after, load_work, reaction (imposed motion), branch_switched,
-//          mode.nodes.<id>.displacement},
+//          mode.nodes.<id>.displacement; a singularity also joints, nodes (ids) and passed},
 // files: csv, vtk. Files: DIR/<id>.csv (one row per step), DIR/<id>.pvd and DIR/<id>_step<k>.vtu.
 #include <fmt/format.h>
 
@@ -298,7 +298,7 @@ ojson step_json(const Model& model, const PathOptions& o, const PathStep& s, boo
 ojson critical_points_json(const Model& model, const PathResult& r, bool imposed) {
   ojson cps = ojson::array();
   for (const auto& c : r.critical_points) {
-    ojson j = object_with_capacity(11);  // a critical point's keys
+    ojson j = object_with_capacity(14);  // a critical point's keys
     j["type"] = to_string(c.type);
     j["load_factor"] = c.load_factor;
     j["step"] = c.step;
@@ -309,6 +309,14 @@ ojson critical_points_json(const Model& model, const PathResult& r, bool imposed
     if (imposed) j["reaction"] = c.reaction;
     j["branch_switched"] = c.branch_switched;
     j["mode"] = c.mode.size() ? ojson{{"nodes", node_map(model, c.mode)}} : ojson(nullptr);
+    if (c.type == CriticalPointType::Singularity) {  // the loop's joints and nodes, by id
+      ojson joints = ojson::array(), nodes = ojson::array();
+      for (int k : c.joints) joints.push_back(model.joints[k].id);
+      for (int n : c.nodes) nodes.push_back(model.nodes[n].id);
+      j["joints"] = std::move(joints);
+      j["nodes"] = std::move(nodes);
+      j["passed"] = c.passed;
+    }
     cps.push_back(std::move(j));
   }
   return cps;
@@ -373,6 +381,10 @@ AnalysisOutcome run_path(const AnalysisContext& ctx, const PathSpec& spec) {
     ctx.warning(fmt::format("analysis '{}': the path used up max_steps ({}) before its target or a stop, at load "
                             "factor {:.6g} (raise max_steps, or take longer steps)",
                             ctx.id, o.max_steps, r.steps.empty() ? 0.0 : r.steps.back().load_factor));
+  for (const auto& c : r.critical_points)
+    if (ctx.warning && c.type == CriticalPointType::Singularity && c.passed)
+      ctx.warning(fmt::format("analysis '{}': the path passed a singular pose at load factor {:.6g} (control {:.6g}): {}",
+                              ctx.id, c.load_factor, c.control, c.what));
   const bool imposed = o.control == PathControl::Displacement && r.steps.size() &&
                        std::any_of(r.steps.begin(), r.steps.end(), [](const PathStep& s) { return s.reaction != 0.0; });
 

@@ -152,13 +152,17 @@ void read_model_into(const json& doc, Model& m, Model* spare, std::string& what)
   // Top-level keys of a model file (docs/input-format.md). Add a new collection here.
   expect_keys(doc, "", {"nodes", "materials", "sections", "elements", "joints", "supports", "loads", "prescribed",
                         "analyses", "units", "title", "name", "description", "gravity", "masses", "load_cases",
-                        "combinations", "ties", "constraints", "pose", "damping", "solver"});
+                        "combinations", "ties", "constraints", "pose", "damping", "solver", "generate"});
   reader::ReadState s{doc, m, spare, 1.0, what};
   reader::read_nodes(s);
   s.length_scale = m.length_scale();  // meshing adds nodes on members only: the box stays the same
   reader::read_materials(s);
   reader::read_sections(s);
   reader::read_members(s);
+  if (doc.contains("generate")) {
+    reader::read_generate(s);
+    s.length_scale = m.length_scale();  // the generated nodes widen the box
+  }
   reader::read_joints(s);
   reader::read_supports(s);
   reader::read_loads(s);

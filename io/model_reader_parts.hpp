@@ -10,6 +10,7 @@
 //                           linear constraints
 //   io/read_damping.cpp     the top-level damping of the dynamic analyses
 //   io/read_solver.cpp      the top-level linear solver choice
+//   io/read_generate.cpp    generated geometry (a lattice frame's nodes and members)
 // Internal to io/: not installed as an API.
 #include <nlohmann/json.hpp>
 #include <string>
@@ -66,5 +67,7 @@ void read_pose(ReadState& s);
 void read_constraints(ReadState& s);
 void read_damping(ReadState& s);
 void read_solver(ReadState& s);
+// "generate": nodes and members of generated geometry (io/read_generate.cpp), after the elements.
+void read_generate(ReadState& s);
 
 }  // namespace beamfea::reader

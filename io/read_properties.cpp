@@ -14,7 +14,8 @@ using namespace json_in;
 
 void read_nodes(ReadState& s) {
   Model& m = s.model;
-  const auto& arr = collection(s.doc, "nodes", true);
+  // Optional where the geometry is generated (io/read_generate.cpp).
+  const auto& arr = collection(s.doc, "nodes", !s.doc.contains("generate"));
   m.nodes.reserve(arr.size());
   m.node_index.reserve(arr.size());
   for (std::size_t i = 0; i < arr.size(); ++i) {

@@ -20,6 +20,7 @@ const char* result_status(BucklingStatus s) {
     case BucklingStatus::Succeeded: return kOk;
     case BucklingStatus::NoCompression: return "no buckling";
     case BucklingStatus::Mechanism: return "mechanism";
+    case BucklingStatus::NotConverged: return "not converged";
     case BucklingStatus::Failed: return "failed";
   }
   return "failed";

@@ -15,7 +15,7 @@ namespace beamfea {
 inline constexpr const char* kFailedStatus = "failed";
 // linear_static: "ok", "mechanism", "failed".
 const char* result_status(SolveStatus s);
-// buckling: "ok", "no buckling", "mechanism", "failed".
+// buckling: "ok", "no buckling", "mechanism", "not converged", "failed".
 const char* result_status(BucklingStatus s);
 // modal: "ok", "no mass", "massless mechanism", "preload failed", "failed".
 const char* result_status(ModalStatus s);

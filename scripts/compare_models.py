@@ -53,6 +53,10 @@ Quantities (tangents k = dP/d(deflection) of the displacement-controlled curve, 
                   factor "loaded_at" (default 1.0) before the first critical point (interpolated
                   linearly between the two steps around it)
 
+A spec with a "workspace" key instead of "pairs" compares the models pose by pose over a list or a
+grid of poses (compliance differences, unloaded and loaded, and critical loads): see
+scripts/compare_workspace.py, which this driver hands such a spec to.
+
 Files are relative to the spec. Run:
   /usr/bin/python3 scripts/compare_models.py SPEC --out OUT [--only ID ...]
 runs the models in process with the Python module (beamfea.run, docs/python.md: an installed
@@ -424,6 +428,10 @@ def main():
     global REUSE
     REUSE = args.reuse
     spec = load(args.spec)
+    if "workspace" in spec:  # pose by pose over a workspace: scripts/compare_workspace.py
+        import compare_workspace
+        return compare_workspace.main([args.spec, "--out", args.out] + (["--beamfea", args.beamfea] if args.beamfea else [])
+                                      + (["--no-plots"] if args.no_plots else []))
     base = os.path.dirname(os.path.abspath(args.spec))
     exe = os.path.abspath(args.beamfea) if args.beamfea else None
     os.makedirs(args.out, exist_ok=True)

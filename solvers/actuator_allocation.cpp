@@ -382,7 +382,8 @@ StructuralStiffness structural_stiffness(const Model& model, const AllocationOpt
   assembler.end();
   const SparseMatrix& K = assembler.K_ff();
   const std::unique_ptr<LinearSolver> factor = make_linear_solver();
-  const FactorStatus fs = factor->compute(K);
+  const bool has_free = map.free_size() > 0;  // none: every DOF rigidly held (rigid links, frozen actuators)
+  const FactorStatus fs = has_free ? factor->compute(K) : FactorStatus::Succeeded;
   if (fs != FactorStatus::Succeeded) {
     out.modes = zero_energy_modes(m, map, K, 12);
     if (!out.modes.empty()) {
@@ -394,12 +395,16 @@ StructuralStiffness structural_stiffness(const Model& model, const AllocationOpt
       return out;
     }
   }
-  for (int d : o.directions) {
+  // A direction no free DOF moves is held rigidly (through rigid links and frozen actuators): the
+  // unit load there meets no elastic DOF, its displacements and end forces are zero, C_S = 0.
+  std::string held;
+  for (int i = 0; i < nd; ++i) {
     bool any = false;
-    for (SparseRowMatrix::InnerIterator it(map.T_free(), map.raw_node(P, d)); it; ++it) any = any || it.value() != 0.0;
+    for (SparseRowMatrix::InnerIterator it(map.T_free(), map.raw_node(P, o.directions[i])); it; ++it)
+      any = any || it.value() != 0.0;
     if (!any) {
-      out.message = "node '" + m.nodes[P].id + "' dof " + kDofNames[d] + " is held rigidly in the frozen structure";
-      return out;
+      out.held.push_back(i);
+      held += std::string(held.empty() ? "" : " ") + kDofNames[o.directions[i]];
     }
   }
   // Unit loads (eq. 11): one solve per direction; displacements and element end forces.
@@ -410,7 +415,9 @@ StructuralStiffness structural_stiffness(const Model& model, const AllocationOpt
   for (int i = 0; i < nd; ++i) {
     Eigen::VectorXd f_raw = Eigen::VectorXd::Zero(map.raw_size());
     f_raw[map.raw_node(P, o.directions[i])] = 1.0;
-    const Eigen::VectorXd u = map.expand(factor->solve(map.reduce(f_raw)), up);
+    const Eigen::VectorXd uf =
+        has_free ? Eigen::VectorXd(factor->solve(map.reduce(f_raw))) : Eigen::VectorXd::Zero(0);
+    const Eigen::VectorXd u = map.expand(uf, up);
     for (int j = 0; j < nd; ++j) out.C_fea(j, i) = u[map.raw_node(P, o.directions[j])];
     for (int e = 0; e < ne; ++e) f[i][e] = structure.end_forces(map, e, u);
   }
@@ -420,10 +427,15 @@ StructuralStiffness structural_stiffness(const Model& model, const AllocationOpt
   for (auto t : o.terms) out.C += out.C_terms[static_cast<int>(t)];
   const Eigen::MatrixXd C_eb = out.C_terms[0] + out.C_terms[2] + out.C_terms[3];
   out.fea_mismatch = (C_eb - out.C_fea).cwiseAbs().maxCoeff() / std::max(out.C_fea.cwiseAbs().maxCoeff(), 1e-300);
-  const DirectionalStiffness ds = condense_to_directions(m, map, K, P, o.directions);
-  if (ds.ok) out.K_fea = ds.K;
+  if (out.held.empty()) {
+    const DirectionalStiffness ds = condense_to_directions(m, map, K, P, o.directions);
+    if (ds.ok) out.K_fea = ds.K;
+  }
   out.ok = true;
   out.message = fmt::format("frozen structure stable; virtual force vs FEA: {:.2e}", out.fea_mismatch);
+  if (!held.empty())
+    out.message += "; node '" + m.nodes[P].id + "' is held rigidly in " + held +
+                   " by the frozen structure (rigid links): C_S = 0 there, the total stiffness is the actuated one";
   return out;
 }
 
@@ -454,8 +466,9 @@ SchemeResult evaluate_scheme(const Model& model, const AllocationOptions& o, con
   auto& T = r.total;
   T.eq19.resize(nd);
   for (int d = 0; d < nd; ++d) {
-    const double ka = KA(d, d), ks = 1.0 / CS(d, d);
-    T.eq19[d] = ka * ks / (ka + ks);
+    // Compliances in series: 1/K_d = 1/K_A,dd + C_S,dd (K_A,dd alone where C_S,dd = 0).
+    const double ka = KA(d, d);
+    T.eq19[d] = ka / (1.0 + ka * CS(d, d));
   }
   Eigen::FullPivLU<Eigen::MatrixXd> lu(KA);
   if (lu.isInvertible()) {

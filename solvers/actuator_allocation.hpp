@@ -26,7 +26,10 @@
 //       structure (unit-load solves) and its condensed stiffness. (a) with the axial, bending and
 //       torsion terms equals (b) to rounding (beams are Euler-Bernoulli: the shear term of (a) has
 //       no FEA counterpart and is reported on its own). Eq. 14 is (a) with the bending term only.
+//       Directions the frozen structure holds rigidly (a lumped model of rigid links) have C_S = 0:
+//       an infinitely stiff structure there, not a mechanism.
 //   total stiffness (eq. 19)  per direction d, as the paper: K_d = K_A,dd K_S,d / (K_A,dd + K_S,d)
+//       (K_A,dd where C_S,dd = 0)
 //       with K_A,dd the diagonal of K_A and K_S,d = 1 / C_S,dd; and consistently, compliances in
 //       series C = K_A^-1 + C_S (matrix), equal to the condensed stiffness of the model with the
 //       actuator springs and the flexible links (computed as a check).
@@ -122,6 +125,10 @@ struct StructuralStiffness {
   Eigen::MatrixXd C;                                   // virtual force, options.terms summed
   double fea_mismatch = 0.0;  // |C_vf(axial+torsion+bending) - C_fea| / |C_fea| (max norms)
   std::vector<LinkIntegrals> links;
+  // Directions (indices into options.directions) that the frozen structure holds rigidly: no
+  // elastic DOF moves the platform there (rigid links, as in a lumped model), so C_S has zero rows
+  // and columns there (an infinitely stiff structure) and the total stiffness is the actuated one.
+  std::vector<int> held;
 };
 
 struct TotalStiffness {

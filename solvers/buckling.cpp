@@ -14,6 +14,7 @@
 #include "core/errors.hpp"
 #include "solvers/initial_stress.hpp"
 #include "solvers/linear_static.hpp"
+#include "solvers/mass_matrix.hpp"
 #include "solvers/structure.hpp"
 
 namespace beamfea {
@@ -27,6 +28,7 @@ const char* to_string(BucklingStatus s) {
     case BucklingStatus::Succeeded: return "ok";
     case BucklingStatus::NoCompression: return "no buckling";
     case BucklingStatus::Mechanism: return "mechanism";
+    case BucklingStatus::NotConverged: return "not converged";
     case BucklingStatus::Failed: return "failed";
   }
   return "?";
@@ -145,7 +147,18 @@ BucklingResult solve_buckling(const Model& model, const LoadSet& loads, const Bu
   // Solve K phi = lambda (-Kg) phi.
   const SparseMatrix KG = -Kg;
   LoadFactorPairs pairs;
-  if (n <= 300) {
+  if (eigen_solver_iterative(model.solver, n)) {
+    // SLEPc: Krylov-Schur on (-Kg) phi = mu K phi, the largest mu = 1/lambda (solvers/slepc_eigen.hpp).
+    const Eigen::MatrixXd rigid = free_rigid_body_motions(model, map);
+    const SlepcEigenPairs sp = slepc_buckling_pairs(K, KG, slepc_options(model.solver, want), &rigid);
+    res.solver = EigenSolverReport{true, sp.iterations, sp.linear_iterations, 0.0};
+    if (!sp.converged) {
+      res.status = BucklingStatus::NotConverged;
+      res.message = sp.message;
+      return res;
+    }
+    for (Eigen::Index i = 0; i < sp.values.size(); ++i) pairs.emplace_back(sp.values[i], sp.vectors.col(i));
+  } else if (n <= 300) {
     if (!dense_buckling_pairs(K, KG, pairs)) {
       res.status = BucklingStatus::Failed;
       res.message = "buckling: the dense eigen-solver failed (is K positive definite?)";
@@ -162,11 +175,14 @@ BucklingResult solve_buckling(const Model& model, const LoadSet& loads, const Bu
     return res;
   }
   res.load_factors.resize(static_cast<Eigen::Index>(pairs.size()));
+  Eigen::MatrixXd X(n, static_cast<Eigen::Index>(pairs.size()));
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     res.load_factors[static_cast<Eigen::Index>(i)] = pairs[i].first;
+    X.col(static_cast<Eigen::Index>(i)) = pairs[i].second;
     const Eigen::VectorXd raw = map.T_free() * pairs[i].second;
     res.modes.push_back(normalise_mode(model, raw));
   }
+  res.solver.residual = relative_eigen_residual(K, KG, res.load_factors, X);
   res.status = BucklingStatus::Succeeded;
   res.message = fmt::format("buckling: {} free DOFs, lowest load factor {:.6g}", n, res.load_factors[0]);
   return res;

@@ -17,7 +17,9 @@
 // K_g is symmetrised (it is symmetric at equilibrium under forces; applied moments add a small
 // skew part that is dropped for the eigen-problem).
 //
-// Eigen-solver: Spectra's SymGEigsShiftSolver in buckling mode (K positive definite, K_G = -K_g
+// Eigen-solver: SLEPc's Krylov-Schur on (-K_g) phi = mu K phi (solvers/slepc_eigen.hpp) when the
+// model's "solver" asks for the iterative solver (or auto, at or above kIterativeEigenDofs free
+// DOFs); otherwise Spectra's SymGEigsShiftSolver in buckling mode (K positive definite, K_G = -K_g
 // indefinite) with a positive shift below the first load factor estimated from the Rayleigh
 // quotient of the linear solution; small systems are solved densely. Only positive load factors
 // are reported, ascending.
@@ -32,6 +34,7 @@
 #include "core/dof_map.hpp"
 #include "core/model.hpp"
 #include "elements/frame_element.hpp"
+#include "solvers/slepc_eigen.hpp"
 
 namespace beamfea {
 
@@ -42,7 +45,7 @@ struct BucklingOptions {
   void validate() const;
 };
 
-enum class BucklingStatus { Succeeded, NoCompression, Mechanism, Failed };
+enum class BucklingStatus { Succeeded, NoCompression, Mechanism, NotConverged, Failed };
 const char* to_string(BucklingStatus s);
 
 struct BucklingResult {
@@ -52,6 +55,9 @@ struct BucklingResult {
   Eigen::VectorXd load_factors;          // ascending, positive
   std::vector<Eigen::VectorXd> modes;    // raw displacement per mode, largest translation = 1
   Eigen::VectorXd linear_u;              // raw linear static displacement (lambda = 1)
+  // Which eigen-solver ran; residual = max_k ||K phi_k + lambda_k K_g phi_k|| / ||K phi_k|| over
+  // the free DOFs, computed from the returned vectors.
+  EigenSolverReport solver;
 };
 
 // Buckling under `loads` (a load case of the model); the first form under its default loads.

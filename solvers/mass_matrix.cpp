@@ -63,4 +63,12 @@ Eigen::MatrixXd rigid_body_motions(const Model& model, const DofMap& map) {
   return R;
 }
 
+Eigen::MatrixXd free_rigid_body_motions(const Model& model, const DofMap& map) {
+  const Eigen::MatrixXd R = rigid_body_motions(model, map);
+  Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(map.free_size(), 6);
+  for (int raw = 0; raw < map.raw_size(); ++raw)
+    if (const int f = map.free_index(raw); f >= 0) Z.row(f) = R.row(raw);
+  return Z;
+}
+
 }  // namespace beamfea

@@ -28,4 +28,9 @@ Eigen::VectorXd raw_mass_product(const LinearStructure& structure, const DofMap&
 // origin (node translation theta x X, rotation theta); joint coordinates zero.
 Eigen::MatrixXd rigid_body_motions(const Model& model, const DofMap& map);
 
+// The same restricted to the free DOFs, for an algebraic multigrid's near null space: the entries
+// at the free independent DOFs (where T_f is the identity); a slave node's motion follows from
+// them, joint coordinates stay zero in a rigid motion.
+Eigen::MatrixXd free_rigid_body_motions(const Model& model, const DofMap& map);
+
 }  // namespace beamfea

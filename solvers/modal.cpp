@@ -17,6 +17,7 @@
 #include "solvers/initial_stress.hpp"
 #include "solvers/linear_static.hpp"
 #include "solvers/mass_matrix.hpp"
+#include "solvers/slepc_eigen.hpp"
 #include "solvers/structure.hpp"
 
 namespace beamfea {
@@ -193,18 +194,37 @@ ModalResult solve_modal(const Model& model, const LoadSet& loads, const ModalOpt
     return res;
   }
   GeneralizedEigenPairs eig;
-  try {
-    eig = nearest_generalized_eigenpairs(K, M, options.modes, *sigma);
-  } catch (const Error& e) {
-    res.status = ModalStatus::MasslessMechanism;
-    res.message = std::string("modal: ") + e.what();
-    return res;
+  if (eigen_solver_iterative(model.solver, n)) {
+    // SLEPc: Krylov-Schur, shift-and-invert about the same sigma (solvers/slepc_eigen.hpp).
+    SlepcEigenOptions so = slepc_options(model.solver, options.modes);
+    so.target = *sigma;
+    so.indefinite = options.preload;  // K + K_g - sigma M is indefinite beyond buckling
+    const Eigen::MatrixXd rigid = free_rigid_body_motions(model, map);
+    SlepcEigenPairs sp = slepc_vibration_pairs(K, M, so, &rigid);
+    res.solver = EigenSolverReport{true, sp.iterations, sp.linear_iterations, 0.0};
+    if (!sp.converged) {
+      res.status = ModalStatus::Failed;
+      res.message = sp.message;
+      return res;
+    }
+    eig.values = std::move(sp.values);
+    eig.vectors = std::move(sp.vectors);
+    eig.converged = true;
+  } else {
+    try {
+      eig = nearest_generalized_eigenpairs(K, M, options.modes, *sigma);
+    } catch (const Error& e) {
+      res.status = ModalStatus::MasslessMechanism;
+      res.message = std::string("modal: ") + e.what();
+      return res;
+    }
+    if (!eig.converged) {
+      res.status = ModalStatus::Failed;
+      res.message = "modal: " + eig.message;
+      return res;
+    }
   }
-  if (!eig.converged) {
-    res.status = ModalStatus::Failed;
-    res.message = "modal: " + eig.message;
-    return res;
-  }
+  res.solver.residual = relative_eigen_residual(K, M, eig.values, eig.vectors);
 
   const auto [zero, unstable] = classify_modes(model, map, structure, options, K, eig, res);
   const Eigen::Index count = eig.values.size();

@@ -13,7 +13,9 @@
 // M   the mass on the free DOFs (solvers/mass_matrix.hpp): consistent (default) or lumped beam
 //     mass, point masses; it condenses through rigid links and joints exactly.
 //
-// Eigen-solver: solvers/generalized_eigen.hpp (shift-invert Lanczos, dense when small), with a
+// Eigen-solver: solvers/generalized_eigen.hpp (shift-invert Lanczos, dense when small), or SLEPc's
+// Krylov-Schur with the same shift-and-invert (solvers/slepc_eigen.hpp) when the model's "solver"
+// asks for the iterative solver (or auto, at or above kIterativeEigenDofs free DOFs), with a
 // shift sigma = -kShiftRelative * min_i(K_ii / M_ii) just below zero, so that K - sigma M is
 // positive definite even with rigid-body or mechanism modes, and the lowest modes come first.
 //
@@ -36,6 +38,7 @@
 #include "core/model.hpp"
 #include "elements/beam_mass.hpp"
 #include "solvers/second_order.hpp"
+#include "solvers/slepc_eigen.hpp"
 
 namespace beamfea {
 
@@ -71,6 +74,9 @@ struct ModalResult {
   Eigen::MatrixXd participation;        // modes x 6: Gamma_kd
   Eigen::MatrixXd effective_mass;       // modes x 6: Gamma_kd^2
   Vec6 total_mass = Vec6::Zero();       // r_d^T M_raw r_d
+  // Which eigen-solver ran; residual = max_k ||K phi_k - omega_k^2 M phi_k|| / ||K phi_k|| over the
+  // free DOFs (relative_eigen_residual: a zero-frequency mode is measured against kZeroActionRelative ||D_K phi||).
+  EigenSolverReport solver;
   std::string brief_report() const { return message; }
 };
 

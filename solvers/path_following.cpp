@@ -16,6 +16,7 @@
 #include "solvers/path/factor_cache.hpp"
 #include "solvers/path/path_scales.hpp"
 #include "solvers/path/predictor.hpp"
+#include "solvers/path/singularity.hpp"
 #include "solvers/path/stability.hpp"
 #include "solvers/path/step_control.hpp"
 #include "solvers/path/vibration.hpp"
@@ -81,7 +82,7 @@ class PathRun {
       : o_(o), original_(original), sys_(sys), factors_(factors),
         corrector_(sys, factors, kin, o.chord_corrector ? ChordIterations::On : ChordIterations::Off),
         stability_(sys, factors), predictor_(sys, factors), control_(o, sys, start, ds0),
-        parts_{o, sys, factors, corrector_, stability_, predictor_}, res_(res), cur_(start) {}
+        parts_{o, sys, factors, corrector_, stability_, predictor_}, monitor_(sys), res_(res), cur_(start) {}
   // Follows the path to its termination (set in the result).
   void run();
   const Corrector& corrector() const { return corrector_; }
@@ -99,13 +100,23 @@ class PathRun {
   bool cut(PathTermination why, const std::string& what);
   // A converged step from its prediction that is not taken, or none.
   std::optional<StepRejection> rejected(const StepPrediction& pred, const Eigen::VectorXd& dir) const;
-  // Displacement control: a limit point located between cur_ and next by the slope of the load
-  // factor (or reaction); true when the step straddles a turn of the controlled DOF instead.
-  bool locate_limit_point(const Converged& next, bool fall_back);
+  // Displacement control (and its arc-length fall-back): a limit point located between cur_ and next
+  // (the step's direction dir) by the slope of the load factor (or reaction); true when the step
+  // straddles a turn of the controlled DOF instead.
+  bool locate_limit_point(const Converged& next, const Eigen::VectorXd& dir);
   // A change of inertia between cur_ and next: the critical point located, classified and recorded;
   // true when the path switched branch onto the secondary path there (cur_ is then its first state).
   bool locate_inertia_change(const Converged& next, const Eigen::VectorXd& dir, int neg_before);
   bool switch_onto_branch(const LocatedCriticalPoint& lc, CriticalPoint& cp);
+  // The control value of a state at fraction f of the step just taken (under the step's control).
+  double control_at(const Converged& c, double f) const;
+  // The singular poses of the loops crossed between cur_ and next (measures m_next there), located
+  // and recorded.
+  void locate_singularities(const Converged& next, const Eigen::VectorXd& m_next, const Eigen::VectorXd& dir);
+  // The path ends: true (and the termination set) when it ends at a singular pose of a loop.
+  bool ends_at_singularity();
+  // The measures of the singular poses at cur_ (and the state before it) after cur_ changed.
+  void track_singularities(const Eigen::VectorXd& m_next, const Converged& before);
 
   const PathOptions& o_;
   const Model& original_;
@@ -116,6 +127,11 @@ class PathRun {
   Predictor predictor_;
   StepControl control_;
   const CriticalPointParts parts_;
+  const SingularityMonitor monitor_;
+  // The singularity measures at the start, at cur_ and at the state before it (its load factor and
+  // control value); the size of the step that failed first from cur_.
+  Eigen::VectorXd m_start_, m_cur_, m_prev_;
+  double lambda_prev_ = 0.0, c_prev_ = 0.0, h_failed_ = 0.0;
   PathResult& res_;
   Converged cur_;
   std::string report_;   // the last solver report (the reason given when the path stops)
@@ -171,6 +187,7 @@ void PathRun::record_stability(PathStep& ps, const Converged& c) {
 }
 
 bool PathRun::cut(PathTermination why, const std::string& what) {
+  if (cuts_ == 0) h_failed_ = std::abs(control_.h());
   ++cuts_;
   const bool ok = control_.cut() && cuts_ <= o_.max_cuts;
   say(fmt::format("step {}: {}; cutting the step to {:.4g}", step_ + 1, what, control_.h()));
@@ -184,8 +201,49 @@ bool PathRun::cut(PathTermination why, const std::string& what) {
                     control_.h()));
     return true;
   }
-  res_.finish(why, cur_.lambda, cuts_, report_);
+  if (!ends_at_singularity()) res_.finish(why, cur_.lambda, cuts_, report_);
   return false;
+}
+
+double PathRun::control_at(const Converged& c, double f) const {
+  if (control_.mode() == PathControl::ArcLength && o_.control == PathControl::ArcLength)
+    return control_.path_length() - (1.0 - f) * std::abs(control_.h());
+  return control_.value(c);
+}
+
+void PathRun::locate_singularities(const Converged& next, const Eigen::VectorXd& m_next, const Eigen::VectorXd& dir) {
+  if (!o_.locate_critical) return;
+  const auto at = [&](const Converged& c, double f) { return control_at(c, f); };
+  for (int i = 0; i < m_next.size(); ++i) {
+    if (!monitor_.candidates()[i].square || !(m_cur_[i] * m_next[i] < 0.0)) continue;
+    CriticalPoint cp = locate_singularity(parts_, monitor_, i, cur_, next, m_cur_[i], m_next[i], control_.h(), dir,
+                                          control_.mode(), at);
+    cp.step = step_;
+    say(fmt::format("critical point (singularity) at load factor {:.6g}, step {}: {}", cp.load_factor, step_, cp.what));
+    res_.critical_points.push_back(std::move(cp));
+  }
+}
+
+bool PathRun::ends_at_singularity() {
+  if (!o_.locate_critical || monitor_.empty() || !m_prev_.size()) return false;
+  const double c_cur = control_.value(cur_);
+  const double reach = kSingularReach * std::max(h_failed_, std::abs(c_cur - c_prev_));
+  std::optional<CriticalPoint> cp =
+      singular_end(monitor_, m_start_, m_prev_, m_cur_, lambda_prev_, cur_.lambda, c_prev_, c_cur, reach);
+  if (!cp) return false;
+  cp->step = step_;
+  say(fmt::format("critical point (singularity) at load factor {:.6g}, step {}: {}; no step converges beyond it",
+                  cp->load_factor, step_, cp->what));
+  res_.finish(PathTermination::Singularity, cp->load_factor, cuts_, cp->what);
+  res_.critical_points.push_back(std::move(*cp));
+  return true;
+}
+
+void PathRun::track_singularities(const Eigen::VectorXd& m_next, const Converged& before) {
+  m_prev_ = m_cur_;
+  m_cur_ = m_next;
+  lambda_prev_ = before.lambda;
+  c_prev_ = control_.value(before);
 }
 
 std::optional<StepRejection> PathRun::rejected(const StepPrediction& pred, const Eigen::VectorXd& dir) const {
@@ -207,12 +265,13 @@ std::optional<StepRejection> PathRun::rejected(const StepPrediction& pred, const
   return std::nullopt;
 }
 
-bool PathRun::locate_limit_point(const Converged& next, bool fall_back) {
+bool PathRun::locate_limit_point(const Converged& next, const Eigen::VectorXd& dir) {
   bool control_turns = false;
   const double slope_next = conjugate_slope(sys_, factors_, next);
-  if (!fall_back && slope_ * slope_next < 0.0) {
-    LocatedCriticalPoint lc = locate_extremum(parts_, cur_, next, control_.h(), slope_,
-                                              [&](const Converged& c, double) { return control_.value(c); });
+  if (slope_ * slope_next < 0.0) {
+    LocatedCriticalPoint lc =
+        locate_extremum(parts_, cur_, next, control_.h(), slope_, dir, control_.mode(),
+                        [&](const Converged& c, double) { return control_.value(c); });
     // The slope changes sign through zero at an extremum of the load factor (or reaction), and
     // through infinity where the controlled DOF turns back: only the first is a limit point.
     const auto conj = [&](const Converged& c) { return sys_.has_loads() ? c.lambda : c.extra_mu; };
@@ -229,12 +288,9 @@ bool PathRun::locate_limit_point(const Converged& next, bool fall_back) {
 }
 
 bool PathRun::locate_inertia_change(const Converged& next, const Eigen::VectorXd& dir, int neg_before) {
-  const double h = control_.h(), s_end = control_.path_length();
-  const auto control_at = [&](const Converged& c, double f) {
-    return o_.control == PathControl::ArcLength ? s_end - (1.0 - f) * std::abs(h) : control_.value(c);
-  };
-  const LocatedCriticalPoint lc =
-      locate_critical_point(parts_, cur_, next, h, dir, neg_before, neg_, held_control(), control_at);
+  const auto at = [&](const Converged& c, double f) { return control_at(c, f); };
+  const LocatedCriticalPoint lc = locate_critical_point(parts_, cur_, next, control_.h(), dir, neg_before, neg_,
+                                                        held_control(), control_.mode(), at);
   CriticalPoint cp = lc.point;
   cp.step = step_;
   say(fmt::format("critical point ({}) at load factor {:.6g}, step {}", to_string(cp.type), cp.load_factor, step_));
@@ -262,6 +318,7 @@ bool PathRun::switch_onto_branch(const LocatedCriticalPoint& lc, CriticalPoint& 
   control_.restart_at(s_lo + bs.ds, bs.ds);
   neg_ = record(bs.state, step_, control_.path_length(), bs.ds, o_.control);
   predictor_.accept(bs.direction);
+  if (!monitor_.empty()) track_singularities(monitor_.measures(bs.state.state), lc.before);
   cur_ = std::move(bs.state);
   res_.critical_points.push_back(cp);
   say(fmt::format("branch switched onto the secondary path at load factor {:.6g}", cur_.lambda));
@@ -270,6 +327,7 @@ bool PathRun::switch_onto_branch(const LocatedCriticalPoint& lc, CriticalPoint& 
 
 void PathRun::run() {
   neg_ = record(cur_, 0, control_.value(cur_), 0.0, o_.control);
+  if (!monitor_.empty()) m_start_ = m_cur_ = monitor_.measures(cur_.state);
   // Displacement control: the slope of the load factor (or reaction) against the controlled DOF,
   // whose change of sign is a limit point.
   if (displacement() && o_.locate_critical) slope_ = conjugate_slope(sys_, factors_, cur_);
@@ -302,14 +360,17 @@ void PathRun::run() {
     say(fmt::format("step {}: load factor {:.6g}, control {:.6g}, {} iterations{}, {} negative eigenvalues", step_,
                     next.lambda, control_.value(next), next.iterations,
                     next.chord_iterations ? fmt::format(" ({} chord)", next.chord_iterations) : std::string(), neg_));
-    const bool fall_back = control_.mode() != o_.control;  // no critical points in a snap-back fall-back
-    const bool control_turns = displacement() && o_.locate_critical && locate_limit_point(next, fall_back);
-    if (!fall_back && !control_turns && o_.stability && o_.locate_critical && neg_ >= 0 && neg_before >= 0 &&
+    const bool fall_back = control_.mode() != o_.control;  // a snap-back fall-back's arc-length step
+    const Eigen::VectorXd m_next = monitor_.empty() ? Eigen::VectorXd() : monitor_.measures(next.state);
+    if (m_next.size()) locate_singularities(next, m_next, dir);
+    const bool control_turns = displacement() && o_.locate_critical && locate_limit_point(next, dir);
+    if (!control_turns && o_.stability && o_.locate_critical && neg_ >= 0 && neg_before >= 0 &&
         neg_ != neg_before && locate_inertia_change(next, dir, neg_before)) {
       if (stopped(res_, o_, original_, cur_, step_)) return;
       continue;
     }
     predictor_.accept(dir);
+    if (m_next.size()) track_singularities(m_next, cur_);
     if (fall_back && control_.resume_displacement(cur_, next))
       say(fmt::format("step {}: the controlled DOF moves toward its target again: displacement control", step_));
     else

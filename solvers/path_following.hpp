@@ -34,6 +34,10 @@
 // point when the critical mode phi does work on the load pattern (|phi . p| > 1e-3 |phi| |p|), a
 // bifurcation otherwise. Branch switching (arc-length control): from the last stable state before a
 // bifurcation, the next predictor is the critical mode scaled to the arc length.
+// Singular poses of closed loops (solvers/path/singularity.hpp): a passive sub-chain (or the whole
+// constraint Jacobian) losing rank; a crossing is located by bisection on the sign of the scaled
+// smallest singular value and passed, a fold where no step converges ends the path (termination
+// Singularity) instead of "no convergence".
 //
 // The parts, one job each (solvers/path/):
 //   path_types        options, per-step records, critical points, result (PathTermination)
@@ -45,6 +49,7 @@
 //   predictor         the initial guess of a step along the tangent (or a given direction)
 //   stability         inertia, lowest eigenvalue, loaded Cartesian stiffness of a node
 //   critical_points   detection, location by bisection, classification, branch switching
+//   singularity       singular poses of closed loops: measures, crossings, the end at a fold
 //   vibration         natural frequencies about a converged state
 // follow_path (solvers/path_following.cpp) is the loop that composes them: each part receives the
 // const system and, where it factorises or solves, the factor cache.

@@ -112,6 +112,30 @@ def running_curve(scheme, ys):
     return np.asarray(cols["k_y"], dtype=float), np.asarray(cols["k_min"], dtype=float)
 
 
+def allocation(y):
+    """The paper's question at one pose: which three of the six joints to actuate. The posed model
+    (every joint passive) with an `actuator_allocation` analysis over all C(6, 3) = 20 schemes, ranked
+    by the total stiffness along y (rigid links: the actuated stiffness K_A of eq. 10)."""
+    m = model("J1J2J3", y)
+    for j in m["joints"]:
+        j["stiffness"] = [0.0]
+    m["analyses"] = [{"id": "alloc", "type": "actuator_allocation", "platform_node": "P",
+                      "candidate_joints": list(JOINT_NODES), "actuators": 3, "actuator_stiffness": K_ACT,
+                      "directions": ["rz", "ux", "uy"], "rank_by": {"stiffness": "total", "direction": "uy"}}]
+    return beamfea.run(m)["analyses"]["alloc"]
+
+
+def allocation_rows():
+    """Per pose: the valid schemes, the three stiffest along y, and the paper's two schemes' values."""
+    md = ["", "| pose | valid schemes of 20 | stiffest along y (k_act/m^2) | J1+J2+J3 | J1+J2+J6 |", "|---|---|---|---|---|"]
+    for name, y in mech.POSES.items():
+        a = allocation(y)
+        value = {r["scheme"]: r["worst_value"] for r in a["ranking"]}
+        top = ", ".join(f"{r['scheme']} {r['worst_value']:.3f}" for r in a["ranking"][:3])
+        md.append(f"| {name} | {a['valid_schemes']} | {top} | {value['J1+J2+J3']:.4f} | {value['J1+J2+J6']:.4f} |")
+    return md
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--no-plots", action="store_true")
@@ -127,6 +151,7 @@ def main():
         md += rows
         ok = ok and wq < TOL_Q and wc < TOL_C
         curves[scheme] = running_curve(scheme, ys)
+    md += allocation_rows()
     text = "\n".join(md) + "\n"
     with open(os.path.join(OUT, "poses.md"), "w") as f:
         f.write(text)

@@ -21,18 +21,17 @@ Eigen::VectorXd raw_mode(const PathSystem& sys, const NonlinearState& st, const 
   return normalise_mode(model, raw);
 }
 
-// The trial step at fraction f of the step from cur (along dir under arc length).
-StepPrediction trial_step(const CriticalPointParts& parts, const Converged& cur, double f, double h,
-                          const Eigen::VectorXd& dir) {
-  if (parts.options.control == PathControl::ArcLength) return parts.predictor.predict_along(cur, f * std::abs(h), dir);
-  return parts.predictor.predict(cur, parts.options.control, f * h);
-}
-
 }  // namespace
+
+StepPrediction trial_step(const CriticalPointParts& parts, const Converged& cur, double f, double h,
+                          const Eigen::VectorXd& dir, PathControl mode) {
+  if (mode == PathControl::ArcLength) return parts.predictor.predict_along(cur, f * std::abs(h), dir);
+  return parts.predictor.predict(cur, mode, f * h);
+}
 
 LocatedCriticalPoint locate_critical_point(const CriticalPointParts& parts, const Converged& cur, const Converged& next,
                                            double h, const Eigen::VectorXd& dir, int neg_before, int neg_after,
-                                           ControlDof control,
+                                           ControlDof control, PathControl mode,
                                            const std::function<double(const Converged&, double)>& control_at) {
   const PathSystem& P = parts.system;
   LocatedCriticalPoint c;
@@ -43,7 +42,7 @@ LocatedCriticalPoint locate_critical_point(const CriticalPointParts& parts, cons
   // Bisection on the fraction of the step: `before` keeps the start's count.
   for (int it = 0; it < kMaxBisections && c.hi - c.lo > parts.options.critical_tolerance; ++it) {
     const double mid = 0.5 * (c.lo + c.hi);
-    const StepPrediction trial = trial_step(parts, cur, mid, h, dir);
+    const StepPrediction trial = trial_step(parts, cur, mid, h, dir, mode);
     const StepSolution sol = parts.corrector.solve(cur, trial.spec, trial.u);
     if (!sol.converged) break;
     const Converged& cm = sol.state;
@@ -68,7 +67,7 @@ LocatedCriticalPoint locate_critical_point(const CriticalPointParts& parts, cons
     c.point.mode = raw_mode(P, c.after.state, c.mode);
   }
   bool limit = P.has_loads() && control == ControlDof::Free && c.point.load_work > kLimitLoadWork;
-  if (parts.options.control == PathControl::ArcLength && P.has_loads()) {
+  if (mode == PathControl::ArcLength && P.has_loads()) {
     // The turn of the load factor: the sign of dlambda along the path (the tangent [t; 1] oriented
     // by the step's direction) on both sides of the located point. It turns at a limit point and not
     // at a bifurcation, whatever the symmetry of the structure (the work of a mode on the load is
@@ -87,7 +86,7 @@ LocatedCriticalPoint locate_critical_point(const CriticalPointParts& parts, cons
 }
 
 LocatedCriticalPoint locate_extremum(const CriticalPointParts& parts, const Converged& cur, const Converged& next,
-                                     double h, double slope_before,
+                                     double h, double slope_before, const Eigen::VectorXd& dir, PathControl mode,
                                      const std::function<double(const Converged&, double)>& control_at) {
   const PathSystem& P = parts.system;
   LocatedCriticalPoint c;
@@ -96,7 +95,7 @@ LocatedCriticalPoint locate_extremum(const CriticalPointParts& parts, const Conv
   const bool positive_before = slope_before > 0.0;
   for (int it = 0; it < kMaxBisections && c.hi - c.lo > parts.options.critical_tolerance; ++it) {
     const double mid = 0.5 * (c.lo + c.hi);
-    const StepPrediction trial = parts.predictor.predict(cur, parts.options.control, mid * h);
+    const StepPrediction trial = trial_step(parts, cur, mid, h, dir, mode);
     const StepSolution sol = parts.corrector.solve(cur, trial.spec, trial.u);
     if (!sol.converged) break;
     const Converged& cm = sol.state;

@@ -43,6 +43,11 @@ struct CriticalPointParts {
   Predictor& predictor;
 };
 
+// The trial step at fraction f of the step of signed size h from cur, under the step's control `mode`
+// (along dir under arc length).
+StepPrediction trial_step(const CriticalPointParts& parts, const Converged& cur, double f, double h,
+                          const Eigen::VectorXd& dir, PathControl mode);
+
 // A critical point between two converged states, located and classified.
 struct LocatedCriticalPoint {
   CriticalPoint point;
@@ -53,19 +58,21 @@ struct LocatedCriticalPoint {
 
 // cur -> next: the step of signed size h (direction dir under arc length); neg_before/after the
 // negative-eigenvalue counts at cur and next; control: whether the controlled DOF is held
-// (displacement control). control_at(c, fraction): the path's control value of a state at that fraction of the step.
+// (displacement control); mode: the step's control (arc length in a snap-back fall-back of displacement
+// control). control_at(c, fraction): the path's control value of a state at that fraction of the step.
 LocatedCriticalPoint locate_critical_point(const CriticalPointParts& parts, const Converged& cur, const Converged& next,
                                            double h, const Eigen::VectorXd& dir, int neg_before, int neg_after,
-                                           ControlDof control,
+                                           ControlDof control, PathControl mode,
                                            const std::function<double(const Converged&, double)>& control_at);
 
 // Displacement control: an extremum of the load factor (or, for imposed motion, of the controlled
 // DOF's reaction) between cur and next, where conjugate_slope (solvers/path/factor_cache.hpp) changes sign
-// (slope_before its value at cur). Located by bisection on the sign of the slope; a limit point; the
+// (slope_before its value at cur; the step of signed size h under the step's control `mode`, along dir
+// under arc length). Located by bisection on the sign of the slope; a limit point; the
 // counts and the mode are those of the structure with the controlled DOF released (the structure
 // under its load, whose inertia changes there).
 LocatedCriticalPoint locate_extremum(const CriticalPointParts& parts, const Converged& cur, const Converged& next,
-                                     double h, double slope_before,
+                                     double h, double slope_before, const Eigen::VectorXd& dir, PathControl mode,
                                      const std::function<double(const Converged&, double)>& control_at);
 
 // The outcome of a branch switch: the first state on the secondary branch, the arc length of that

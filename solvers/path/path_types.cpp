@@ -26,6 +26,7 @@ const char* to_string(CriticalPointType t) {
   switch (t) {
     case CriticalPointType::LimitPoint: return "limit_point";
     case CriticalPointType::Bifurcation: return "bifurcation";
+    case CriticalPointType::Singularity: return "singularity";
   }
   return "?";
 }
@@ -40,7 +41,8 @@ bool is_completed(PathTermination t) {
     case PathTermination::NoConvergence:
     case PathTermination::NoForwardSolution:
     case PathTermination::InitialStateFailed:
-    case PathTermination::NoAutomaticStep: return false;
+    case PathTermination::NoAutomaticStep:
+    case PathTermination::Singularity: return false;
   }
   return false;
 }
@@ -70,6 +72,9 @@ std::string PathResult::brief_report() const {
       return "the initial state with the prescribed values did not converge: " + termination_detail;
     case PathTermination::NoAutomaticStep:
       return "arc_length auto: no scale for the first step (the tangent at the start is singular)";
+    case PathTermination::Singularity:
+      return fmt::format("singular pose at load factor {:.6g}: {} (no step converged beyond it)", termination_value,
+                         termination_detail);
   }
   return "?";
 }

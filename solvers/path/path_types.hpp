@@ -83,8 +83,9 @@ struct PathStep {
   std::string frequencies_failure;
 };
 
-enum class CriticalPointType { LimitPoint, Bifurcation };
-// "limit_point" or "bifurcation" (the result file's contract).
+// Singularity: a singular pose of a closed loop (solvers/path/singularity.hpp).
+enum class CriticalPointType { LimitPoint, Bifurcation, Singularity };
+// "limit_point", "bifurcation" or "singularity" (the result file's contract).
 const char* to_string(CriticalPointType t);
 
 struct CriticalPoint {
@@ -97,6 +98,11 @@ struct CriticalPoint {
   double reaction = 0.0;            // imposed motion: the controlled DOF's reaction there
   Eigen::VectorXd mode;             // raw displacement (largest translation 1)
   bool branch_switched = false;
+  // Singularity: the joints and nodes of the loop involved (model indices), what it is in words, and
+  // whether the path went on through it (false: the path stopped there).
+  std::vector<int> joints, nodes;
+  std::string what;
+  bool passed = false;
 };
 
 // Why the path stopped. The first four are a completed path (the target or a stop condition was
@@ -111,6 +117,7 @@ enum class PathTermination {
   NoForwardSolution,    // arc length: only solutions behind the start were found
   InitialStateFailed,   // the prescribed values could not be imposed at the start
   NoAutomaticStep,      // "arc_length": "auto" found no scale (a singular tangent at the start)
+  Singularity,          // no step converged beyond a singular pose of a loop (the last critical point)
 };
 bool is_completed(PathTermination t);
 

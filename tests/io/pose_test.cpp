@@ -169,7 +169,7 @@ TEST(Pose, FiveBarDrivenByItsEndPointSolvesTheClosedFormInverseKinematics) {
     const beamfea::ojson res = run(doc);
     for (int i = 0; i < 2; ++i) {
       const double q = crank_angle(i, e) - crank_angle(i, E0);
-      EXPECT_NEAR(res["pose"]["joints"]["q" + std::to_string(i + 1)].get<double>(), q, 1e-10) << e.transpose();
+      EXPECT_NEAR(res["pose"]["joints"][i == 0 ? "q1" : "q2"].get<double>(), q, 1e-10) << e.transpose();
     }
     EXPECT_NEAR(res["pose"]["nodes"]["E"][0].get<double>(), e.x(), 1e-12);
     EXPECT_NEAR(res["pose"]["nodes"]["F"][1].get<double>(), e.y(), 1e-12);

@@ -82,3 +82,24 @@ def test_11_bu_platform_poses(tmp_path):
     miss the closed-form inverse kinematics or the compliance misses J K^-1 J^T."""
     out = run([os.path.join(EX, "11_bu_platform_poses", "platform_poses.py"), "--no-plots"])
     assert out.count("| J1J2J3 | P") == 5 and out.count("| J1J2J6 | P") == 5
+
+
+def test_08_workspace_error_map_in_process_equals_the_program(tmp_path):
+    """The five-bar's generated lumped model against its beam model over a 3 x 3 grid of end-point
+    positions (scripts/compare_workspace.py): the example exits 1 when the unloaded compliances
+    differ by more than 1e-9 (condensation of a rod meeting the rest at its ends is exact); in
+    process and with the program the same table."""
+    script = os.path.join(EX, "08_five_bar_lumped_vs_beam", "workspace_map.py")
+    rows = {}
+    for name, extra in (("api", []), ("cli", ["--beamfea", EXE, "--no-plots"])):
+        out = run([script, "--quick", "--out", str(tmp_path / name)] + extra)
+        assert "9 of 9 poses in both models" in out
+        with open(tmp_path / name / "workspace.csv") as f:
+            rows[name] = list(csv.DictReader(f))
+    assert len(rows["api"]) == 9 and os.path.exists(tmp_path / "api" / "workspace.png")
+    for a, c in zip(rows["api"], rows["cli"]):
+        assert a["pose"] == c["pose"]
+        for k in ("k0_1_beam", "kL_1_lumped", "lambda_beam", "lambda_lumped"):
+            assert float(a[k]) == pytest.approx(float(c[k]), rel=1e-5)  # the CSV's 6 digits
+        # the loaded compliance differs at first order in the load, the unloaded one does not
+        assert float(a["dCL_t_lumped"]) > 1e3 * float(a["dC0_t_lumped"])

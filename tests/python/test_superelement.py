@@ -77,6 +77,35 @@ def test_lumped_arm_has_the_beam_arms_tip_compliance(tmp_path):
     assert np.linalg.norm(c_vjm - c_beam) <= 1e-9 * np.linalg.norm(c_beam)
 
 
+@pytest.mark.filterwarnings("ignore:.*is defined and never used")
+def test_lumped_arm_loaded_compliance_agrees_to_the_order_of_the_load():
+    # Under a tip force F the loaded-mode compliances (K + K_g about the reference, stiffness with
+    # load_case) of the beam arm and of its generated lumped model differ by O(F / F_cr): the links'
+    # own beam-column effect is not in a spring. Zeroth order: equal (condensation is exact for a
+    # chain); first order: the difference grows linearly with the load and stays a small part of
+    # the load's own effect on the compliance.
+    links = {"links": [{"id": "L1", "elements": ["a"], "base": "O", "tip": "Ja"},
+                       {"id": "L2", "elements": ["b"], "base": "Jb", "tip": "T"}]}
+    diff, effect, load_ratio = {}, {}, {}
+    for F in (10.0, 100.0):
+        model = arm()
+        model["loads"] = [{"node": "T", "force": [0.3 * F, -F, 0.2 * F]}]
+        model["analyses"] = [{"id": "K", "type": "stiffness", "node": "T"},
+                             {"id": "KL", "type": "stiffness", "node": "T", "load_case": "default"},
+                             {"id": "B", "type": "buckling", "modes": 1}]
+        beam, vjm = beamfea.run(model)["analyses"], beamfea.run(beamfea.lump(model, links))["analyses"]
+        c0 = beam["K"]["compliance"]
+        norm = np.linalg.norm(c0)
+        assert np.linalg.norm(vjm["K"]["compliance"] - c0) <= 1e-9 * norm
+        diff[F] = np.linalg.norm(vjm["KL"]["compliance"] - beam["KL"]["compliance"]) / norm
+        effect[F] = np.linalg.norm(beam["KL"]["compliance"] - c0) / norm
+        load_ratio[F] = 1.0 / beam["B"]["load_factors"][0]  # F / F_cr
+    for F in diff:
+        assert diff[F] <= 0.05 * load_ratio[F]
+        assert diff[F] <= 0.03 * effect[F]
+    assert 8.0 < diff[100.0] / diff[10.0] < 12.0  # first order in the load
+
+
 def test_lump_unknown_element_raises_with_the_links_pointer():
     links = {"links": [{"id": "L1", "elements": ["a", "zz"], "base": "O", "tip": "Ja"}]}
     with pytest.raises(beamfea.InputError) as e:

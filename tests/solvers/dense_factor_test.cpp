@@ -307,8 +307,11 @@ TEST(DenseFactor, DenseAssemblyAndCondensationAgreeWithTheSparseOnTheSuiteModels
     if (!cd.ok) continue;
     EXPECT_EQ(cd.rank, cs.rank) << f;
     EXPECT_EQ(cd.rigid_directions.size(), cs.rigid_directions.size()) << f;
-    EXPECT_LE(rel_diff(cd.K, cs.K), kAgreement) << f;
-    EXPECT_LE(rel_diff(cd.compliance, cs.compliance), kAgreement) << f;
+    // The condensation goes through solves with K: its rounding grows with K's conditioning (the
+    // generated lumped five-bar's virtual springs, axial against bending: cond ~1e5).
+    const double bound = forward_bound(a.K, a.K.diagonal().cwiseSqrt().cwiseInverse());
+    EXPECT_LE(rel_diff(cd.K, cs.K), bound) << f;
+    EXPECT_LE(rel_diff(cd.compliance, cs.compliance), bound) << f;
     ++compared;
   }
   EXPECT_GE(compared, 12);

@@ -1,0 +1,200 @@
+#include "solvers/path/singularity.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <set>
+
+namespace beamfea {
+
+namespace {
+
+// Whether coordinate `comp` of joint j has no stiffness (a passive coordinate).
+bool passive(const Joint& j, int comp) {
+  if (!j.has_stiffness()) return true;
+  const Eigen::MatrixXd K = j.stiffness_as_matrix();
+  if (comp >= K.rows()) return true;
+  return K.row(comp).cwiseAbs().maxCoeff() == 0.0 && K.col(comp).cwiseAbs().maxCoeff() == 0.0;
+}
+
+// The nodes of joints, ascending and unique.
+std::vector<int> nodes_of(const Model& m, const std::vector<int>& joints) {
+  std::set<int> s;
+  for (int j : joints) s.insert(m.joints[j].nodes.begin(), m.joints[j].nodes.end());
+  return {s.begin(), s.end()};
+}
+
+std::string quoted_joints(const Model& m, const std::vector<int>& joints) {
+  std::string s;
+  for (std::size_t i = 0; i < joints.size(); ++i)
+    s += (i ? ", '" : "'") + m.joints[joints[i]].id + "'";
+  return s;
+}
+
+// The smallest singular value of M (rows <= cols: the rows-th), signed by det M when square.
+double measure_of(const Eigen::MatrixXd& M, bool square) {
+  if (M.rows() == 0) return 0.0;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(M);
+  const double s = svd.singularValues()[std::min(M.rows(), M.cols()) - 1];
+  if (!square) return s;
+  return M.determinant() < 0.0 ? -s : s;
+}
+
+}  // namespace
+
+SingularityMonitor::SingularityMonitor(const PathSystem& sys) : sys_(sys) {
+  const NonlinearStructure& ns = sys.structure();
+  const Model& m = ns.model();
+  const auto& cl = ns.closures();
+  std::set<int> all_joints;
+  for (int k = 0; k < static_cast<int>(cl.size()); ++k) {
+    SingularityCandidate c;
+    c.closure = k;
+    for (int r : sys.closure_rows())
+      if (r / 6 == k) c.rows.push_back(r);
+    // The loop's coordinates: those upstream of exactly one side of the closure.
+    std::vector<int> a = ns.chain(cl[k].edge.child), b = cl[k].chain, loop;
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    std::set_symmetric_difference(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(loop));
+    std::set<int> joints;
+    for (int g : loop) {
+      const auto& gen = ns.gens()[g];
+      if (gen.kind != NonlinearStructure::GenKind::JointScalar && gen.kind != NonlinearStructure::GenKind::JointSpherical)
+        continue;
+      all_joints.insert(gen.owner);
+      if (sys.free_index(g) < 0 || !passive(m.joints[gen.owner], gen.comp)) continue;
+      c.gens.push_back(g);
+      joints.insert(gen.owner);
+    }
+    if (cl[k].edge.kind == ConstraintEdge::Kind::Joint) all_joints.insert(cl[k].edge.index);
+    // A passive sub-chain that alone cannot close the loop has no serial singularity of its own.
+    if (c.rows.empty() || c.gens.size() < c.rows.size()) continue;
+    c.square = c.gens.size() == c.rows.size();
+    c.joints.assign(joints.begin(), joints.end());
+    c.nodes = nodes_of(m, c.joints);
+    candidates_.push_back(std::move(c));
+  }
+  if (!cl.empty() && sys.nc() > 0) {
+    SingularityCandidate c;
+    c.joints.assign(all_joints.begin(), all_joints.end());
+    c.nodes = nodes_of(m, c.joints);
+    candidates_.push_back(std::move(c));
+  }
+}
+
+Eigen::VectorXd SingularityMonitor::measures(const NonlinearState& st) const {
+  const NonlinearStructure& ns = sys_.structure();
+  const double L = sys_.length_scale();
+  const auto tw = ns.twists(st);
+  const Eigen::MatrixXd J = Eigen::MatrixXd(ns.closure_jacobian(st, tw));
+  // Columns: translational coordinates times L; rows: translations over L (unit-free).
+  const auto col_scale = [&](int gen) { return ns.is_rotation(gen) ? 1.0 : L; };
+  Eigen::VectorXd out(static_cast<Eigen::Index>(candidates_.size()));
+  for (std::size_t i = 0; i < candidates_.size(); ++i) {
+    const SingularityCandidate& c = candidates_[i];
+    Eigen::MatrixXd A;
+    if (c.closure >= 0) {
+      A.resize(static_cast<Eigen::Index>(c.rows.size()), static_cast<Eigen::Index>(c.gens.size()));
+      for (std::size_t r = 0; r < c.rows.size(); ++r)
+        for (std::size_t g = 0; g < c.gens.size(); ++g)
+          A(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(g)) =
+              J(c.rows[r], c.gens[g]) * col_scale(c.gens[g]) / (c.rows[r] % 6 < 3 ? L : 1.0);
+      out[static_cast<Eigen::Index>(i)] = measure_of(A, c.square);
+    } else {
+      // The whole constraint Jacobian: sigma_min^2 = the lowest eigenvalue of C C^T (nc x nc).
+      A = sys_.constraint_matrix(st, ControlDof::Free);
+      const int ncs = sys_.nc() - static_cast<int>(sys_.closure_rows().size());
+      for (int r = 0; r < A.rows(); ++r) {
+        const bool translation = r < ncs ? sys_.constraints()[r].comp < 3 : sys_.closure_rows()[r - ncs] % 6 < 3;
+        if (translation) A.row(r) /= L;
+      }
+      for (int k = 0; k < A.cols(); ++k) A.col(k) *= col_scale(sys_.free_gens()[k]);
+      const Eigen::MatrixXd G = A * A.transpose();
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(G, Eigen::EigenvaluesOnly);
+      out[static_cast<Eigen::Index>(i)] = std::sqrt(std::max(0.0, es.eigenvalues()[0]));
+    }
+  }
+  return out;
+}
+
+std::string SingularityMonitor::describe(int candidate) const {
+  const NonlinearStructure& ns = sys_.structure();
+  const Model& m = ns.model();
+  const SingularityCandidate& c = candidates_[candidate];
+  if (c.closure < 0) return "the constraints of the loops through joints " + quoted_joints(m, c.joints);
+  const auto& e = ns.closures()[c.closure].edge;
+  const std::string closer = e.kind == ConstraintEdge::Kind::Rigid ? "element '" + m.elements[e.index].id + "'"
+                                                                   : "joint '" + m.joints[e.index].id + "'";
+  return fmt::format("passive joints {} of the loop closed by {}", quoted_joints(m, c.joints), closer);
+}
+
+namespace {
+
+CriticalPoint singular_point(const SingularityMonitor& monitor, int candidate) {
+  CriticalPoint p;
+  p.type = CriticalPointType::Singularity;
+  p.joints = monitor.candidates()[candidate].joints;
+  p.nodes = monitor.candidates()[candidate].nodes;
+  p.what = monitor.describe(candidate);
+  return p;
+}
+
+}  // namespace
+
+CriticalPoint locate_singularity(const CriticalPointParts& parts, const SingularityMonitor& monitor, int candidate,
+                                 const Converged& cur, const Converged& next, double m_cur, double m_next, double h,
+                                 const Eigen::VectorXd& dir, PathControl mode,
+                                 const std::function<double(const Converged&, double)>& control_at) {
+  Converged before = cur, after = next;
+  double lo = 0.0, hi = 1.0, m_lo = m_cur, m_hi = m_next;
+  for (int it = 0; it < kMaxBisections && hi - lo > parts.options.critical_tolerance; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    const StepPrediction trial = trial_step(parts, cur, mid, h, dir, mode);
+    const StepSolution sol = parts.corrector.solve(cur, trial.spec, trial.u);
+    if (!sol.converged) break;
+    const double m = monitor.measures(sol.state.state)[candidate];
+    if ((m > 0.0) == (m_cur > 0.0)) {
+      lo = mid, m_lo = m, before = sol.state;
+    } else {
+      hi = mid, m_hi = m, after = sol.state;
+    }
+  }
+  // The zero of the measure, linear between the bracket's ends.
+  const double t = m_lo == m_hi ? 0.5 : m_lo / (m_lo - m_hi);
+  CriticalPoint p = singular_point(monitor, candidate);
+  p.load_factor = before.lambda + t * (after.lambda - before.lambda);
+  p.control = control_at(before, lo) + t * (control_at(after, hi) - control_at(before, lo));
+  p.reaction = before.extra_mu + t * (after.extra_mu - before.extra_mu);
+  p.passed = true;
+  return p;
+}
+
+std::optional<CriticalPoint> singular_end(const SingularityMonitor& monitor, const Eigen::VectorXd& m_start,
+                                          const Eigen::VectorXd& m_prev, const Eigen::VectorXd& m_cur,
+                                          double lambda_prev, double lambda_cur, double c_prev, double c_cur,
+                                          double reach) {
+  std::optional<CriticalPoint> best;
+  double nearest = INFINITY;
+  for (int i = 0; i < m_cur.size(); ++i) {
+    const double a2 = m_prev[i] * m_prev[i], b2 = m_cur[i] * m_cur[i];
+    if (!(b2 < a2) || !(std::abs(m_cur[i]) <= kSingularDrop * std::abs(m_start[i]))) continue;
+    // m^2 linear in the control value: zero at c_cur + t (c_cur - c_prev).
+    const double t = b2 / (a2 - b2);
+    const double dist = t * std::abs(c_cur - c_prev);
+    if (!(dist <= reach) || dist >= nearest) continue;
+    nearest = dist;
+    CriticalPoint p = singular_point(monitor, i);
+    p.load_factor = lambda_cur + t * (lambda_cur - lambda_prev);
+    p.control = c_cur + t * (c_cur - c_prev);
+    best = std::move(p);
+  }
+  return best;
+}
+
+}  // namespace beamfea

@@ -1,0 +1,80 @@
+#pragma once
+// Singular poses of closed loops along a path: where a loop's passive sub-chain loses rank (a passive
+// dyad straightens or folds), or the whole constraint Jacobian does.
+//
+// A loop's passive coordinates are the free coordinates (neither prescribed nor controlled) of its
+// joints that have no stiffness; its passive Jacobian A = dc/dq_p is the closure's Jacobian over them,
+// restricted to the loop's independent closure rows. A is singular at a serial singularity of the
+// passive sub-chain (Gosselin & Angeles 1990, "Singularity analysis of closed-loop kinematic chains",
+// IEEE Trans. Robot. Autom. 6(3), the type-II singularity of the loop with the actuated joints held),
+// which neither the inertia of the constrained tangent nor the rank of the whole closure need show.
+// The whole constraint Jacobian C (supports on slave nodes and closures over every free coordinate)
+// loses rank where the loop as a whole does (a change point).
+//
+// The measure of each is its smallest singular value after scaling the rows and columns to be free of
+// units: translation rows by 1/L, translational coordinates by L (L: the model length), so that the
+// measure is the same in any consistent unit system. Where A is square the measure carries the sign of
+// det A, which changes through a crossing of the singular pose: the crossing is located by bisection on
+// that sign, like a critical point. Where the path ends at the singular pose (a fold: the measure goes
+// to zero like the square root of the distance, so its square linearly), the point is where the square
+// of the measure, extrapolated from the last two converged states, vanishes.
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "solvers/path/critical_points.hpp"
+#include "solvers/path/equilibrium.hpp"
+
+namespace beamfea {
+
+// Where the extrapolated zero of the squared measure may lie beyond the last converged state: at most
+// this many times the step that failed there (the step before its cuts).
+inline constexpr double kSingularReach = 1.0;
+// The measure at the last converged state must have dropped to this fraction of its value at the
+// path's start before the end of a path is ascribed to a singular pose.
+inline constexpr double kSingularDrop = 0.1;
+
+// One measured Jacobian: a loop's passive Jacobian, or the whole constraint Jacobian.
+struct SingularityCandidate {
+  int closure = -1;             // the loop's closure (NonlinearStructure::closures()); -1: the whole Jacobian
+  std::vector<int> rows;        // the loop's independent closure rows (structure numbering)
+  std::vector<int> gens;        // the passive coordinates (gens)
+  bool square = false;          // A square: the measure is signed
+  std::vector<int> joints, nodes;  // what it involves (model indices, ascending)
+};
+
+class SingularityMonitor {
+ public:
+  explicit SingularityMonitor(const PathSystem& sys);
+  bool empty() const { return candidates_.empty(); }
+  const std::vector<SingularityCandidate>& candidates() const { return candidates_; }
+  // The measure of every candidate at a state (signed where square).
+  Eigen::VectorXd measures(const NonlinearState& st) const;
+  // "passive joints 'J4', 'J5', 'J6' of the loop closed by element 'PJ4'" / "the constraints of the
+  // loops through joints ...": what a candidate is, in words.
+  std::string describe(int candidate) const;
+
+ private:
+  const PathSystem& sys_;
+  std::vector<SingularityCandidate> candidates_;
+};
+
+// A crossing of a signed candidate's singular pose between cur and next (measures m_cur, m_next of
+// opposite signs), located by bisection of the step on the sign of the measure; the point carries
+// the load factor and control value interpolated to the zero of the measure.
+CriticalPoint locate_singularity(const CriticalPointParts& parts, const SingularityMonitor& monitor, int candidate,
+                                 const Converged& cur, const Converged& next, double m_cur, double m_next, double h,
+                                 const Eigen::VectorXd& dir, PathControl mode,
+                                 const std::function<double(const Converged&, double)>& control_at);
+
+// The end of a path at a singular pose: of the candidates whose measure fell from m_prev to m_cur
+// (below kSingularDrop of m_start), the one whose squared measure, extrapolated linearly in the
+// control value from (c_prev, c_cur), vanishes nearest, within `reach` of c_cur. The point carries the
+// load factor and control value extrapolated there.
+std::optional<CriticalPoint> singular_end(const SingularityMonitor& monitor, const Eigen::VectorXd& m_start,
+                                          const Eigen::VectorXd& m_prev, const Eigen::VectorXd& m_cur,
+                                          double lambda_prev, double lambda_cur, double c_prev, double c_cur,
+                                          double reach);
+
+}  // namespace beamfea

@@ -1,0 +1,359 @@
+#include "solvers/slepc_eigen.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/errors.hpp"
+
+#ifdef BEAMFEA_HAVE_SLEPC
+#include <slepceps.h>
+#endif
+
+namespace beamfea {
+
+void SlepcEigenOptions::validate() const {
+  if (count < 1) throw Error("SlepcEigenOptions: count must be at least 1");
+  if (!(rtol > 0.0 && rtol < 1.0)) throw Error("SlepcEigenOptions: rtol must lie in (0, 1)");
+  if (max_linear_iterations < 1) throw Error("SlepcEigenOptions: max_linear_iterations must be at least 1");
+}
+
+bool slepc_available() {
+#ifdef BEAMFEA_HAVE_SLEPC
+  return true;
+#else
+  return false;
+#endif
+}
+
+bool eigen_solver_iterative(const SolverChoice& choice, Eigen::Index free_dofs) {
+  switch (choice.type) {
+    case SolverChoice::Type::Direct: return false;
+    case SolverChoice::Type::Iterative:
+      if (!slepc_available())
+        throw Error("solver: type \"iterative\" needs SLEPc for the eigen-analyses, and this beamfea was built without it "
+                    "(BEAMFEA_WITH_SLEPC=OFF)");
+      return true;
+    case SolverChoice::Type::Auto: return slepc_available() && free_dofs >= kIterativeEigenDofs;
+  }
+  return false;
+}
+
+SlepcEigenOptions slepc_options(const SolverChoice& choice, int count) {
+  SlepcEigenOptions o;
+  o.count = count;
+  o.rtol = choice.rtol;
+  o.max_linear_iterations = choice.max_iterations;
+  o.preconditioner = choice.preconditioner;
+  return o;
+}
+
+double relative_eigen_residual(const SparseMatrix& A, const SparseMatrix& B, const Eigen::VectorXd& lambda,
+                               const Eigen::MatrixXd& X) {
+  const Eigen::VectorXd d = A.diagonal().cwiseAbs();
+  double worst = 0.0;
+  for (Eigen::Index k = 0; k < X.cols(); ++k) {
+    const Eigen::VectorXd x = X.col(k);
+    const Eigen::VectorXd Ax = A * x;
+    const double r = (Ax - lambda[k] * (B * x)).norm();
+    const double scale = std::max(Ax.norm(), kZeroActionRelative * d.cwiseProduct(x).norm());
+    if (scale > 0.0) worst = std::max(worst, r / scale);
+  }
+  return worst;
+}
+
+#ifdef BEAMFEA_HAVE_SLEPC
+
+namespace {
+
+// The inner (linear) solves run this much tighter than the eigen tolerance, so that the
+// Krylov-Schur residual is not limited by inexact solves of the spectral transformation.
+constexpr double kInnerRtolFactor = 1e-2;
+constexpr double kMinInnerRtol = 1e-14;  // below this a double-precision residual is noise
+// Buckling: a mu = 1/lambda below this fraction of the largest |mu| is no load factor (as the
+// dense path of solvers/buckling.cpp).
+constexpr double kPositiveMuRelative = 1e-12;
+
+void check(PetscErrorCode ierr, const char* what) {
+  if (ierr == 0) return;
+  const char* text = nullptr;
+  PetscErrorMessage(ierr, &text, nullptr);
+  throw Error(fmt::format("SLEPc: {} failed ({})", what, text ? text : "unknown error"));
+}
+
+void ensure_slepc() {
+  if (SlepcInitializeCalled) return;
+  // beamfea's program handles signals; PETSc's handler would take SIGINT and SIGSEGV over.
+  check(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "setting -no_signal_handler");
+  check(SlepcInitializeNoArguments(), "initialisation");
+  // Errors come back as codes (turned into exceptions here), not as PETSc's printed trace.
+  check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "setting the error handler");
+}
+
+// Owners of PETSc objects (destroyed in reverse order of creation by scope).
+template <class T, PetscErrorCode (*Destroy)(T*)>
+struct Owned {
+  T h = nullptr;
+  Owned() = default;
+  Owned(const Owned&) = delete;
+  Owned& operator=(const Owned&) = delete;
+  ~Owned() {
+    if (h) Destroy(&h);
+  }
+};
+using OwnedMat = Owned<Mat, MatDestroy>;
+using OwnedVec = Owned<Vec, VecDestroy>;
+using OwnedEps = Owned<EPS, EPSDestroy>;
+
+// A sequential AIJ copy of a symmetric Eigen matrix: its CSC arrays are the CSR arrays of its
+// transpose, which is itself.
+void petsc_matrix(const SparseMatrix& A, bool spd, OwnedMat& out) {
+  SparseMatrix C = A;
+  C.makeCompressed();
+  const auto n = static_cast<PetscInt>(C.rows());
+  std::vector<PetscInt> ia(C.outerIndexPtr(), C.outerIndexPtr() + n + 1);
+  std::vector<PetscInt> ja(C.innerIndexPtr(), C.innerIndexPtr() + C.nonZeros());
+  check(MatCreate(PETSC_COMM_SELF, &out.h), "MatCreate");
+  check(MatSetSizes(out.h, n, n, n, n), "MatSetSizes");
+  check(MatSetType(out.h, MATSEQAIJ), "MatSetType");
+  check(MatSeqAIJSetPreallocationCSR(out.h, ia.data(), ja.data(), C.valuePtr()), "MatSeqAIJSetPreallocationCSR");
+  check(MatSetOption(out.h, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+  if (spd) check(MatSetOption(out.h, MAT_SPD, PETSC_TRUE), "MatSetOption");
+}
+
+// The multigrid's near null space: the columns of Z, orthonormalised (PETSc requires it).
+void attach_near_null_space(Mat P, const Eigen::MatrixXd* Z) {
+  if (!Z || Z->cols() == 0) return;
+  PetscInt n = 0;
+  check(MatGetSize(P, &n, nullptr), "MatGetSize");
+  if (Z->rows() != n) throw Error("SLEPc: rigid_body_modes must have one row per free DOF");
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(*Z);
+  const Eigen::Index rank = qr.rank();
+  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(n, rank);
+  std::vector<Vec> vecs(static_cast<std::size_t>(rank), nullptr);
+  PetscErrorCode ierr = 0;
+  for (Eigen::Index c = 0; c < rank && !ierr; ++c) {
+    Vec& v = vecs[static_cast<std::size_t>(c)];
+    ierr = MatCreateVecs(P, &v, nullptr);
+    PetscScalar* a = nullptr;
+    if (!ierr) ierr = VecGetArray(v, &a);
+    if (!ierr) std::copy(Q.col(c).data(), Q.col(c).data() + n, a);
+    if (!ierr) ierr = VecRestoreArray(v, &a);
+  }
+  MatNullSpace ns = nullptr;
+  if (!ierr) ierr = MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, static_cast<PetscInt>(rank), vecs.data(), &ns);
+  if (!ierr) ierr = MatSetNearNullSpace(P, ns);
+  if (ns) MatNullSpaceDestroy(&ns);
+  for (Vec& v : vecs)
+    if (v) VecDestroy(&v);
+  check(ierr, "setting the near null space");
+}
+
+// The ST's linear solver: a factorisation, or a Krylov method with algebraic multigrid.
+void configure_linear_solve(ST st, const SlepcEigenOptions& o, Eigen::Index n, bool indefinite) {
+  KSP ksp = nullptr;
+  PC pc = nullptr;
+  check(STGetKSP(st, &ksp), "STGetKSP");
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  const bool factor = o.linear == SlepcEigenOptions::Linear::Factor ||
+                      (o.linear == SlepcEigenOptions::Linear::Auto && n <= kFactorDofs);
+  if (factor) {
+    check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
+    check(PCSetType(pc, indefinite ? PCLU : PCCHOLESKY), "PCSetType");
+    check(PCFactorSetMatOrderingType(pc, MATORDERINGND), "PCFactorSetMatOrderingType");
+    return;
+  }
+  check(KSPSetType(ksp, indefinite ? KSPGMRES : KSPCG), "KSPSetType");
+  if (o.preconditioner == SolverChoice::Preconditioner::Hypre) {
+    check(PCSetType(pc, PCHYPRE), "PCSetType hypre");
+    check(PCHYPRESetType(pc, "boomeramg"), "PCHYPRESetType");
+  } else {
+    check(PCSetType(pc, PCGAMG), "PCSetType gamg");
+  }
+  const double inner = std::max(kMinInnerRtol, kInnerRtolFactor * o.rtol);
+  check(KSPSetTolerances(ksp, inner, PETSC_DEFAULT, PETSC_DEFAULT, o.max_linear_iterations), "KSPSetTolerances");
+}
+
+// The largest error estimate over the wanted pairs at the last outer iteration: the residual
+// reached when the solve stops short.
+struct Progress {
+  int wanted = 0;
+  double error = 0.0;
+};
+PetscErrorCode record_progress(EPS, PetscInt, PetscInt, PetscScalar*, PetscScalar*, PetscReal* errest, PetscInt nest,
+                               void* ctx) {
+  auto* p = static_cast<Progress*>(ctx);
+  double e = 0.0;
+  for (PetscInt i = 0; i < std::min<PetscInt>(nest, p->wanted); ++i) e = std::max(e, static_cast<double>(errest[i]));
+  p->error = e;
+  return 0;
+}
+
+// Runs `eps` (operators and ST set) and reads its converged pairs: the `count` nearest `target`
+// (every converged one when `target` is not finite), ascending.
+SlepcEigenPairs solve_and_collect(EPS eps, Mat A, int count, const char* what, double target) {
+  SlepcEigenPairs out;
+  Progress progress{count, 0.0};
+  check(EPSMonitorSet(eps, record_progress, &progress, nullptr), "EPSMonitorSet");
+  const PetscErrorCode solved = EPSSolve(eps);
+  PetscInt its = 0, nconv = 0, linear = 0;
+  EPSGetIterationNumber(eps, &its);
+  ST st = nullptr;
+  KSP ksp = nullptr;
+  KSPType type = nullptr;
+  if (!EPSGetST(eps, &st) && !STGetKSP(st, &ksp) && !KSPGetType(ksp, &type) && type &&
+      std::string(type) != KSPPREONLY)
+    KSPGetTotalIterations(ksp, &linear);
+  out.iterations = static_cast<int>(its);
+  out.linear_iterations = linear;
+  if (solved) {
+    const char* text = nullptr;
+    PetscErrorMessage(solved, &text, nullptr);
+    out.message = fmt::format("{}: SLEPc's Krylov-Schur stopped after {} iterations ({}); error estimate reached {:.3g}",
+                              what, its, text ? text : "error", progress.error);
+    return out;
+  }
+  check(EPSGetConverged(eps, &nconv), "EPSGetConverged");
+  if (nconv < count) {
+    out.message = fmt::format("{}: SLEPc's Krylov-Schur converged {} of {} eigenpairs in {} iterations; "
+                              "relative error estimate reached {:.3g}",
+                              what, nconv, count, its, progress.error);
+    return out;
+  }
+  OwnedVec xr;
+  check(MatCreateVecs(A, &xr.h, nullptr), "MatCreateVecs");
+  PetscInt n = 0;
+  check(MatGetSize(A, &n, nullptr), "MatGetSize");
+  std::vector<std::pair<double, Eigen::VectorXd>> pairs;
+  for (PetscInt i = 0; i < nconv; ++i) {
+    PetscScalar kr = 0.0;
+    check(EPSGetEigenpair(eps, i, &kr, nullptr, xr.h, nullptr), "EPSGetEigenpair");
+    const PetscScalar* a = nullptr;
+    check(VecGetArrayRead(xr.h, &a), "VecGetArrayRead");
+    pairs.emplace_back(kr, Eigen::Map<const Eigen::VectorXd>(a, n));
+    check(VecRestoreArrayRead(xr.h, &a), "VecRestoreArrayRead");
+  }
+  if (std::isfinite(target)) {
+    std::sort(pairs.begin(), pairs.end(), [&](const auto& a, const auto& b) {
+      return std::abs(a.first - target) < std::abs(b.first - target);
+    });
+    if (pairs.size() > static_cast<std::size_t>(count)) pairs.resize(static_cast<std::size_t>(count));
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  out.values.resize(static_cast<Eigen::Index>(pairs.size()));
+  out.vectors.resize(n, static_cast<Eigen::Index>(pairs.size()));
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    out.values[static_cast<Eigen::Index>(i)] = pairs[i].first;
+    out.vectors.col(static_cast<Eigen::Index>(i)) = pairs[i].second;
+  }
+  out.converged = true;
+  return out;
+}
+
+void configure_eps(EPS eps, Mat A, Mat B, int count, const SlepcEigenOptions& o) {
+  check(EPSSetOperators(eps, A, B), "EPSSetOperators");
+  check(EPSSetProblemType(eps, EPS_GHEP), "EPSSetProblemType");
+  check(EPSSetType(eps, EPSKRYLOVSCHUR), "EPSSetType");
+  check(EPSSetDimensions(eps, count, PETSC_DEFAULT, PETSC_DEFAULT), "EPSSetDimensions");
+  check(EPSSetTolerances(eps, o.rtol, PETSC_DEFAULT), "EPSSetTolerances");
+}
+
+}  // namespace
+
+SlepcEigenPairs slepc_vibration_pairs(const SparseMatrix& K, const SparseMatrix& M, const SlepcEigenOptions& options,
+                                      const Eigen::MatrixXd* rigid_body_modes) {
+  options.validate();
+  const Eigen::Index n = K.rows();
+  const int count = static_cast<int>(std::min<Eigen::Index>(options.count, n));
+  try {
+    ensure_slepc();
+    OwnedMat A, B, P;
+    petsc_matrix(K, false, A);
+    petsc_matrix(M, false, B);
+    // The preconditioner's matrix: K - sigma M itself, carrying the near null space.
+    petsc_matrix(SparseMatrix(K - options.target * M), !options.indefinite, P);
+    attach_near_null_space(P.h, rigid_body_modes);
+    OwnedEps eps;
+    check(EPSCreate(PETSC_COMM_SELF, &eps.h), "EPSCreate");
+    configure_eps(eps.h, A.h, B.h, count, options);
+    check(EPSSetWhichEigenpairs(eps.h, EPS_TARGET_MAGNITUDE), "EPSSetWhichEigenpairs");
+    check(EPSSetTarget(eps.h, options.target), "EPSSetTarget");
+    ST st = nullptr;
+    check(EPSGetST(eps.h, &st), "EPSGetST");
+    check(STSetType(st, STSINVERT), "STSetType");
+    check(STSetPreconditionerMat(st, P.h), "STSetPreconditionerMat");
+    configure_linear_solve(st, options, n, options.indefinite);
+    SlepcEigenPairs out = solve_and_collect(eps.h, A.h, count, "modal", options.target);
+    for (Eigen::Index k = 0; k < out.vectors.cols(); ++k) {
+      const double m = out.vectors.col(k).dot(M * out.vectors.col(k));
+      if (m > 0.0) out.vectors.col(k) /= std::sqrt(m);
+    }
+    return out;
+  } catch (const Error& e) {
+    SlepcEigenPairs out;
+    out.message = std::string("modal: ") + e.what();
+    return out;
+  }
+}
+
+SlepcEigenPairs slepc_buckling_pairs(const SparseMatrix& K, const SparseMatrix& KG, const SlepcEigenOptions& options,
+                                     const Eigen::MatrixXd* rigid_body_modes) {
+  options.validate();
+  const Eigen::Index n = K.rows();
+  const int count = static_cast<int>(std::min<Eigen::Index>(options.count, n));
+  try {
+    ensure_slepc();
+    OwnedMat A, B;
+    petsc_matrix(KG, false, A);
+    petsc_matrix(K, true, B);
+    attach_near_null_space(B.h, rigid_body_modes);
+    OwnedEps eps;
+    check(EPSCreate(PETSC_COMM_SELF, &eps.h), "EPSCreate");
+    configure_eps(eps.h, A.h, B.h, count, options);
+    check(EPSSetWhichEigenpairs(eps.h, EPS_LARGEST_REAL), "EPSSetWhichEigenpairs");
+    ST st = nullptr;
+    check(EPSGetST(eps.h, &st), "EPSGetST");
+    check(STSetType(st, STSHIFT), "STSetType");
+    configure_linear_solve(st, options, n, false);
+    SlepcEigenPairs mu = solve_and_collect(eps.h, A.h, count, "buckling", std::numeric_limits<double>::infinity());
+    if (!mu.converged) return mu;
+    // mu = 1/lambda: the positive ones, as load factors, ascending.
+    const double mu_max = mu.values.size() > 0 ? mu.values.cwiseAbs().maxCoeff() : 0.0;
+    std::vector<std::pair<double, Eigen::Index>> factors;
+    for (Eigen::Index i = 0; i < mu.values.size(); ++i)
+      if (mu.values[i] > kPositiveMuRelative * mu_max && mu.values[i] > 0.0) factors.emplace_back(1.0 / mu.values[i], i);
+    std::sort(factors.begin(), factors.end());
+    if (factors.size() > static_cast<std::size_t>(count)) factors.resize(static_cast<std::size_t>(count));
+    SlepcEigenPairs out = mu;
+    out.values.resize(static_cast<Eigen::Index>(factors.size()));
+    out.vectors.resize(n, static_cast<Eigen::Index>(factors.size()));
+    for (std::size_t i = 0; i < factors.size(); ++i) {
+      out.values[static_cast<Eigen::Index>(i)] = factors[i].first;
+      out.vectors.col(static_cast<Eigen::Index>(i)) = mu.vectors.col(factors[i].second).normalized();
+    }
+    return out;
+  } catch (const Error& e) {
+    SlepcEigenPairs out;
+    out.message = std::string("buckling: ") + e.what();
+    return out;
+  }
+}
+
+#else  // no SLEPc: eigen_solver_iterative never selects these
+
+SlepcEigenPairs slepc_vibration_pairs(const SparseMatrix&, const SparseMatrix&, const SlepcEigenOptions&,
+                                      const Eigen::MatrixXd*) {
+  throw Error("modal: beamfea was built without SLEPc (BEAMFEA_WITH_SLEPC=OFF)");
+}
+SlepcEigenPairs slepc_buckling_pairs(const SparseMatrix&, const SparseMatrix&, const SlepcEigenOptions&,
+                                     const Eigen::MatrixXd*) {
+  throw Error("buckling: beamfea was built without SLEPc (BEAMFEA_WITH_SLEPC=OFF)");
+}
+
+#endif
+
+}  // namespace beamfea

@@ -1,0 +1,202 @@
+// Singular poses of closed loops along a path (solvers/path/singularity.hpp): located, reported as
+// "singularity" critical points naming the loop's passive joints, passed where the path goes on, or
+// the path's end; against equilibria and kinematics computed here.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "loop_models.hpp"
+#include "solvers/path_following.hpp"
+
+namespace path_singularity_test {
+
+using namespace beamfea;
+using namespace beamfea::test;
+
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+
+// Bu's planar 3-RRR at pose P1 (W. Bu, "On the Stiffness Affected by the Allocation of Actuators of a
+// Parallel Manipulator", Open Mech. Eng. J., 2012, Fig. 8): base J1 = (-0.5, 0), J6 = (0.5, 0); links
+// J1J2 0.9, J2J3 1.0, platform J3J4 0.8 with P = (0, 1.1) at its middle, J4J5 1.0, J5J6 0.6; both
+// elbows outward; actuator springs k = 1 at J1 J2 J3, J4 J5 J6 passive.
+struct Bu {
+  double l12 = 0.9, l23 = 1.0, l34 = 0.8, l45 = 1.0, l56 = 0.6, k = 1.0;
+  Vec2 J1{-0.5, 0.0}, J6{0.5, 0.0}, P{0.0, 1.1};
+  Vec2 J3() const { return P - Vec2(0.5 * l34, 0.0); }
+  Vec2 J4() const { return P + Vec2(0.5 * l34, 0.0); }
+  Vec2 J2() const { return circle_intersection(J1, l12, J3(), l23); }  // left of J1 -> J3: outward
+  Vec2 J5() const { return circle_intersection(J4(), l45, J6, l56); }  // left of J4 -> J6: outward
+};
+
+json bu_model(const Bu& bu) {
+  const std::vector<std::pair<std::string, Vec2>> pts = {{"J1", bu.J1},   {"J2", bu.J2()}, {"J3", bu.J3()},
+                                                         {"J4", bu.J4()}, {"J5", bu.J5()}, {"J6", bu.J6}};
+  json d;
+  d["nodes"] = json::array();
+  d["joints"] = json::array();
+  for (const auto& [id, p] : pts) {
+    d["nodes"].push_back({{"id", id + "a"}, {"xyz", xyz(p.x(), p.y())}});
+    d["nodes"].push_back({{"id", id + "b"}, {"xyz", xyz(p.x(), p.y())}});
+    const bool active = id == "J1" || id == "J2" || id == "J3";
+    d["joints"].push_back({{"id", id}, {"type", "revolute"}, {"nodes", {id + "a", id + "b"}},
+                           {"axes", {json::array({0, 0, 1})}}, {"stiffness", {active ? bu.k : 0.0}}});
+  }
+  d["nodes"].push_back({{"id", "P"}, {"xyz", xyz(bu.P.x(), bu.P.y())}});
+  d["elements"] = json::array();
+  for (const auto& [id, a, b] : std::vector<std::array<std::string, 3>>{{"J1J2", "J1b", "J2a"}, {"J2J3", "J2b", "J3a"},
+                                                                         {"J3P", "J3b", "P"},    {"PJ4", "P", "J4a"},
+                                                                         {"J4J5", "J4b", "J5a"}, {"J5J6", "J5b", "J6a"}})
+    d["elements"].push_back({{"id", id}, {"type", "rigid"}, {"nodes", {a, b}}});
+  d["supports"] = json::array({fix("J1a", {"ux", "uy", "uz", "rx", "ry", "rz"}),
+                               fix("J6b", {"ux", "uy", "uz", "rx", "ry", "rz"})});
+  d["loads"] = json::array({load("P", 0.0, -1.0, 0.0)});
+  return d;
+}
+
+Vec2 dir(double a) { return {std::cos(a), std::sin(a)}; }
+
+// The serial chain J1 J2 J3 + platform alone (the passive dyad carries no force before it folds):
+// absolute link angles a = q0 + cumulative joint rotations; the equilibrium under the force (0, -f)
+// at P is k dq_i = -f (P - J_i)_x (virtual work, Bu eq. 21's columns [1, -r_y, r_x]), solved by
+// Newton with central differences. Returns J4 there.
+struct Chain {
+  Bu bu;
+  Eigen::Vector3d q0;  // absolute angles of J1J2, J2J3 and the platform at the reference
+  explicit Chain(const Bu& b) : bu(b) {
+    const Vec2 d12 = bu.J2() - bu.J1, d23 = bu.J3() - bu.J2();
+    q0 << std::atan2(d12.y(), d12.x()), std::atan2(d23.y(), d23.x()), 0.0;
+  }
+  // Joint positions J1, J2, J3, P, J4 for joint rotations dq.
+  std::array<Vec2, 5> pose(const Eigen::Vector3d& dq) const {
+    const double a1 = q0[0] + dq[0], a2 = q0[1] + dq[0] + dq[1], a3 = q0[2] + dq[0] + dq[1] + dq[2];
+    const Vec2 J2 = bu.J1 + bu.l12 * dir(a1), J3 = J2 + bu.l23 * dir(a2);
+    return {bu.J1, J2, J3, J3 + 0.5 * bu.l34 * dir(a3), J3 + bu.l34 * dir(a3)};
+  }
+  Eigen::Vector3d residual(const Eigen::Vector3d& dq, double f) const {
+    const auto p = pose(dq);
+    Eigen::Vector3d r;
+    for (int i = 0; i < 3; ++i) r[i] = bu.k * dq[i] + f * (p[3] - p[i]).x();
+    return r;
+  }
+  Eigen::Vector3d equilibrium(double f) const {
+    Eigen::Vector3d dq = Eigen::Vector3d::Zero();
+    for (int it = 0; it < 50; ++it) {
+      const Eigen::Vector3d r = residual(dq, f);
+      if (r.norm() < 1e-14) break;
+      Eigen::Matrix3d H;
+      for (int j = 0; j < 3; ++j) {
+        const Eigen::Vector3d e = 1e-6 * Eigen::Vector3d::Unit(j);
+        H.col(j) = (residual(dq + e, f) - residual(dq - e, f)) / 2e-6;
+      }
+      dq -= H.lu().solve(r);
+    }
+    return dq;
+  }
+  // |J4 J6| under the force f: the dyad straightens at l45 + l56 and folds at |l45 - l56|.
+  double reach(double f) const { return (pose(equilibrium(f))[4] - bu.J6).norm(); }
+  // The smallest force at which the dyad straightens or folds: scanned in steps of 0.01, then bisected.
+  double fold_force() const {
+    const double outer = bu.l45 + bu.l56, inner = std::abs(bu.l45 - bu.l56);
+    const auto outside = [&](double f) { const double d = reach(f); return d >= outer || d <= inner; };
+    double lo = 0.0, hi = 0.01;
+    while (!outside(hi) && hi < 10.0) lo = hi, hi += 0.01;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (outside(mid) ? hi : lo) = mid;
+    }
+    return 0.5 * (lo + hi);
+  }
+};
+
+std::vector<std::string> joint_ids(const Model& m, const std::vector<int>& joints) {
+  std::vector<std::string> out;
+  for (int j : joints) out.push_back(m.joints[j].id);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+// Bu's lumped 3-RRR at P1 under a growing downward force on the platform: the path ends where the
+// passive dyad J4-J5-J6 straightens, reported as a singularity naming J4 J5 J6 (not as "no
+// convergence"), at the load factor where the serial chain's own equilibrium brings |J4 J6| to the
+// dyad's reach (found here by bisection on the load).
+TEST(PathSingularity, BuDyadStraightensUnderPlatformLoad) {
+  const Bu bu;
+  const Model m = read_model(bu_model(bu));
+  PathOptions o;
+  o.control = PathControl::LoadFactor;
+  o.target = 1.0;
+  o.increments = 20;
+  o.track = {m.find_node("P")};
+  const PathResult r = follow_path(m, o);
+  EXPECT_EQ(r.termination, PathTermination::Singularity) << r.brief_report();
+  EXPECT_FALSE(r.completed);
+  ASSERT_FALSE(r.critical_points.empty());
+  const CriticalPoint& c = r.critical_points.back();
+  EXPECT_EQ(c.type, CriticalPointType::Singularity);
+  EXPECT_FALSE(c.passed);
+  EXPECT_EQ(joint_ids(m, c.joints), (std::vector<std::string>{"J4", "J5", "J6"}));
+  EXPECT_EQ(c.nodes.size(), 6u);
+  EXPECT_DOUBLE_EQ(c.control, c.load_factor);  // load control: the control is the load factor
+
+  // The reference: the load factor where the serial chain's equilibrium reaches the dyad's bound.
+  const Chain chain(bu);
+  const double f_star = chain.fold_force();
+  ASSERT_LT(f_star, 1.0);
+  EXPECT_NEAR(c.load_factor, f_star, 1e-4 * f_star);
+  // Before the fold the path is the serial chain's equilibrium: P where the chain puts it.
+  double worst = 0.0;
+  for (const auto& st : r.steps) {
+    const Vec2 P = chain.pose(chain.equilibrium(st.load_factor))[3] - bu.P;
+    worst = std::max(worst, (st.track[0].head<2>() - P).norm());
+  }
+  EXPECT_LT(worst, 1e-8);
+  std::printf("Bu 3-RRR at P1: singularity at load factor %.8f (serial chain: %.8f), %zu steps, worst P error %.1e: %s\n",
+              c.load_factor, f_star, r.steps.size() - 1, worst, r.brief_report().c_str());
+}
+
+// A four-bar at its change point (crank + ground = coupler + rocker: 0.3 + 0.7 = 0.5 + 0.5) driven by
+// a prescribed crank rotation through theta = pi, where coupler and rocker lie on the ground line:
+// the passive dyad B-C-D straightens there. The path reports the singularity at crank angle pi (the
+// passive joints jB jC jD), passes it, and follows the closed-form kinematics on both sides.
+TEST(PathSingularity, FourBarDrivenThroughItsTogglePosition) {
+  FourBar fb;
+  fb.a = 0.3, fb.g = 0.7, fb.b = 0.5, fb.c = 0.5, fb.theta0 = 2.6;
+  const Model m = read_model(four_bar_model(fb, false, false));
+  PathOptions o;
+  o.control = PathControl::Displacement;
+  o.control_node = m.find_node("A1");
+  o.control_dof = 5;
+  o.target = 3.6 - fb.theta0;  // past pi
+  o.increments = 10;
+  o.track = {m.find_node("C")};
+  const PathResult r = follow_path(m, o);
+  ASSERT_TRUE(r.completed) << r.brief_report();
+  int singular = 0;
+  for (const auto& c : r.critical_points) {
+    if (c.type != CriticalPointType::Singularity) continue;
+    ++singular;
+    EXPECT_TRUE(c.passed);
+    EXPECT_EQ(joint_ids(m, c.joints), (std::vector<std::string>{"jB", "jC", "jD"}));
+    // Located to critical_tolerance of the step (0.1 rad).
+    EXPECT_NEAR(c.control, M_PI - fb.theta0, 1e-3 * 0.1);
+  }
+  EXPECT_EQ(singular, 1);
+  // Every state on the linkage: |BC| = b and |CD| = c with B at the crank's angle.
+  double worst = 0.0;
+  for (const auto& st : r.steps) {
+    const double t = fb.theta0 + st.control;
+    const Vec2 C = fb.C(fb.theta0) + st.track[0].head<2>();
+    worst = std::max({worst, std::abs((C - fb.B(t)).norm() - fb.b), std::abs((C - fb.D()).norm() - fb.c)});
+  }
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_NEAR(r.steps.back().control, o.target, 1e-9);
+}
+
+}  // namespace path_singularity_test
