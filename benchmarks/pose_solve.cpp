@@ -76,8 +76,9 @@ void measure(const json& doc, double budget) {
   pose.solved.clear();
   RunReport report;
   const PoseSolution s = solve_pose(at_reference, pose);
-  fmt::print("3-RRR, beam links: {} nodes, {} joints; the pose takes {} continuation steps, {} Newton iterations\n",
-             posed.nodes.size(), posed.joints.size(), s.steps, s.newton_iterations);
+  fmt::print(
+      "3-RRR, beam links: {} nodes, {} joints; the pose takes {} continuation steps, {} Newton iterations, {} Jacobians\n",
+      posed.nodes.size(), posed.joints.size(), s.steps, s.newton_iterations, s.jacobians);
   const std::vector<double> t = bench::paired(
       {[&] {
          Model m = at_reference;

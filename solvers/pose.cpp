@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <numeric>
 
 #include "core/errors.hpp"
@@ -26,6 +27,14 @@ namespace {
 constexpr double kDivergence = 1e3;
 // A step that converged grows by this factor (up to the first step's size) for the next one.
 constexpr double kStepGrowth = 1.5;
+// A Newton update with a kept Jacobian decomposition (a chord step) must shrink the residual at
+// least by this factor, else the Jacobian is made anew at the iterate.
+constexpr double kChordContraction = 0.5;
+// The residual (positions over the length scale, rotations in rad) at which a continuation step
+// short of the pose (lambda < 1) has converged: its solution only starts the next step, whose
+// secant predictor errs by far more (O(h^2), h ~ 0.1); the last step converges to the options'
+// tolerance. Steps stay as small as before, so the branch followed is the same.
+constexpr double kStepTolerance = 1e-5;
 
 // The model's bodies and the spanning tree of its joints.
 struct Topology {
@@ -230,6 +239,7 @@ class PoseProblem {
         unknowns_.push_back({static_cast<int>(j), k, flat, jt.is_translation(k) ? L_ : 1.0});
       }
     }
+    cod_.setThreshold(o_.rank_tolerance);
   }
 
   PoseSolution solve() {
@@ -327,38 +337,82 @@ class PoseProblem {
     }
   }
 
-  // Newton at lambda from q (the predictor), in place. False: not converged.
+  // Newton at lambda from q (the predictor), in place. False: not converged. The Jacobian's
+  // decomposition is kept from iterate to iterate and from step to step (a chord iteration,
+  // Kelley 2003, "Solving Nonlinear Equations with Newton's Method", sec. 1.8 and 2.3) while
+  // each residual is at most kChordContraction times the one before (at a rate that reaches the
+  // goal within the iterations allowed); otherwise it is made anew at the current iterate. Steps short of the pose converge to kStepTolerance and their rank is
+  // checked on the decomposition in hand (a nearby point's). At the pose (lambda = 1) the Jacobian
+  // is made at the converged iterate, its rank checked, and one Newton step taken with it: the
+  // solution is then accurate to rounding (quadratic convergence), not just to the tolerance.
   bool newton(Eigen::VectorXd& q, double lambda, PoseSolution& s) {
-    for (const auto& [j, v] : pose_.joints)
-      for (int k = 0; k < v.size(); ++k) q[top_.offset[j] + k] = lambda * v[k];
-    Frames f;
+    set_given(q, lambda);
     if (unknowns_.empty()) {  // nothing to solve: the given coordinates close the loops or not
-      forward_kinematics(m_, top_, q, f);
-      residual(q, lambda, f, r_);
+      forward_kinematics(m_, top_, q, f_);
+      residual(q, lambda, f_, r_);
       return r_.lpNorm<Eigen::Infinity>() <= o_.tolerance;
     }
-    Eigen::MatrixXd J;
-    double first = -1.0;
+    const auto n = static_cast<Eigen::Index>(unknowns_.size());
+    double first = -1.0, last = std::numeric_limits<double>::infinity();
     for (int it = 0; it <= o_.max_newton_iterations; ++it) {
-      forward_kinematics(m_, top_, q, f);
-      residual(q, lambda, f, r_);
+      forward_kinematics(m_, top_, q, f_);
+      residual(q, lambda, f_, r_);
       const double norm = r_.lpNorm<Eigen::Infinity>();
       if (!std::isfinite(norm)) return false;
       if (first < 0.0) first = norm;
-      jacobian(q, f, J);
-      Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
-      cod.setThreshold(o_.rank_tolerance);
-      cod.compute(J);
-      if (norm <= o_.tolerance) {
-        if (cod.rank() < static_cast<Eigen::Index>(unknowns_.size())) singular(J);
+      const bool last_step = lambda == 1.0;
+      const double goal = last_step ? o_.tolerance : std::max(o_.tolerance, kStepTolerance);
+      if (norm <= goal) {
+        if (!decomposed_ || last_step) decompose(q, s);
+        if (cod_.rank() < n) singular(J_);
+        if (last_step) update(q, s);
         return true;
       }
       if (it == o_.max_newton_iterations || norm > kDivergence * std::max(first, o_.tolerance)) return false;
-      const Eigen::VectorXd dx = cod.solve(r_);
-      for (std::size_t c = 0; c < unknowns_.size(); ++c) q[unknowns_[c].flat] -= dx[c] * unknowns_[c].scale;
-      ++s.newton_iterations;
+      // A chord step that shrank the residual too little, or at a rate that would not reach the
+      // goal within the iterations left, gives way to a Jacobian at the iterate.
+      const double rate = norm / last;
+      if (!decomposed_ || rate > kChordContraction ||
+          (rate > 0.0 && std::log(goal / norm) / std::log(rate) > o_.max_newton_iterations - it))
+        decompose(q, s);
+      update(q, s);
+      last = norm;
     }
     return false;
+  }
+
+  // The given coordinates at lambda.
+  void set_given(Eigen::VectorXd& q, double lambda) const {
+    for (const auto& [j, v] : pose_.joints)
+      for (int k = 0; k < v.size(); ++k) q[top_.offset[j] + k] = lambda * v[k];
+  }
+
+  // q -= J^+ r (r_, the residual at q), in the unknowns' scales.
+  void update(Eigen::VectorXd& q, PoseSolution& s) {
+    dx_.noalias() = pinv_ * r_;
+    for (std::size_t c = 0; c < unknowns_.size(); ++c) q[unknowns_[c].flat] -= dx_[c] * unknowns_[c].scale;
+    ++s.newton_iterations;
+  }
+
+  // The Jacobian at q (the frames f_ at q) and its decomposition.
+  void decompose(const Eigen::VectorXd& q, PoseSolution& s) {
+    ++s.jacobians;
+    jacobian(q, f_, J_);
+    cod_.compute(J_);
+    // The least-squares solution operator, so that each chord step is a product. At full column
+    // rank J P = Q T (Z = I), and J's pseudo-inverse P T^-1 Q^T[:n] = P T^-1 T^-T P^T J^T (the
+    // semi-normal equations, Golub & Van Loan 2013, sec. 5.3.8: no Q is formed).
+    const auto n = static_cast<Eigen::Index>(unknowns_.size());
+    if (cod_.rank() == n) {
+      const auto T = cod_.matrixT().topLeftCorner(n, n).triangularView<Eigen::Upper>();
+      pinv_ = cod_.colsPermutation().transpose() * J_.transpose();
+      T.transpose().solveInPlace(pinv_);
+      T.solveInPlace(pinv_);
+      pinv_ = cod_.colsPermutation() * pinv_;
+    } else {
+      pinv_ = cod_.pseudoInverse();
+    }
+    decomposed_ = true;
   }
 
   // The pose leaves some unknowns undetermined: name the coordinate that moves most along the
@@ -410,7 +464,14 @@ class PoseProblem {
         continue;
       }
       h /= 2.0;
-      if (h < h_min) unreachable(lambda);
+      if (h < h_min) {
+        // The residual that names the culprit: the last solution's against the smallest step's
+        // demands (the given coordinates and the targets at `next`), not Newton's last iterate.
+        set_given(q, next);
+        forward_kinematics(m_, top_, q, f_);
+        residual(q, next, f_, r_);
+        unreachable(lambda);
+      }
     }
     return q;
   }
@@ -457,6 +518,13 @@ class PoseProblem {
   std::vector<Unknown> unknowns_;
   int rows_ = 0;
   Eigen::VectorXd r_;  // the last residual evaluated
+  // Newton's workspace, kept from iteration to iteration and step to step.
+  Frames f_;
+  Eigen::MatrixXd J_;
+  Eigen::VectorXd dx_;
+  Eigen::MatrixXd pinv_;  // J_'s pseudo-inverse
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod_;
+  bool decomposed_ = false;  // cod_ holds the decomposition of J_
 };
 
 }  // namespace

@@ -30,8 +30,10 @@
 // given coordinates lambda q and node targets moved along the straight line (rotation: exp(lambda
 // log R)); at each step Newton's method on the unknowns with the spatial Jacobian (each coordinate
 // a twist) and a least-squares step (the loop equations of a planar mechanism are redundant in
-// space), steps halved where Newton fails. Every step's solution is the continuation of the one
-// before, so the assembly branch (elbow up or down, working mode) is the reference's.
+// space), steps halved where Newton fails. The Jacobian's decomposition is kept while the residual
+// at least halves per iteration (a chord method); steps short of the pose converge to a looser
+// tolerance (1e-5), the last one to `tolerance`. Every step's solution is the continuation of the
+// one before, so the assembly branch (elbow up or down, working mode) is the reference's.
 #include <string>
 #include <vector>
 
@@ -57,6 +59,7 @@ struct PoseSolution {
   std::vector<Vec3> t;             // per body: x = R X + t
   int steps = 0;                   // continuation steps taken
   int newton_iterations = 0;       // in all steps
+  int jacobians = 0;               // Jacobians made and decomposed, in all steps
 };
 
 // Solves `pose` on `model` (its reference geometry). Throws ModelError naming the joint or node at

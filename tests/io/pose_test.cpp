@@ -21,6 +21,7 @@
 
 #include "core/errors.hpp"
 #include "io/run.hpp"
+#include "solvers/pose.hpp"
 
 namespace pose_test {
 
@@ -173,6 +174,26 @@ TEST(Pose, FiveBarDrivenByItsEndPointSolvesTheClosedFormInverseKinematics) {
     EXPECT_NEAR(res["pose"]["nodes"]["E"][0].get<double>(), e.x(), 1e-12);
     EXPECT_NEAR(res["pose"]["nodes"]["F"][1].get<double>(), e.y(), 1e-12);
     EXPECT_EQ(res["analyses"]["K"]["status"], "ok");
+  }
+}
+
+TEST(Pose, ALargeMoveInManyStepsStaysOnTheReferencesBranch) {
+  // End points far from E0 (the continuation takes many steps, each converged loosely but the
+  // last): the crank angles are the closed form's on the reference's branch (kSign), not the
+  // mirrored assembly alpha -/+ beta, which differs by 2 beta (over 0.5 rad here).
+  json reference = five_bar(false);
+  const beamfea::Model at_reference = beamfea::load_and_check(reference);
+  for (const Eigen::Vector2d& e : {Eigen::Vector2d(-0.08, 0.16), Eigen::Vector2d(0.27, 0.2)}) {
+    json doc = reference;
+    doc["pose"] = target(e);
+    beamfea::Pose pose = beamfea::load_and_check(doc).pose;
+    pose.solved.clear();
+    const beamfea::PoseSolution s = beamfea::solve_pose(at_reference, pose);
+    EXPECT_GE(s.steps, 4) << e.transpose();
+    for (int i = 0; i < 2; ++i) {
+      const double q = crank_angle(i, e) - crank_angle(i, E0);
+      EXPECT_NEAR(s.q[at_reference.find_joint(i == 0 ? "q1" : "q2")][0], q, 1e-10) << e.transpose();
+    }
   }
 }
 
