@@ -15,6 +15,7 @@
 #include "core/errors.hpp"
 #include "io/sweep.hpp"
 #include "app/openblas.hpp"
+#include "solvers/petsc_solver.hpp"
 
 #ifdef BEAMFEA_HAVE_MPI
 #include <mpi.h>
@@ -145,7 +146,11 @@ class MpiComm : public SweepComm {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
   }
-  ~MpiComm() override { MPI_Finalize(); }
+  // PETSc, when a case solved iteratively, finalised first: it runs on this MPI.
+  ~MpiComm() override {
+    finalize_petsc();
+    MPI_Finalize();
+  }
   MpiComm(const MpiComm&) = delete;
   MpiComm& operator=(const MpiComm&) = delete;
 
