@@ -21,6 +21,7 @@
 #include "io/model_reader.hpp"
 #include "io/model_warnings.hpp"
 #include "io/run.hpp"
+#include "solvers/petsc_solver.hpp"
 
 namespace {
 
@@ -45,6 +46,10 @@ RunState* volatile g_run_state = nullptr;
 }  // namespace
 
 int main(int argc, char** argv) {
+  // PETSc (the iterative solver, started on first use) finalised as main returns, whichever way.
+  const struct PetscAtExit {
+    ~PetscAtExit() { beamfea::finalize_petsc(); }
+  } petsc_at_exit;
   // The BLAS kernels, the libraries' OpenMP, the prefault thread and the huge-page advice, before
   // any analysis (app/program_settings.hpp).
   const auto settings = beamfea::app::configure_program();

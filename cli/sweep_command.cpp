@@ -15,6 +15,7 @@
 #include "core/errors.hpp"
 #include "io/sweep.hpp"
 #include "app/openblas.hpp"
+#include "solvers/petsc_solver.hpp"
 
 #ifdef BEAMFEA_HAVE_MPI
 #include <mpi.h>
@@ -150,6 +151,7 @@ class MpiComm : public SweepComm {
   }
   ~MpiComm() override {
     if (abandoned_) MPI_Abort(MPI_COMM_WORLD, 1);  // a lost rank would never join MPI_Finalize
+    finalize_petsc();  // PETSc (and SLEPc), when a case solved iteratively, runs on this MPI
     MPI_Finalize();
   }
   MpiComm(const MpiComm&) = delete;

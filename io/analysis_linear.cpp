@@ -26,6 +26,14 @@ namespace beamfea {
 // an ordered_json object that grows deep copies what it holds, which at 97,344 DOFs cost a tenth
 // of the whole run (the result object copying its nodes and elements when its tenth key came).
 
+void set_solver_report(ojson& v, const SolverReport& report) {
+  ObjectFiller o(v, 3);
+  set_string(o.slot("type"), report.iterative ? "iterative" : "direct");
+  o.slot("iterations") = report.iterations;
+  o.slot("residual") = report.residual;
+  o.finish();
+}
+
 ojson mechanism_json(const Model& model, const std::vector<ZeroEnergyMode>& modes) {
   ojson out = ojson::array();
   for (const auto& m : modes) {
@@ -284,9 +292,9 @@ void set_static_solution(ObjectFiller& res, const AnalysisContext& ctx, std::sha
 namespace {
 
 // The keys of a linear_static result (type, load_case, status, message, free_dofs, factorizations,
-// mechanism, nodes, elements, joints, tie_forces, constraint_forces, statically_indeterminate, vtk)
-// and run_document's wall_time_s.
-constexpr std::size_t kLinearStaticResultKeys = 15;
+// solver, mechanism, nodes, elements, joints, tie_forces, constraint_forces, statically_indeterminate,
+// vtk) and run_document's wall_time_s.
+constexpr std::size_t kLinearStaticResultKeys = 16;
 
 // Below this reciprocal condition estimate of the Jacobi-scaled stiffness (LinearSystem::rcond) a
 // linear solution is flagged as doubtful: the relative error bound eps / rcond passes about 2e-6,
@@ -326,9 +334,12 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx, const LinearStatic
   // Copied into the previous run's message storage when there is one (no allocation in a sweep).
   if (ctx.previous_message) out.message.swap(*ctx.previous_message);
   out.message.assign(r.message);
+  if (r.status == SolveStatus::Succeeded || r.status == SolveStatus::NotConverged) set_solver_report(res.slot("solver"), r.solver);
   if (r.status != SolveStatus::Succeeded) {
-    out.termination = r.status == SolveStatus::Mechanism ? AnalysisTermination::Mechanism : AnalysisTermination::Failed;
-    res.slot("mechanism") = mechanism_json(model, r.modes);
+    out.termination = r.status == SolveStatus::Mechanism      ? AnalysisTermination::Mechanism
+                      : r.status == SolveStatus::NotConverged ? AnalysisTermination::NotConverged
+                                                              : AnalysisTermination::Failed;
+    if (r.status != SolveStatus::NotConverged) res.slot("mechanism") = mechanism_json(model, r.modes);
     res.finish();
     return out;
   }
@@ -346,8 +357,8 @@ AnalysisOutcome run_linear_static(const AnalysisContext& ctx, const LinearStatic
 
 // The keys of a stiffness result (type, node, load_case, about, geometric_stiffness, status, message, matrix, rank, null_space,
 // compliance, compliance_bounded, unbounded_directions, rigid_directions, statically_indeterminate,
-// length_scale, scaled_eigenvalues, indices, ellipsoid), and run_document's wall_time_s.
-constexpr std::size_t kStiffnessResultKeys = 20;
+// length_scale, scaled_eigenvalues, indices, ellipsoid, solver), and run_document's wall_time_s.
+constexpr std::size_t kStiffnessResultKeys = 21;
 
 struct StiffnessSpec {
   int node = -1;
@@ -423,9 +434,15 @@ AnalysisOutcome run_stiffness(const AnalysisContext& ctx, const StiffnessSpec& s
     set_string(r.slot("about"), spec.preload.about == Equilibrium::SecondOrder ? "second_order" : "linear_static");
     set_string(r.slot("geometric_stiffness"), spec.preload.geometric_stiffness == GeometricStiffness::Full ? "full" : "axial");
   }
-  set_string(r.slot("status"), stiffness_status(k.ok));
+  set_string(r.slot("status"), k.not_converged ? result_status(SolveStatus::NotConverged) : stiffness_status(k.ok));
   set_string(r.slot("message"), k.message);
   out.message = std::move(k.message);
+  if (k.ok || k.not_converged) set_solver_report(r.slot("solver"), k.solver);
+  if (k.not_converged) {
+    out.termination = AnalysisTermination::NotConverged;
+    r.finish();
+    return out;
+  }
   if (!k.ok) {
     out.termination = AnalysisTermination::Mechanism;
     r.slot("mechanism") = mechanism_json(model, k.modes);

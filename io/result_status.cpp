@@ -11,6 +11,7 @@ const char* result_status(SolveStatus s) {
     case SolveStatus::Succeeded: return kOk;
     case SolveStatus::Mechanism: return "mechanism";
     case SolveStatus::Failed: return "failed";
+    case SolveStatus::NotConverged: return "not converged";
   }
   return "failed";
 }

@@ -17,6 +17,10 @@ namespace beamfea {
 // The zero-energy modes as [{description, nodes, elements, joints, dofs}] (ids).
 ojson mechanism_json(const Model& model, const std::vector<ZeroEnergyMode>& modes);
 
+// Which solver ran, written over `v`: {"type": "direct" | "iterative", "iterations", "residual"}
+// (analyses.<id>.solver; docs/analyses/solver.md).
+void set_solver_report(ojson& v, const SolverReport& report);
+
 // An analysis spec's "stations" (interior stations per member, default 10, at most 10000),
 // InputError at <p>/stations naming `type`.
 int read_stations(const nlohmann::json& spec, const json_in::Pointer& p, const std::string& type);

@@ -25,6 +25,7 @@
 #include "python/interruptible.hpp"
 #include "python/python_errors.hpp"
 #include "python/sweep_table_binding.hpp"
+#include "solvers/petsc_solver.hpp"
 
 namespace py = pybind11;
 using namespace beamfea;
@@ -260,6 +261,8 @@ PYBIND11_MODULE(_beamfea, m) {
   });
   init_conversions();
   register_error_translator();
+  // PETSc (the iterative solver, started on first use) finalised as the interpreter exits.
+  py::module_::import("atexit").attr("register")(py::cpp_function([] { finalize_petsc(); }));
   m.def("run", &run, py::arg("model"), py::arg("only"), py::arg("specs"), py::arg("out"), py::arg("vtk"), py::arg("progress"));
   m.def("check", &check, py::arg("model"));
   m.def("sweep", &sweep, py::arg("spec"), py::arg("jobs"), py::arg("progress"));

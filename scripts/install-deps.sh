@@ -11,6 +11,8 @@ packages=(
   libgtest-dev libbenchmark-dev
   libopenblas0-pthread          # CHOLMOD's supernodal factorisation is 6-14x faster than with reference BLAS
   openmpi-bin libopenmpi-dev    # `beamfea sweep` under mpirun
+  libpetsc-real-dev             # the iterative solver: CG with algebraic multigrid (solvers/petsc_solver.cpp)
+  libslepc-real-dev             # eigenvalues of models beyond one direct factorisation (modal, buckling)
   python3-matplotlib python3-numpy  # plots of the examples (Debian's /usr/bin/python3)
   pybind11-dev python3-pybind11 python3-dev python3-pytest  # the Python module (python/) and its tests
   python3-vtk9                  # tests read the .vtu files back with VTK's own reader

@@ -75,6 +75,7 @@ DirectionalStiffness condense_to_directions(const Model& model, const DofMap& ma
       out.message = "node '" + model.nodes[node].id + "' dof " + kDofNames[dirs[c.held]] +
                     " is held rigidly (supported, prescribed or fixed by rigid constraints): its stiffness is unbounded";
       return out;
+    case Condensation::Outcome::NotConverged:  // the iterative route is not used here
     case Condensation::Outcome::Mechanism:
       out.message = "holding node '" + model.nodes[node].id +
                     "' in the requested directions leaves a mechanism, or a direction is not independent of the "

@@ -1,7 +1,9 @@
 #include "solvers/condensation.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -39,21 +41,67 @@ bool picked_columns(const Eigen::MatrixXd& A, std::array<int, kMaxPickedColumns>
 }
 
 // The dense route (see the header): static condensation onto picked columns, else the Schur
-// complement of the rows; false where it declines.
+// complement of the rows; false where it declines. `residual`: the computed relative residual of
+// the route's own solve with the factor it left in w (dense_route_residual).
+double dense_route_residual(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, bool picked,
+                            std::span<const int> cols, std::span<const double> coef, CondensationWorkspace& w);
+
 bool condense_dense_route(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz,
-                          const SolverOptions& options, CondensationWorkspace* w) {
+                          const SolverOptions& options, CondensationWorkspace& w, double* residual) {
   std::array<int, kMaxPickedColumns> cols;
   std::array<double, kMaxPickedColumns> coef;
   const std::size_t r = static_cast<std::size_t>(A.rows());
-  if (picked_columns(A, cols, coef) &&
-      dense_static_condensation(K, std::span<const int>(cols.data(), r), std::span<const double>(coef.data(), r), Kz,
-                                options, w))
-    return true;
-  return dense_schur_condensation(K, A, Kz, options, w);
+  const std::span<const int> c(cols.data(), r);
+  const std::span<const double> a(coef.data(), r);
+  bool picked = picked_columns(A, cols, coef) && dense_static_condensation(K, c, a, Kz, options, &w);
+  if (!picked && !dense_schur_condensation(K, A, Kz, options, &w)) return false;
+  if (residual) *residual = dense_route_residual(K, A, picked, c, a, w);
+  return true;
+}
+
+// ||F - K X|| / ||F|| of the dense route's solve (0 when F = 0), K's lower triangle read:
+//   static condensation: the condensed DOFs o under unit motions of the picked ones p,
+//     K_oo X_o = F = -K_op X_p, X_p = diag(1/a) (A X = I), by the factor of the scaled K_oo;
+//   Schur complement: K X = F = A^T, by the factor of the scaled K.
+double dense_route_residual(const Eigen::MatrixXd& K, const Eigen::MatrixXd& A, bool picked,
+                            std::span<const int> cols, std::span<const double> coef, CondensationWorkspace& w) {
+  const Eigen::Index n = K.rows(), r = A.rows();
+  const auto Ks = K.selfadjointView<Eigen::Lower>();
+  if (picked) {
+    const Eigen::Index m = n - r;
+    w.X.setZero(n, r);
+    for (Eigen::Index k = 0; k < r; ++k) w.X(cols[k], k) = 1.0 / coef[k];
+    w.F.noalias() = Ks * w.X;  // K_op X_p over every row; the o rows negated are F
+    Eigen::MatrixXd& Y = w.W;  // the scaled o rows: S_o^-1 X_o = L^-T L^-1 S_o F_o
+    Y.resize(m, r);
+    for (Eigen::Index i = 0; i < m; ++i) Y.row(i) = -w.F.row(w.order[i]) * w.s[i];
+    const auto L = w.L.topLeftCorner(m, m).triangularView<Eigen::Lower>();
+    L.solveInPlace(Y);
+    L.transpose().solveInPlace(Y);
+    double fn = 0.0;
+    for (Eigen::Index i = 0; i < m; ++i) {
+      w.X.row(w.order[i]) = Y.row(i) * w.s[i];
+      fn += w.F.row(w.order[i]).squaredNorm();
+    }
+    if (!(fn > 0.0)) return 0.0;
+    w.F.noalias() = Ks * w.X;  // K_oo X_o + K_op X_p: the residual over the o rows
+    double rn = 0.0;
+    for (Eigen::Index i = 0; i < m; ++i) rn += w.F.row(w.order[i]).squaredNorm();
+    return std::sqrt(rn / fn);
+  }
+  // W = L^-1 (A S)^T: X = S L^-T W.
+  w.X = w.W;
+  w.L.triangularView<Eigen::Lower>().transpose().solveInPlace(w.X);
+  w.X = w.s.asDiagonal() * w.X;
+  w.F = A.transpose();
+  const double fn = w.F.norm();
+  w.F.noalias() -= Ks * w.X;
+  return fn > 0.0 ? w.F.norm() / fn : 0.0;
 }
 
 // K_z = -M of the saddle point by the Umfpack back end; false when singular or nearly so.
-bool condense_saddle_point(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz) {
+// `residual`: ||rhs - S X|| / ||rhs||, computed.
+bool condense_saddle_point(const SparseMatrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz, double* residual) {
   const int n = static_cast<int>(K.rows()), r = static_cast<int>(A.rows());
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(K.nonZeros() + 2 * A.size());
@@ -75,8 +123,9 @@ bool condense_saddle_point(const SparseMatrix& K, const Eigen::MatrixXd& A, Eige
   Eigen::MatrixXd X;
   lu->solve(rhs, X);
   if (!X.allFinite()) return false;
-  if ((S * X - rhs).norm() > kSaddleResidualRelative * (Eigen::MatrixXd(S.cwiseAbs() * X.cwiseAbs()).norm() + 1.0))
-    return false;
+  const double rn = (S * X - rhs).norm();
+  if (rn > kSaddleResidualRelative * (Eigen::MatrixXd(S.cwiseAbs() * X.cwiseAbs()).norm() + 1.0)) return false;
+  if (residual) *residual = rn / rhs.norm();
   const Eigen::MatrixXd M = X.bottomRows(r);
   Kz = -0.5 * (M + M.transpose());
   return true;
@@ -86,7 +135,7 @@ bool condense_saddle_point(const SparseMatrix& K, const Eigen::MatrixXd& A, Eige
 
 template <class Matrix>
 Condensation::Outcome condense(const Matrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz,
-                               const SolverOptions& options, CondensationWorkspace* workspace) {
+                               const SolverOptions& options, CondensationWorkspace* workspace, double* residual) {
   options.validate();
   const Eigen::Index n = K.rows();
   if (K.cols() != n || A.cols() != n || A.rows() == 0) throw Error("condense: K must be square and A have its columns");
@@ -96,22 +145,53 @@ Condensation::Outcome condense(const Matrix& K, const Eigen::MatrixXd& A, Eigen:
   if (dense_only || (options.backend == SolverBackend::Automatic && n <= options.dense_max_dofs)) {
     SolverOptions o = options;
     if (dense_only) o.dense_max_dofs = std::numeric_limits<int>::max();  // the caller chose dense
+    CondensationWorkspace local;
+    CondensationWorkspace& w = workspace ? *workspace : local;
     bool done;
-    if constexpr (std::is_same_v<Matrix, SparseMatrix>) done = condense_dense_route(Eigen::MatrixXd(K), A, Kz, o, workspace);
-    else done = condense_dense_route(K, A, Kz, o, workspace);
+    if constexpr (std::is_same_v<Matrix, SparseMatrix>) done = condense_dense_route(Eigen::MatrixXd(K), A, Kz, o, w, residual);
+    else done = condense_dense_route(K, A, Kz, o, w, residual);
     if (done) return Condensation::Outcome::Succeeded;
     if (dense_only) return Condensation::Outcome::Mechanism;
   }
   bool done;
-  if constexpr (std::is_same_v<Matrix, SparseMatrix>) done = condense_saddle_point(K, A, Kz);
-  else done = condense_saddle_point(SparseMatrix(K.sparseView()), A, Kz);
+  if constexpr (std::is_same_v<Matrix, SparseMatrix>) done = condense_saddle_point(K, A, Kz, residual);
+  else done = condense_saddle_point(SparseMatrix(K.sparseView()), A, Kz, residual);
   return done ? Condensation::Outcome::Succeeded : Condensation::Outcome::Mechanism;
 }
 
 template Condensation::Outcome condense(const SparseMatrix&, const Eigen::MatrixXd&, Eigen::MatrixXd&, const SolverOptions&,
-                                        CondensationWorkspace*);
+                                        CondensationWorkspace*, double*);
 template Condensation::Outcome condense(const Eigen::MatrixXd&, const Eigen::MatrixXd&, Eigen::MatrixXd&,
-                                        const SolverOptions&, CondensationWorkspace*);
+                                        const SolverOptions&, CondensationWorkspace*, double*);
+
+Condensation::Outcome condense_iteratively(const PetscSolver& cg, const SparseMatrix& K, const Eigen::MatrixXd& A,
+                                           Eigen::MatrixXd& Kz, SolverReport& report) {
+  const Eigen::Index n = K.rows(), r = A.rows();
+  if (K.cols() != n || A.cols() != n || r == 0) throw Error("condense: K must be square and A have its columns");
+  report = {.iterative = true, .iterations = 0, .residual = 0.0};
+  for (Eigen::Index k = 0; k < r; ++k)
+    if ((A.row(k).array() == 0.0).all()) return Condensation::Outcome::HeldDof;
+  Eigen::MatrixXd X(n, r);
+  Eigen::VectorXd b, x, scratch;
+  for (Eigen::Index k = 0; k < r; ++k) {
+    b = A.row(k).transpose();
+    const SolverReport one = solve_to_rtol(cg, K, b, x, scratch);
+    report.add(one);
+    const IterativeSolveReport& last = cg.last_solve();
+    if (!last.converged() && last.outcome != IterativeSolveReport::Outcome::MaxIterations)
+      return Condensation::Outcome::Mechanism;  // CG broke down: K is not positive definite
+    if (!last.converged() || one.residual > cg.options().rtol) return Condensation::Outcome::NotConverged;
+    X.col(k) = x;
+  }
+  // C = A K^-1 A^T, symmetric positive definite when K is and the rows are independent.
+  Eigen::MatrixXd C = A * X;
+  C = 0.5 * (C + C.transpose()).eval();
+  const Eigen::LLT<Eigen::MatrixXd> llt(C);
+  if (llt.info() != Eigen::Success) return Condensation::Outcome::Mechanism;
+  Kz = llt.solve(Eigen::MatrixXd::Identity(r, r));
+  Kz = 0.5 * (Kz + Kz.transpose()).eval();
+  return Kz.allFinite() ? Condensation::Outcome::Succeeded : Condensation::Outcome::Mechanism;
+}
 
 Condensation condense(const DofMap& map, const SparseMatrix& K, std::span<const int> raw, const SolverOptions& options) {
   Condensation out;

@@ -20,6 +20,10 @@
 //              end (it is indefinite), with a residual test for near singularity.
 //   Automatic  the dense route for K of at most dense_max_dofs coordinates, the saddle point where
 //              K is larger or the dense route declines: the arithmetic of every caller so far.
+//   iterative  (condense_iteratively, the model's "solver" choosing it) X = K^-1 A^T column by
+//              column by PETSc's conjugate gradients (solvers/petsc_solver.hpp) with the multigrid
+//              set up once, then K_z = (A X)^-1: K must be positive definite (a K that only the
+//              rows make regular is a mechanism there).
 // Outcomes: Succeeded; HeldDof where a row is zero (the coordinate cannot move: its stiffness is
 // unbounded); Mechanism where holding the rows still leaves a mechanism or the rows are not
 // independent of the constraints. Bad input (sizes) throws.
@@ -29,11 +33,12 @@
 #include "core/dof_map.hpp"
 #include "solvers/dense_condensation.hpp"
 #include "solvers/linear_solver.hpp"
+#include "solvers/solver_choice.hpp"
 
 namespace beamfea {
 
 struct Condensation {
-  enum class Outcome { Succeeded, HeldDof, Mechanism };
+  enum class Outcome { Succeeded, HeldDof, Mechanism, NotConverged /* an iterative solve stopped above rtol */ };
   Outcome outcome = Outcome::Mechanism;
   Eigen::MatrixXd K;  // r x r, symmetric (Succeeded)
   int held = -1;      // HeldDof: the index of a zero row
@@ -46,10 +51,20 @@ using RawCondensation = Condensation;
 using CondensationWorkspace = DenseCondensationWorkspace;
 
 // K_z of K (sparse, or dense as a small model's dense assembly gives it: only its lower triangle
-// is read on the dense route) for the rows A, written over Kz (its storage kept).
+// is read on the dense route) for the rows A, written over Kz (its storage kept). `residual`, when
+// given: the computed relative residual ||F - K X|| / ||F|| of the route's own linear solve (the
+// saddle point's, or the dense factor's for the condensed DOFs' response to the rows).
 template <class Matrix>
 Condensation::Outcome condense(const Matrix& K, const Eigen::MatrixXd& A, Eigen::MatrixXd& Kz,
-                               const SolverOptions& options = {}, CondensationWorkspace* workspace = nullptr);
+                               const SolverOptions& options = {}, CondensationWorkspace* workspace = nullptr,
+                               double* residual = nullptr);
+
+// K_z of K for the rows A by the iterative solver `cg` (its compute(K) done): Mechanism when CG
+// breaks down or A X is not positive definite (K singular), NotConverged when a solve stops above
+// rtol; `report` says how the solves went (the most iterations and the largest computed residual
+// ||a_k - K x_k|| / ||a_k|| over the rows).
+Condensation::Outcome condense_iteratively(const PetscSolver& cg, const SparseMatrix& K, const Eigen::MatrixXd& A,
+                                           Eigen::MatrixXd& Kz, SolverReport& report);
 
 // The same for the rows of T_free of the raw DOFs `raw` of `map` (K free x free).
 Condensation condense(const DofMap& map, const SparseMatrix& K, std::span<const int> raw,

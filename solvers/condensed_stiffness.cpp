@@ -15,6 +15,8 @@
 #include "solvers/condensation.hpp"
 #include "solvers/initial_stress.hpp"
 #include "solvers/linear_static.hpp"
+#include "solvers/near_null_space.hpp"
+#include "solvers/petsc_solver.hpp"
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
 #include "solvers/structure_cache.hpp"
@@ -85,6 +87,7 @@ struct NodeCondensationScratch {
   Eigen::JacobiSVD<Eigen::MatrixXd> svd;
   CondensationWorkspace dense;
   std::vector<Vec6> free_dirs;
+  const PetscSolver* cg = nullptr;  // the iterative solver set up for K, when the model chose it
 };
 
 // The thread's set for n free DOFs up to kDenseMaxDofs, else `local`.
@@ -139,6 +142,8 @@ void reset(CondensedStiffness& out) {
   out.eigenvalues.setZero();
   out.modes.clear();
   out.statically_indeterminate.clear();
+  out.solver = {.iterative = false, .iterations = 1, .residual = 0.0};
+  out.not_converged = false;
 }
 
 }  // namespace
@@ -200,7 +205,20 @@ void node_compliance_of(const Matrix& K, const Eigen::MatrixXd& Tn, const Eigen:
   A.resize(r, Tn.cols());
   if (whole) A.noalias() = S.asDiagonal() * Tn;
   else A.noalias() = (Ur.transpose() * S.asDiagonal()).lazyProduct(Tn);
-  if (condense(K, A, Kz, {}, &w.dense) != Condensation::Outcome::Succeeded) return;
+  Condensation::Outcome outcome;
+  if constexpr (std::is_same_v<Matrix, SparseMatrix>) {
+    outcome = w.cg ? condense_iteratively(*w.cg, K, A, Kz, out.solver)
+                   : condense(K, A, Kz, {}, &w.dense, &out.solver.residual);
+  } else {
+    outcome = condense(K, A, Kz, {}, &w.dense, &out.solver.residual);
+  }
+  if (outcome == Condensation::Outcome::Mechanism && w.cg) {
+    // K is not positive definite: the direct saddle point, which holding the node may make regular.
+    out.solver = {.iterative = false, .iterations = 1, .residual = 0.0};
+    outcome = condense(K, A, Kz, {}, &w.dense, &out.solver.residual);
+  }
+  out.not_converged = outcome == Condensation::Outcome::NotConverged;
+  if (outcome != Condensation::Outcome::Succeeded) return;
   // Free directions of the node: the null space of K_z.
   const Small Kzs = Kz;
   Eigen::SelfAdjointEigenSolver<Small> es(Kzs);
@@ -265,7 +283,27 @@ void condense_to_node_of(const Model& model, const DofMap& map, const Matrix& K,
     const bool rotation = d.owner == DofRef::Owner::Node ? d.comp >= 3 : !model.joints[d.index].is_translation(d.comp);
     col_scale[j] = rotation ? 1.0 / L : 1.0;
   }
+  // The model's iterative solver: the multigrid set up once for the node's six solves.
+  std::optional<PetscSolver> cg;
+  if constexpr (std::is_same_v<Matrix, SparseMatrix>) {
+    if (solves_iteratively(model.solver, n)) {
+      cg.emplace(iterative_options(model.solver));
+      cg->set_near_null_space(rigid_body_modes(model, map));
+      if (cg->compute(K) == FactorStatus::Succeeded) w.cg = &*cg;
+      else cg.reset();  // not positive definite: the direct saddle point decides
+    }
+  }
   node_compliance_of(K, Tn, col_scale, L, options, w, out);
+  w.cg = nullptr;
+  if (out.not_converged) {
+    fmt::memory_buffer text;
+    fmt::format_to(std::back_inserter(text), "stiffness of node '{}': the iterative solver ({}) did not converge: "
+                   "relative residual {:.3g} after {} iterations ({})",
+                   model.nodes[node].id, describe_iterative(cg->options()), out.solver.residual, out.solver.iterations,
+                   cg->last_solve().reason);
+    out.message.assign(text.data(), text.size());
+    return;
+  }
   if (!out.ok) {
     if constexpr (std::is_same_v<Matrix, SparseMatrix>) out.modes = zero_energy_modes(model, map, K, 12);
     else out.modes = zero_energy_modes(model, map, SparseMatrix(K.sparseView()), 12);
@@ -325,7 +363,7 @@ void linear_node_stiffness(const Model& model, int node, CondensedStiffness& out
   // Small models: assembled into a dense matrix and condensed by the dense Schur complement. The
   // thread keeps the assembler (its n x n array, at most kDenseMaxDofs square, and its scratch), so
   // that a sweep's cases allocate none of it; reset to this call's map before each use.
-  if (map.free_size() <= kDenseMaxDofs) {
+  if (map.free_size() <= kDenseMaxDofs && !solves_iteratively(model.solver, map.free_size())) {
     thread_local DenseAssembler dense(map);
     dense.reset(map);
     condensed(dense);

@@ -53,6 +53,10 @@ struct CondensedStiffness {
   Vec6 eigenvalues = Vec6::Zero(); // of the length-scaled matrix, ascending
   std::vector<ZeroEnergyMode> modes;  // when holding the node leaves a mechanism
   std::vector<std::string> statically_indeterminate;  // redundant constraint rows (DofMap)
+  // The linear solves of the condensation (analyses.<id>.solver): direct, or the model's iterative
+  // solver; not_converged when an iterative solve stopped above its rtol (then not ok, no modes).
+  SolverReport solver;
+  bool not_converged = false;
 
   // The directions in which the node moves freely (mechanism directions of the node held nowhere
   // else), in the metric of null_space: a load (force, moment / L) with a component along one of
@@ -76,7 +80,11 @@ CondensedStiffness node_compliance(const SparseMatrix& K, const Eigen::MatrixXd&
 CondensedStiffness node_compliance(const Eigen::MatrixXd& K, const Eigen::MatrixXd& Tn, const Eigen::VectorXd& col_scale,
                                    double L, const CondensedStiffnessOptions& options = {});
 
-// Condensed stiffness of `node` for the reduced matrix K (free x free) of `map`.
+// Condensed stiffness of `node` for the reduced matrix K (free x free) of `map`. A sparse K is
+// condensed by the iterative solver where the model's "solver" chooses it (solves_iteratively):
+// X = K^-1 T_n^T by conjugate gradients with multigrid (the rigid-body modes as its near null
+// space), K must then be positive definite; a K that only holding the node makes regular (a chain
+// ending in a spherical joint) is condensed directly.
 CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const SparseMatrix& K, int node,
                                     const CondensedStiffnessOptions& options = {});
 CondensedStiffness condense_to_node(const Model& model, const DofMap& map, const Eigen::MatrixXd& K, int node,

@@ -43,6 +43,7 @@ struct DenseCondensationWorkspace {
   std::vector<int> last;
   Eigen::LLT<Eigen::MatrixXd> llt;  // of C
   std::vector<int> order;           // dense_static_condensation's DOF order
+  Eigen::MatrixXd X, F;             // the solve's answer and right-hand side (condense's residual)
 };
 
 // Condensation onto constraint rows: for K (n x n, symmetric positive definite, lower triangle

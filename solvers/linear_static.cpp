@@ -8,6 +8,7 @@
 #include "core/assembly.hpp"
 #include "core/errors.hpp"
 #include "solvers/member_loading.hpp"
+#include "solvers/near_null_space.hpp"
 #include "solvers/sparse_factor.hpp"
 #include "solvers/structure.hpp"
 
@@ -18,6 +19,7 @@ const char* to_string(SolveStatus s) {
     case SolveStatus::Succeeded: return "converged";
     case SolveStatus::Mechanism: return "mechanism";
     case SolveStatus::Failed: return "failed";
+    case SolveStatus::NotConverged: return "not converged";
   }
   return "?";
 }
@@ -40,6 +42,7 @@ struct LinearSystem::Impl {
   LinearStructure structure;
   SystemAssembler assembler;
   SparseFactor factor;
+  std::unique_ptr<PetscSolver> iterative;  // when the model's "solver" chose it (then no factor)
   Eigen::VectorXd up;
   LinearStaticResult failure;  // status != Converged when the system cannot be solved
 };
@@ -47,7 +50,7 @@ struct LinearSystem::Impl {
 LinearSystem::~LinearSystem() = default;
 
 LinearSystem::LinearSystem(const Model& model, const LinearStaticOptions& options)
-    : model_(&model), impl_(std::make_unique<Impl>(model)) {
+    : model_(&model), impl_(std::make_unique<Impl>(model)), zero_energy_tolerance_(options.zero_energy_tolerance) {
   options.validate();
   Impl& s = *impl_;
   s.up = s.map.prescribed_values();
@@ -60,6 +63,7 @@ LinearSystem::LinearSystem(const Model& model, const LinearStaticOptions& option
   // sort. The two tasks share K_ff: the analysis reads its pattern, the assembly writes its values.
   // Below kParallelMinDofs they run one after the other: a second thread would gain little.
   s.assembler.plan(planned_pattern(s.map, LinearStructure::assembly_blocks(model, s.map)));
+  const bool iterative = solves_iteratively(model.solver, s.map.free_size());
   const auto tasks = [&](std::size_t task) {
     if (task == 0) {
       s.structure.rebuild(model);
@@ -68,13 +72,28 @@ LinearSystem::LinearSystem(const Model& model, const LinearStaticOptions& option
       s.assembler.end();
       return;
     }
-    s.factor.analyze(s.assembler.K_ff(), fo);
+    if (!iterative) s.factor.analyze(s.assembler.K_ff(), fo);
   };
-  run_tasks(s.map.free_size() >= kParallelMinDofs ? options.parallel : ParallelTasks{}, 2, tasks);
+  run_tasks(s.map.free_size() >= kParallelMinDofs && !iterative ? options.parallel : ParallelTasks{}, 2, tasks);
   const SparseMatrix& K = s.assembler.K_ff();
   LinearStaticResult& res = s.failure;
   res.free_dofs = s.map.free_size();
   res.status = SolveStatus::Succeeded;
+  if (iterative) {
+    s.iterative = std::make_unique<PetscSolver>(iterative_options(model.solver));
+    s.iterative->set_near_null_space(rigid_body_modes(model, s.map));
+    if (s.iterative->compute(K) != FactorStatus::Succeeded) {
+      // A zero or negative diagonal entry, or a zero pivot in the multigrid's set-up.
+      res.modes = zero_energy_modes(model, s.map, K, 12, options.zero_energy_tolerance);
+      res.status = res.modes.empty() ? SolveStatus::Failed : SolveStatus::Mechanism;
+      res.message = res.modes.empty() ? "the multigrid preconditioner of the iterative solver could not be set up "
+                                        "(the stiffness is not positive definite)"
+                                      : describe_mechanism(res.modes);
+      return;
+    }
+    factorizations_ = 1;
+    return;
+  }
   const FactorStatus fs = s.factor.factorize(K, fo);
   if (fs == FactorStatus::TooLarge) {
     res.status = SolveStatus::Failed;
@@ -99,8 +118,10 @@ LinearSystem::LinearSystem(const Model& model, const LinearStaticOptions& option
   factorizations_ = 1;
 }
 
+bool LinearSystem::iterative() const { return impl_->iterative != nullptr; }
+
 double LinearSystem::rcond() const {
-  return impl_->factor.cholesky() ? impl_->factor.rcond() : std::numeric_limits<double>::quiet_NaN();
+  return !impl_->iterative && impl_->factor.cholesky() ? impl_->factor.rcond() : std::numeric_limits<double>::quiet_NaN();
 }
 
 void LinearSystem::rebind(const Model& model) {
@@ -167,7 +188,13 @@ void LinearSystem::solve(const LoadSet& loads, LinearStaticResult& res, LinearSo
   s.map.reduce(f_raw, f);
   if (s.map.prescribed_size() > 0) f -= s.assembler.K_fp() * s.up;
   scratch.u_free.resize(f.size());
-  s.factor.solve(f, scratch.u_free);
+  if (s.iterative) {
+    if (!solve_iteratively(f, res, scratch)) return;
+  } else {
+    s.factor.solve(f, scratch.u_free);
+    res.solver = {.iterative = false, .iterations = 1,
+                  .residual = relative_residual(s.assembler.K_ff(), f, scratch.u_free, scratch.free_residual)};
+  }
   s.map.expand(scratch.u_free, s.up, res.u);
 
   Eigen::VectorXd& r = scratch.residual;  // f_int - f_ext
@@ -189,6 +216,33 @@ void LinearSystem::solve(const LoadSet& loads, LinearStaticResult& res, LinearSo
   res.message.clear();
   fmt::format_to(std::back_inserter(res.message), "linear static: {} free DOFs, max |u| = {:.6g}", s.map.free_size(),
                  res.u.size() ? res.u.cwiseAbs().maxCoeff() : 0.0);
+}
+
+bool LinearSystem::solve_iteratively(const Eigen::VectorXd& f, LinearStaticResult& res, LinearSolveScratch& scratch) const {
+  const Impl& s = *impl_;
+  const PetscSolver& cg = *s.iterative;
+  const SparseMatrix& K = s.assembler.K_ff();
+  res.solver = solve_to_rtol(cg, K, f, scratch.u_free, scratch.free_residual);
+  const int iterations = res.solver.iterations;
+  const double residual = res.solver.residual;
+  const IterativeSolveReport& last = cg.last_solve();
+  if (last.converged() && residual <= cg.options().rtol) return true;
+  // CG broke down (a direction of zero or negative energy) or the preconditioner failed: a
+  // mechanism when K has zero-energy modes. Iterations that ran out, or a residual short of rtol,
+  // are a solve short of rtol (the diagnosis, an eigensolve of K, would cost more than the solve).
+  if (last.outcome == IterativeSolveReport::Outcome::Breakdown ||
+      last.outcome == IterativeSolveReport::Outcome::PreconditionerFailed)
+    res.modes = zero_energy_modes(*model_, s.map, K, 12, zero_energy_tolerance_);
+  else
+    res.modes.clear();
+  res.status = res.modes.empty() ? SolveStatus::NotConverged : SolveStatus::Mechanism;
+  res.message = res.modes.empty()
+                    ? fmt::format("the iterative solver ({}) did not converge: relative residual {:.3g} after {} "
+                                  "iterations ({})",
+                                  describe_iterative(cg.options()), residual, iterations, last.reason)
+                    : describe_mechanism(res.modes);
+  res.u.resize(0);
+  return false;
 }
 
 LinearStaticResult solve_linear_static(const Model& model, const LinearStaticOptions& options) {

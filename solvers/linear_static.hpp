@@ -11,6 +11,7 @@
 #include "elements/beam.hpp"
 #include "elements/span_loads.hpp"
 #include "solvers/mechanism.hpp"
+#include "solvers/solver_choice.hpp"
 
 namespace beamfea {
 
@@ -18,6 +19,7 @@ enum class SolveStatus {
   Succeeded,   // a solution was found
   Mechanism,   // the structure has zero-energy modes (see modes)
   Failed,      // the factorisation failed for another reason
+  NotConverged,  // the iterative solver stopped above its rtol (message: the residual reached)
 };
 const char* to_string(SolveStatus s);
 
@@ -35,6 +37,7 @@ struct LinearStaticResult {
   SolveStatus status = SolveStatus::Failed;
   std::string message;                 // one line: outcome and key figures
   int free_dofs = 0;
+  SolverReport solver;                 // which solver ran, its iterations, the computed residual
   Eigen::VectorXd u;                   // raw displacements (node components, joint coordinates)
   std::vector<Vec6> reactions;         // per node (zero where unsupported)
   std::vector<char> supported;         // per node: has at least one support or prescribed DOF
@@ -59,6 +62,7 @@ struct LinearStaticResult {
 // sweep worker), with the result it writes over (LinearSystem::solve's second overload).
 struct LinearSolveScratch {
   Eigen::VectorXd f_raw, f, u_free, residual;  // external force, reduced, K_ff^-1 f, r
+  Eigen::VectorXd free_residual;               // f - K_ff u_free
   DofMap::ConstraintForces constraint_forces;
   DofMap::ConstraintForceScratch constraint_scratch;
 };
@@ -70,6 +74,10 @@ void set_constraint_results(const Model& model, const DofMap& map, const DofMap:
 
 // The linear system of a model, assembled and factorised once; every load case solves against the
 // same factorisation (`factorizations()` counts them: 1, or 0 when the stiffness is singular).
+// The model's "solver" (Model::solver, solves_iteratively) may choose PETSc's conjugate gradients
+// instead: the multigrid preconditioner is then set up once (counted as the factorisation) and
+// every load case iterates with it; a mechanism is diagnosed when CG breaks down or the
+// preconditioner cannot be made (zero_energy_modes, as for the direct solver).
 class LinearSystem {
  public:
   explicit LinearSystem(const Model& model, const LinearStaticOptions& options = {});
@@ -88,6 +96,8 @@ class LinearSystem {
   // max L_ii)^2 (CHOLMOD's estimate, and the dense factor's the same way); NaN when K_ff was not
   // factorised by Cholesky (a mechanism, an indefinite K). Unit-free: the scaling takes the units out.
   double rcond() const;
+  // Whether the system is solved iteratively (PETSc), and then its back end.
+  bool iterative() const;
   const Model& model() const { return *model_; }
   int solves() const { return solves_; }
   // Points the system at `model`, which must equal the model it was built from in everything the
@@ -98,8 +108,12 @@ class LinearSystem {
 
  private:
   struct Impl;
+  // The iterative solve of K_ff u_free = f into scratch.u_free (restarted while the true residual
+  // is above rtol); false, with `res` saying why (mechanism or not converged), when it failed.
+  bool solve_iteratively(const Eigen::VectorXd& f, LinearStaticResult& res, LinearSolveScratch& scratch) const;
   const Model* model_;
   std::unique_ptr<Impl> impl_;
+  double zero_energy_tolerance_;
   int factorizations_ = 0;
   mutable int solves_ = 0;
 };

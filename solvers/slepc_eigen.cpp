@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <vector>
 
 #include "core/errors.hpp"
+#include "solvers/petsc_solver.hpp"
 
 #ifdef BEAMFEA_HAVE_SLEPC
 #include <slepceps.h>
@@ -85,13 +87,16 @@ void check(PetscErrorCode ierr, const char* what) {
   throw Error(fmt::format("SLEPc: {} failed ({})", what, text ? text : "unknown error"));
 }
 
+// PETSc first, by the iterative back end's one initialisation (solvers/petsc_solver.hpp: its
+// signal handlers off, its world this process under a sweep's MPI, errors returned as codes),
+// then SLEPc on it.
+bool g_slepc_initialized = false;  // guarded by petsc_lock()
 void ensure_slepc() {
-  if (SlepcInitializeCalled) return;
-  // beamfea's program handles signals; PETSc's handler would take SIGINT and SIGSEGV over.
-  check(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "setting -no_signal_handler");
+  ensure_petsc_initialized();
+  const std::lock_guard<std::mutex> lock(petsc_lock());
+  if (g_slepc_initialized) return;
   check(SlepcInitializeNoArguments(), "initialisation");
-  // Errors come back as codes (turned into exceptions here), not as PETSc's printed trace.
-  check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "setting the error handler");
+  g_slepc_initialized = true;
 }
 
 // Owners of PETSc objects (destroyed in reverse order of creation by scope).
@@ -271,6 +276,7 @@ SlepcEigenPairs slepc_vibration_pairs(const SparseMatrix& K, const SparseMatrix&
   const int count = static_cast<int>(std::min<Eigen::Index>(options.count, n));
   try {
     ensure_slepc();
+    const std::lock_guard<std::mutex> lock(petsc_lock());  // held until the PETSc objects are gone
     OwnedMat A, B, P;
     petsc_matrix(K, false, A);
     petsc_matrix(M, false, B);
@@ -307,6 +313,7 @@ SlepcEigenPairs slepc_buckling_pairs(const SparseMatrix& K, const SparseMatrix& 
   const int count = static_cast<int>(std::min<Eigen::Index>(options.count, n));
   try {
     ensure_slepc();
+    const std::lock_guard<std::mutex> lock(petsc_lock());  // held until the PETSc objects are gone
     OwnedMat A, B;
     petsc_matrix(KG, false, A);
     petsc_matrix(K, true, B);
@@ -343,7 +350,14 @@ SlepcEigenPairs slepc_buckling_pairs(const SparseMatrix& K, const SparseMatrix& 
   }
 }
 
+void finalize_slepc() {
+  if (g_slepc_initialized) SlepcFinalize();
+  g_slepc_initialized = false;
+}
+
 #else  // no SLEPc: eigen_solver_iterative never selects these
+
+void finalize_slepc() {}
 
 SlepcEigenPairs slepc_vibration_pairs(const SparseMatrix&, const SparseMatrix&, const SlepcEigenOptions&,
                                       const Eigen::MatrixXd*) {

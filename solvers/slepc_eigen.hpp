@@ -49,6 +49,9 @@ inline constexpr int kIterativeEigenDofs = 1'000'000;
 
 // True when SLEPc is built in (BEAMFEA_WITH_SLEPC).
 bool slepc_available();
+// SlepcFinalize where SLEPc was initialised; called by finalize_petsc (solvers/petsc_solver.hpp)
+// under petsc_lock(), before PETSc's own finalisation. Nothing otherwise.
+void finalize_slepc();
 
 // Whether an eigen-analysis of `free_dofs` unknowns runs on SLEPc under the model's "solver":
 // iterative always (an Error when SLEPc is not built in), direct never, auto at or above

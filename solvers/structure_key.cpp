@@ -72,6 +72,12 @@ bool all_same(const std::vector<T>& a, const std::vector<T>& b) {
   return all_same(a, b, [](const T& x, const T& y) { return same(x, y); });
 }
 
+// The linear solver the system is solved with (LinearSystem reads it).
+bool same_solver(const SolverChoice& a, const SolverChoice& b) {
+  return a.type == b.type && same(a.rtol, b.rtol) && a.preconditioner == b.preconditioner &&
+         a.max_iterations == b.max_iterations;
+}
+
 }  // namespace
 
 bool StructureKey::matches(const Model& model) const {
@@ -82,7 +88,7 @@ bool StructureKey::matches(const Model& model) const {
          all_same(joints_, model.joints,
                   [&](const Joint& a, const Joint& b) { return same_kinematics(a, b) && (!springs || same_springs(a, b)); }) &&
          all_same(supports_, model.supports) && all_same(prescribed_, model.prescribed) && all_same(ties_, model.ties) &&
-         all_same(constraints_, model.constraints);
+         all_same(constraints_, model.constraints) && same_solver(solver_, model.solver);
 }
 
 void StructureKey::assign(const Model& model) {
@@ -95,6 +101,7 @@ void StructureKey::assign(const Model& model) {
   prescribed_ = model.prescribed;
   ties_ = model.ties;
   constraints_ = model.constraints;
+  solver_ = model.solver;
   if (springs_ == Springs::Excluded) {
     for (auto& j : joints_) {  // not part of the key: no need to hold them
       j.stiffness.clear();

@@ -5,7 +5,8 @@
 // they may in what is computed from them). Never stale by construction, as long as every field that
 // the cached constructors read is here: the DofMap and LinearStructure constructors read nodes,
 // elements, materials, sections, joints but their springs, supports, prescribed values, ties and
-// linear constraints; the assembled stiffness (LinearSystem) reads the joint springs too. A field
+// linear constraints; the assembled stiffness (LinearSystem) reads the joint springs and the solver
+// choice too. A field
 // added to those structs that a constructor reads must be added here (structure_key.cpp).
 #include <vector>
 
@@ -38,6 +39,7 @@ class StructureKey {
   std::vector<Prescribed> prescribed_;
   std::vector<Tie> ties_;
   std::vector<LinearConstraint> constraints_;
+  SolverChoice solver_;  // the top-level "solver" (LinearSystem's direct or iterative back end)
 };
 
 }  // namespace beamfea

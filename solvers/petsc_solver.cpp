@@ -1,0 +1,289 @@
+#include "solvers/petsc_solver.hpp"
+
+#include <algorithm>
+#include <mutex>
+
+#include "core/errors.hpp"
+#include "solvers/slepc_eigen.hpp"
+
+#ifdef BEAMFEA_HAVE_PETSC
+#include <petscksp.h>
+#endif
+
+namespace beamfea {
+
+void IterativeOptions::validate() const {
+  if (!(rtol > 0.0 && rtol < 1.0)) throw Error("IterativeOptions: rtol must be in (0, 1)");
+  if (max_iterations < 1) throw Error("IterativeOptions: max_iterations must be positive");
+}
+
+#ifdef BEAMFEA_HAVE_PETSC
+
+static_assert(sizeof(PetscInt) == sizeof(int), "PETSc's indices must be Eigen's (Debian's PETSc: 32-bit PetscInt)");
+static_assert(sizeof(PetscScalar) == sizeof(double), "the real PETSc (libpetsc-real-dev)");
+
+// PETSc is one process-wide library without locks of its own: every call into it takes this one.
+std::mutex& petsc_lock() {
+  static std::mutex m;
+  return m;
+}
+
+namespace {
+enum class PetscState { Untouched, Initialized, Finalized };
+PetscState g_state = PetscState::Untouched;  // guarded by petsc_lock()
+bool g_initialized_here = false;
+
+void check(PetscErrorCode code, const char* what) {
+  if (code != 0) throw Error(std::string("PETSc: ") + what + " failed (error code " + std::to_string(code) + ")");
+}
+
+// Under petsc_lock().
+void initialize_locked() {
+  if (g_state == PetscState::Initialized) return;
+  if (g_state == PetscState::Finalized) throw Error("PETSc: used after the program finalised it");
+  PetscBool already = PETSC_FALSE;
+  check(PetscInitialized(&already), "PetscInitialized");
+  if (!already) {
+    // PETSc's handlers of SIGINT, SIGSEGV ... would replace the program's (a sweep's Ctrl-C).
+    check(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "PetscOptionsSetValue");
+    // Under the program's own MPI (a sweep's ranks, each solving cases of its own) PETSc's world
+    // is this process alone: its initialisation is collective over that world, and the other
+    // ranks may never need it.
+    int mpi_started = 0;
+    MPI_Initialized(&mpi_started);
+    if (mpi_started) PETSC_COMM_WORLD = MPI_COMM_SELF;
+    check(PetscInitializeNoArguments(), "PetscInitializeNoArguments");
+    g_initialized_here = true;
+  }
+  // Errors come back as codes (turned into outcomes or exceptions here), not printed tracebacks.
+  check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
+  g_state = PetscState::Initialized;
+}
+
+IterativeSolveReport::Outcome outcome_of(KSPConvergedReason reason) {
+  if (reason > 0) return IterativeSolveReport::Outcome::Converged;
+  if (reason == KSP_DIVERGED_ITS) return IterativeSolveReport::Outcome::MaxIterations;
+  if (reason == KSP_DIVERGED_PC_FAILED) return IterativeSolveReport::Outcome::PreconditionerFailed;
+  return IterativeSolveReport::Outcome::Breakdown;
+}
+
+}  // namespace
+
+bool petsc_available() { return true; }
+
+bool petsc_has_hypre() {
+  ensure_petsc_initialized();
+  const std::lock_guard<std::mutex> lock(petsc_lock());
+  PetscBool has = PETSC_FALSE;
+  check(PetscHasExternalPackage("hypre", &has), "PetscHasExternalPackage");
+  return has == PETSC_TRUE;
+}
+
+void ensure_petsc_initialized() {
+  const std::lock_guard<std::mutex> lock(petsc_lock());
+  initialize_locked();
+}
+
+void finalize_petsc() {
+  const std::lock_guard<std::mutex> lock(petsc_lock());
+  if (g_state != PetscState::Initialized) return;
+  PetscPopErrorHandler();
+  finalize_slepc();  // SLEPc first: it runs on this PETSc
+  if (g_initialized_here) PetscFinalize();
+  g_state = PetscState::Finalized;
+}
+
+struct PetscSolver::Impl {
+  Mat A = nullptr;
+  KSP ksp = nullptr;
+  Vec b = nullptr, x = nullptr;
+  void destroy() {
+    // After the program finalised PETSc (an object kept in a cache past main's end) the process
+    // is exiting: its memory goes with it.
+    if (g_state != PetscState::Initialized) return;
+    VecDestroy(&b);
+    VecDestroy(&x);
+    KSPDestroy(&ksp);
+    MatDestroy(&A);
+  }
+};
+
+PetscSolver::PetscSolver(const IterativeOptions& options) : options_(options), impl_(std::make_unique<Impl>()) {
+  options_.validate();
+  ensure_petsc_initialized();
+}
+
+PetscSolver::~PetscSolver() {
+  const std::lock_guard<std::mutex> lock(petsc_lock());
+  impl_->destroy();
+}
+
+void PetscSolver::set_near_null_space(const Eigen::MatrixXd& modes) { near_null_ = modes; }
+
+void PetscSolver::analyze(const Sparse& A) {
+  if (A.rows() != A.cols()) throw Error("PetscSolver: the matrix must be square");
+  n_ = A.rows();
+}
+
+FactorStatus PetscSolver::compute(const Sparse& A_in) {
+  analyze(A_in);
+  if (near_null_.size() > 0 && near_null_.rows() != n_) throw Error("PetscSolver: the near null space has the wrong size");
+  status_ = FactorStatus::Singular;
+  // A zero or negative diagonal entry: not positive definite, and no multigrid smoother can use it.
+  for (Eigen::Index i = 0; i < n_; ++i)
+    if (!(A_in.coeff(i, i) > 0.0)) return status_;
+  Sparse compressed;
+  const Sparse* A = &A_in;
+  if (!A_in.isCompressed()) {
+    compressed = A_in;
+    compressed.makeCompressed();
+    A = &compressed;
+  }
+  const std::lock_guard<std::mutex> lock(petsc_lock());
+  Impl& s = *impl_;
+  s.destroy();
+  const PetscInt n = static_cast<PetscInt>(n_);
+  // A's columns are its rows (symmetric): the CSC arrays are the CSR ones.
+  check(MatCreate(PETSC_COMM_SELF, &s.A), "MatCreate");
+  check(MatSetSizes(s.A, n, n, n, n), "MatSetSizes");
+  check(MatSetType(s.A, MATAIJ), "MatSetType");
+  check(MatSeqAIJSetPreallocationCSR(s.A, A->outerIndexPtr(), A->innerIndexPtr(), A->valuePtr()),
+        "MatSeqAIJSetPreallocationCSR");
+  check(MatMPIAIJSetPreallocationCSR(s.A, A->outerIndexPtr(), A->innerIndexPtr(), A->valuePtr()),
+        "MatMPIAIJSetPreallocationCSR");
+  check(MatSetOption(s.A, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+  check(MatSetOption(s.A, MAT_SPD, PETSC_TRUE), "MatSetOption");
+  check(MatCreateVecs(s.A, &s.x, &s.b), "MatCreateVecs");
+  if (near_null_.cols() > 0) {
+    std::vector<Vec> modes(static_cast<std::size_t>(near_null_.cols()));
+    for (std::size_t k = 0; k < modes.size(); ++k) {
+      check(VecDuplicate(s.x, &modes[k]), "VecDuplicate");
+      PetscScalar* v = nullptr;
+      check(VecGetArrayWrite(modes[k], &v), "VecGetArrayWrite");
+      std::copy_n(near_null_.col(static_cast<Eigen::Index>(k)).data(), n_, v);
+      check(VecRestoreArrayWrite(modes[k], &v), "VecRestoreArrayWrite");
+    }
+    MatNullSpace space = nullptr;
+    check(MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, static_cast<PetscInt>(modes.size()), modes.data(), &space),
+          "MatNullSpaceCreate");
+    check(MatSetNearNullSpace(s.A, space), "MatSetNearNullSpace");
+    MatNullSpaceDestroy(&space);
+    for (Vec& v : modes) VecDestroy(&v);
+  }
+  check(KSPCreate(PETSC_COMM_SELF, &s.ksp), "KSPCreate");
+  check(KSPSetOperators(s.ksp, s.A, s.A), "KSPSetOperators");
+  check(KSPSetType(s.ksp, KSPCG), "KSPSetType");
+  // The true (unpreconditioned) residual is what rtol bounds: ||b - A x|| <= rtol ||b||.
+  check(KSPSetNormType(s.ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+  check(KSPSetTolerances(s.ksp, options_.rtol, 0.0, PETSC_DEFAULT, options_.max_iterations), "KSPSetTolerances");
+  PC pc = nullptr;
+  check(KSPGetPC(s.ksp, &pc), "KSPGetPC");
+  if (options_.preconditioner == IterativeOptions::Preconditioner::Hypre) {
+    PetscBool has = PETSC_FALSE;
+    check(PetscHasExternalPackage("hypre", &has), "PetscHasExternalPackage");
+    if (!has) throw Error("solver: this PETSc was built without hypre (preconditioner \"hypre\"); use \"gamg\"");
+    check(PCSetType(pc, PCHYPRE), "PCSetType");
+    check(PCHYPRESetType(pc, "boomeramg"), "PCHYPRESetType");
+  } else {
+    check(PCSetType(pc, PCGAMG), "PCSetType");
+  }
+  // The user's PETSC_OPTIONS may tune what is above (e.g. -pc_gamg_threshold).
+  check(KSPSetFromOptions(s.ksp), "KSPSetFromOptions");
+  if (KSPSetUp(s.ksp) != 0) return status_;
+  PCFailedReason failed = PC_NOERROR;
+  check(PCGetFailedReason(pc, &failed), "PCGetFailedReason");
+  if (failed != PC_NOERROR) return status_;
+  status_ = FactorStatus::Succeeded;
+  return status_;
+}
+
+void PetscSolver::iterate(Eigen::Ref<const Vector> b, Eigen::Ref<Vector> x, bool from_x) const {
+  if (!usable()) throw Error("PetscSolver: solve before a successful compute");
+  if (b.size() != n_ || x.size() != n_) throw Error("PetscSolver: right-hand side of the wrong size");
+  last_ = {};
+  if (!from_x && b.isZero(0.0)) {  // x = 0 exactly: PETSc would divide by ||b|| = 0
+    x.setZero();
+    last_.reason = "CONVERGED_ATOL";
+    return;
+  }
+  const std::lock_guard<std::mutex> lock(petsc_lock());
+  const Impl& s = *impl_;
+  PetscScalar* v = nullptr;
+  check(VecGetArrayWrite(s.b, &v), "VecGetArrayWrite");
+  std::copy_n(b.data(), n_, v);
+  check(VecRestoreArrayWrite(s.b, &v), "VecRestoreArrayWrite");
+  if (from_x) {
+    check(VecGetArrayWrite(s.x, &v), "VecGetArrayWrite");
+    std::copy_n(x.data(), n_, v);
+    check(VecRestoreArrayWrite(s.x, &v), "VecRestoreArrayWrite");
+  }
+  check(KSPSetInitialGuessNonzero(s.ksp, from_x ? PETSC_TRUE : PETSC_FALSE), "KSPSetInitialGuessNonzero");
+  const PetscErrorCode code = KSPSolve(s.ksp, s.b, s.x);
+  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+  PetscInt its = 0;
+  check(KSPGetConvergedReason(s.ksp, &reason), "KSPGetConvergedReason");
+  check(KSPGetIterationNumber(s.ksp, &its), "KSPGetIterationNumber");
+  last_.iterations = static_cast<int>(its);
+  if (code != 0) {
+    last_.outcome = IterativeSolveReport::Outcome::PreconditionerFailed;
+    last_.reason = "error " + std::to_string(code);
+  } else {
+    last_.outcome = outcome_of(reason);
+    last_.reason = KSPConvergedReasons[reason];
+  }
+  const PetscScalar* r = nullptr;
+  check(VecGetArrayRead(s.x, &r), "VecGetArrayRead");
+  std::copy_n(r, n_, x.data());
+  check(VecRestoreArrayRead(s.x, &r), "VecRestoreArrayRead");
+}
+
+void PetscSolver::solve(Eigen::Ref<const Vector> b, Eigen::Ref<Vector> x) const { iterate(b, x, false); }
+
+void PetscSolver::refine(Eigen::Ref<const Vector> b, Eigen::Ref<Vector> x) const { iterate(b, x, true); }
+
+void PetscSolver::solve(const Matrix& B, Matrix& X) const {
+  X.resize(B.rows(), B.cols());
+  IterativeSolveReport worst;
+  for (Eigen::Index j = 0; j < B.cols(); ++j) {
+    iterate(B.col(j), X.col(j), false);
+    worst.iterations = std::max(worst.iterations, last_.iterations);
+    if (!last_.converged() && worst.converged()) {
+      worst.outcome = last_.outcome;
+      worst.reason = last_.reason;
+    }
+  }
+  last_ = worst;
+}
+
+#else  // built without PETSc (-DBEAMFEA_WITH_PETSC=OFF)
+
+namespace {
+[[noreturn]] void unavailable() {
+  throw Error("solver: the iterative solver needs PETSc; this beamfea was built without it "
+              "(install libpetsc-real-dev and configure with -DBEAMFEA_WITH_PETSC=ON)");
+}
+}  // namespace
+
+bool petsc_available() { return false; }
+bool petsc_has_hypre() { return false; }
+void ensure_petsc_initialized() { unavailable(); }
+void finalize_petsc() {}
+std::mutex& petsc_lock() {
+  static std::mutex m;
+  return m;
+}
+
+struct PetscSolver::Impl {};
+PetscSolver::PetscSolver(const IterativeOptions& options) : options_(options) { unavailable(); }
+PetscSolver::~PetscSolver() = default;
+void PetscSolver::set_near_null_space(const Eigen::MatrixXd& modes) { near_null_ = modes; }
+void PetscSolver::analyze(const Sparse&) { unavailable(); }
+FactorStatus PetscSolver::compute(const Sparse&) { unavailable(); }
+void PetscSolver::iterate(Eigen::Ref<const Vector>, Eigen::Ref<Vector>, bool) const { unavailable(); }
+void PetscSolver::solve(Eigen::Ref<const Vector>, Eigen::Ref<Vector>) const { unavailable(); }
+void PetscSolver::refine(Eigen::Ref<const Vector>, Eigen::Ref<Vector>) const { unavailable(); }
+void PetscSolver::solve(const Matrix&, Matrix&) const { unavailable(); }
+
+#endif
+
+}  // namespace beamfea

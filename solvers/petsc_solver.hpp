@@ -1,0 +1,110 @@
+#pragma once
+// The iterative back end of the solver contract (solvers/linear_solver.hpp): PETSc's conjugate
+// gradients (KSPCG; the reduced stiffness K_ff is symmetric positive definite once the supports,
+// joints and rigid links are eliminated) preconditioned by algebraic multigrid, PETSc's own
+// smoothed aggregation (PCGAMG) or hypre's BoomerAMG (PCHYPRE).
+//
+//   analyze(A)   nothing beyond A's size (the preconditioner's structure needs A's values)
+//   compute(A)   copies A into a PETSc matrix (MATAIJ on PETSC_COMM_SELF, the type that takes
+//                a communicator of many processes unchanged), gives it the near null space and
+//                sets up the preconditioner once; every later solve reuses it
+//   solve(b, x)  iterates from x = 0 until ||b - A x|| <= rtol ||b|| (the unpreconditioned
+//                residual norm, the contract's figure) or the outcome says why not (last_solve())
+//   inertia()    none: an iterative method does not factorise
+//
+// The near null space (set_near_null_space) is what smoothed aggregation builds its coarse
+// spaces from: for a frame, the six rigid-body modes of every node restricted to the free DOFs
+// (solvers/near_null_space.hpp). Without it GAMG assumes the constant vector, which is the null
+// space of a scalar Laplacian, not of a beam.
+//
+// PETSc is initialised the first time a PetscSolver is made (ensure_petsc_initialized), with its
+// signal handlers off, and finalised by the program at exit (finalize_petsc, in cli/ and in the
+// Python module). PETSc is not thread-safe: the calls of all PetscSolvers of a process take one
+// lock, so that a sweep's worker threads may each hold one.
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "solvers/linear_solver.hpp"
+
+namespace beamfea {
+
+struct IterativeOptions {
+  enum class Preconditioner { Gamg, Hypre };
+  double rtol = 1e-10;          // relative residual ||b - A x|| / ||b|| a solve must reach
+  int max_iterations = 10000;   // iterations of one solve (each restart counts its own)
+  Preconditioner preconditioner = Preconditioner::Gamg;
+  void validate() const;
+};
+
+// How the last solve ended.
+struct IterativeSolveReport {
+  enum class Outcome {
+    Converged,       // reached rtol
+    MaxIterations,   // stopped at max_iterations above rtol
+    Breakdown,       // CG found the operator or the preconditioner indefinite or singular (a
+                     // direction of zero or negative energy), or a non-finite residual
+    PreconditionerFailed,  // the multigrid set-up or application failed (a zero pivot)
+  };
+  Outcome outcome = Outcome::Converged;
+  int iterations = 0;             // of the last solve (summed over its restarts)
+  std::string reason;             // PETSc's converged reason, e.g. "DIVERGED_INDEFINITE_MAT"
+  bool converged() const { return outcome == Outcome::Converged; }
+};
+
+// Whether this build has the iterative back end (BEAMFEA_WITH_PETSC).
+bool petsc_available();
+// Whether this PETSc has hypre's BoomerAMG (Debian's has).
+bool petsc_has_hypre();
+// PETSc's one-time initialisation, idempotent and thread-safe: after MPI_Init where the program
+// made one (a sweep under mpirun), else PETSc starts MPI itself. Its signal handlers are off
+// (-no_signal_handler), so that Ctrl-C reaches the program's. Throws Error when unavailable.
+void ensure_petsc_initialized();
+// PetscFinalize where ensure_petsc_initialized ran it, once; nothing otherwise. Before
+// MPI_Finalize where the program made its own MPI_Init.
+void finalize_petsc();
+// PETSc (and SLEPc) are not thread-safe: every call into them in this process, the iterative
+// linear solves and the SLEPc eigen-solvers alike, takes this one lock.
+std::mutex& petsc_lock();
+
+class PetscSolver final : public LinearSolver {
+ public:
+  explicit PetscSolver(const IterativeOptions& options = {});
+  ~PetscSolver() override;
+  PetscSolver(const PetscSolver&) = delete;
+  PetscSolver& operator=(const PetscSolver&) = delete;
+
+  // The near null space of the next compute(): orthonormal columns (rows: A's size); an empty
+  // matrix: none (GAMG then assumes the constant vector).
+  void set_near_null_space(const Eigen::MatrixXd& modes);
+
+  void analyze(const Sparse& A) override;
+  // Sets up the preconditioner of A (A square, symmetric, both triangles stored). Singular when
+  // A has a zero or negative diagonal entry or the preconditioner's set-up fails.
+  FactorStatus compute(const Sparse& A) override;
+  FactorStatus status() const override { return status_; }
+  bool usable() const override { return status_ == FactorStatus::Succeeded; }
+  void solve(Eigen::Ref<const Vector> b, Eigen::Ref<Vector> x) const override;
+  void solve(const Matrix& B, Matrix& X) const override;
+  std::optional<Inertia> inertia() const override { return std::nullopt; }
+  Eigen::Index rows() const override { return n_; }
+
+  // Continues the last solve from x (not zero) for b: one restart of CG, which corrects the
+  // drift of its recursive residual from the true one.
+  void refine(Eigen::Ref<const Vector> b, Eigen::Ref<Vector> x) const;
+  const IterativeSolveReport& last_solve() const { return last_; }
+  const IterativeOptions& options() const { return options_; }
+
+ private:
+  struct Impl;
+  void iterate(Eigen::Ref<const Vector> b, Eigen::Ref<Vector> x, bool from_x) const;
+
+  IterativeOptions options_;
+  std::unique_ptr<Impl> impl_;
+  Eigen::MatrixXd near_null_;
+  Eigen::Index n_ = 0;
+  FactorStatus status_ = FactorStatus::Singular;
+  mutable IterativeSolveReport last_;
+};
+
+}  // namespace beamfea
