@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <mutex>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "solvers/slepc_eigen.hpp"
@@ -32,14 +33,18 @@ namespace {
 enum class PetscState { Untouched, Initialized, Finalized };
 PetscState g_state = PetscState::Untouched;  // guarded by petsc_lock()
 bool g_initialized_here = false;
+bool g_all_processes = false;  // PETSC_COMM_WORLD is the program's MPI_COMM_WORLD
 
 void check(PetscErrorCode code, const char* what) {
   if (code != 0) throw Error(std::string("PETSc: ") + what + " failed (error code " + std::to_string(code) + ")");
 }
 
-// Under petsc_lock().
-void initialize_locked() {
-  if (g_state == PetscState::Initialized) return;
+// Under petsc_lock(). `all_processes`: PETSc's world is every process of the program's MPI.
+void initialize_locked(bool all_processes) {
+  if (g_state == PetscState::Initialized) {
+    if (all_processes && !g_all_processes) throw Error("PETSc: already started on this process alone");
+    return;
+  }
   if (g_state == PetscState::Finalized) throw Error("PETSc: used after the program finalised it");
   PetscBool already = PETSC_FALSE;
   check(PetscInitialized(&already), "PetscInitialized");
@@ -48,12 +53,13 @@ void initialize_locked() {
     check(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "PetscOptionsSetValue");
     // Under the program's own MPI (a sweep's ranks, each solving cases of its own) PETSc's world
     // is this process alone: its initialisation is collective over that world, and the other
-    // ranks may never need it.
+    // ranks may never need it. One model on many processes (all_processes) keeps MPI_COMM_WORLD.
     int mpi_started = 0;
     MPI_Initialized(&mpi_started);
-    if (mpi_started) PETSC_COMM_WORLD = MPI_COMM_SELF;
+    if (mpi_started && !all_processes) PETSC_COMM_WORLD = MPI_COMM_SELF;
     check(PetscInitializeNoArguments(), "PetscInitializeNoArguments");
     g_initialized_here = true;
+    g_all_processes = all_processes;
   }
   // Errors come back as codes (turned into outcomes or exceptions here), not printed tracebacks.
   check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
@@ -81,7 +87,20 @@ bool petsc_has_hypre() {
 
 void ensure_petsc_initialized() {
   const std::lock_guard<std::mutex> lock(petsc_lock());
-  initialize_locked();
+  initialize_locked(false);
+}
+
+void initialize_petsc_on_all_processes() {
+  const std::lock_guard<std::mutex> lock(petsc_lock());
+  initialize_locked(true);
+}
+
+int petsc_processes() {
+  const std::lock_guard<std::mutex> lock(petsc_lock());
+  if (g_state != PetscState::Initialized) return 1;
+  PetscMPIInt size = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  return size;
 }
 
 void finalize_petsc() {
@@ -96,11 +115,17 @@ void finalize_petsc() {
 struct PetscSolver::Impl {
   Mat A = nullptr;
   KSP ksp = nullptr;
-  Vec b = nullptr, x = nullptr;
+  Vec b = nullptr, x = nullptr;  // this process's rows [first, first + local) of b and x
+  PetscInt first = 0, local = 0;
+  // On several processes: the whole x on every one (x_all), gathered by to_all after each solve.
+  Vec x_all = nullptr;
+  VecScatter to_all = nullptr;
   void destroy() {
     // After the program finalised PETSc (an object kept in a cache past main's end) the process
     // is exiting: its memory goes with it.
     if (g_state != PetscState::Initialized) return;
+    VecScatterDestroy(&to_all);
+    VecDestroy(&x_all);
     VecDestroy(&b);
     VecDestroy(&x);
     KSPDestroy(&ksp);
@@ -142,15 +167,26 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
   const std::lock_guard<std::mutex> lock(petsc_lock());
   Impl& s = *impl_;
   s.destroy();
-  const PetscInt n = static_cast<PetscInt>(n_);
-  // A's columns are its rows (symmetric): the CSC arrays are the CSR ones.
-  check(MatCreate(PETSC_COMM_SELF, &s.A), "MatCreate");
-  check(MatSetSizes(s.A, n, n, n, n), "MatSetSizes");
-  check(MatSetType(s.A, MATAIJ), "MatSetType");
-  check(MatSeqAIJSetPreallocationCSR(s.A, A->outerIndexPtr(), A->innerIndexPtr(), A->valuePtr()),
-        "MatSeqAIJSetPreallocationCSR");
-  check(MatMPIAIJSetPreallocationCSR(s.A, A->outerIndexPtr(), A->innerIndexPtr(), A->valuePtr()),
-        "MatMPIAIJSetPreallocationCSR");
+  PetscInt n = static_cast<PetscInt>(n_);
+  // This process's rows: PETSc's own split of n rows (n / size, one more on the first n % size).
+  PetscMPIInt rank = 0, size = 1;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  s.local = PETSC_DECIDE;
+  check(PetscSplitOwnership(PETSC_COMM_WORLD, &s.local, &n), "PetscSplitOwnership");
+  s.first = rank * (n / size) + std::min<PetscInt>(rank, n % size);
+  // A's columns are its rows (symmetric): the CSC arrays of columns [first, first + local) are
+  // the CSR arrays of those rows, with global column indices, as MATMPIAIJ takes them.
+  const int* outer = A->outerIndexPtr();
+  std::vector<PetscInt> row_starts(static_cast<std::size_t>(s.local) + 1);
+  for (PetscInt k = 0; k <= s.local; ++k) row_starts[static_cast<std::size_t>(k)] = outer[s.first + k] - outer[s.first];
+  const PetscInt* cols = A->innerIndexPtr() + outer[s.first];
+  const PetscScalar* vals = A->valuePtr() + outer[s.first];
+  check(MatCreate(PETSC_COMM_WORLD, &s.A), "MatCreate");
+  check(MatSetSizes(s.A, s.local, s.local, n, n), "MatSetSizes");
+  check(MatSetType(s.A, MATAIJ), "MatSetType");  // MATSEQAIJ on one process, MATMPIAIJ on several
+  check(MatSeqAIJSetPreallocationCSR(s.A, row_starts.data(), cols, vals), "MatSeqAIJSetPreallocationCSR");
+  check(MatMPIAIJSetPreallocationCSR(s.A, row_starts.data(), cols, vals), "MatMPIAIJSetPreallocationCSR");
   check(MatSetOption(s.A, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   check(MatSetOption(s.A, MAT_SPD, PETSC_TRUE), "MatSetOption");
   check(MatCreateVecs(s.A, &s.x, &s.b), "MatCreateVecs");
@@ -160,17 +196,18 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
       check(VecDuplicate(s.x, &modes[k]), "VecDuplicate");
       PetscScalar* v = nullptr;
       check(VecGetArrayWrite(modes[k], &v), "VecGetArrayWrite");
-      std::copy_n(near_null_.col(static_cast<Eigen::Index>(k)).data(), n_, v);
+      std::copy_n(near_null_.col(static_cast<Eigen::Index>(k)).data() + s.first, s.local, v);
       check(VecRestoreArrayWrite(modes[k], &v), "VecRestoreArrayWrite");
     }
     MatNullSpace space = nullptr;
-    check(MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, static_cast<PetscInt>(modes.size()), modes.data(), &space),
+    check(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(modes.size()), modes.data(), &space),
           "MatNullSpaceCreate");
     check(MatSetNearNullSpace(s.A, space), "MatSetNearNullSpace");
     MatNullSpaceDestroy(&space);
     for (Vec& v : modes) VecDestroy(&v);
   }
-  check(KSPCreate(PETSC_COMM_SELF, &s.ksp), "KSPCreate");
+  if (size > 1) check(VecScatterCreateToAll(s.x, &s.to_all, &s.x_all), "VecScatterCreateToAll");
+  check(KSPCreate(PETSC_COMM_WORLD, &s.ksp), "KSPCreate");
   check(KSPSetOperators(s.ksp, s.A, s.A), "KSPSetOperators");
   check(KSPSetType(s.ksp, KSPCG), "KSPSetType");
   // The true (unpreconditioned) residual is what rtol bounds: ||b - A x|| <= rtol ||b||.
@@ -189,10 +226,14 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
   }
   // The user's PETSC_OPTIONS may tune what is above (e.g. -pc_gamg_threshold).
   check(KSPSetFromOptions(s.ksp), "KSPSetFromOptions");
-  if (KSPSetUp(s.ksp) != 0) return status_;
-  PCFailedReason failed = PC_NOERROR;
-  check(PCGetFailedReason(pc, &failed), "PCGetFailedReason");
-  if (failed != PC_NOERROR) return status_;
+  int failed = KSPSetUp(s.ksp) != 0 ? 1 : 0;
+  PCFailedReason reason = PC_NOERROR;
+  if (!failed) check(PCGetFailedReason(pc, &reason), "PCGetFailedReason");
+  failed = failed || reason != PC_NOERROR;
+  // One outcome on every process: what follows (the mechanism's diagnosis, or the solves) is
+  // collective or replicated.
+  if (size > 1) check(MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD), "MPI_Allreduce");
+  if (failed) return status_;
   status_ = FactorStatus::Succeeded;
   return status_;
 }
@@ -210,15 +251,20 @@ void PetscSolver::iterate(Eigen::Ref<const Vector> b, Eigen::Ref<Vector> x, bool
   const Impl& s = *impl_;
   PetscScalar* v = nullptr;
   check(VecGetArrayWrite(s.b, &v), "VecGetArrayWrite");
-  std::copy_n(b.data(), n_, v);
+  std::copy_n(b.data() + s.first, s.local, v);
   check(VecRestoreArrayWrite(s.b, &v), "VecRestoreArrayWrite");
   if (from_x) {
     check(VecGetArrayWrite(s.x, &v), "VecGetArrayWrite");
-    std::copy_n(x.data(), n_, v);
+    std::copy_n(x.data() + s.first, s.local, v);
     check(VecRestoreArrayWrite(s.x, &v), "VecRestoreArrayWrite");
   }
   check(KSPSetInitialGuessNonzero(s.ksp, from_x ? PETSC_TRUE : PETSC_FALSE), "KSPSetInitialGuessNonzero");
-  const PetscErrorCode code = KSPSolve(s.ksp, s.b, s.x);
+  PetscErrorCode code = KSPSolve(s.ksp, s.b, s.x);
+  if (s.to_all) {  // one outcome on every process, and the whole answer on each
+    check(MPI_Allreduce(MPI_IN_PLACE, &code, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD), "MPI_Allreduce");
+    check(VecScatterBegin(s.to_all, s.x, s.x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(s.to_all, s.x, s.x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  }
   KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
   PetscInt its = 0;
   check(KSPGetConvergedReason(s.ksp, &reason), "KSPGetConvergedReason");
@@ -231,10 +277,11 @@ void PetscSolver::iterate(Eigen::Ref<const Vector> b, Eigen::Ref<Vector> x, bool
     last_.outcome = outcome_of(reason);
     last_.reason = KSPConvergedReasons[reason];
   }
+  const Vec whole = s.to_all ? s.x_all : s.x;
   const PetscScalar* r = nullptr;
-  check(VecGetArrayRead(s.x, &r), "VecGetArrayRead");
+  check(VecGetArrayRead(whole, &r), "VecGetArrayRead");
   std::copy_n(r, n_, x.data());
-  check(VecRestoreArrayRead(s.x, &r), "VecRestoreArrayRead");
+  check(VecRestoreArrayRead(whole, &r), "VecRestoreArrayRead");
 }
 
 void PetscSolver::solve(Eigen::Ref<const Vector> b, Eigen::Ref<Vector> x) const { iterate(b, x, false); }
@@ -267,6 +314,8 @@ namespace {
 bool petsc_available() { return false; }
 bool petsc_has_hypre() { return false; }
 void ensure_petsc_initialized() { unavailable(); }
+void initialize_petsc_on_all_processes() { unavailable(); }
+int petsc_processes() { return 1; }
 void finalize_petsc() {}
 std::mutex& petsc_lock() {
   static std::mutex m;

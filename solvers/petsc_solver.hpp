@@ -5,9 +5,8 @@
 // smoothed aggregation (PCGAMG) or hypre's BoomerAMG (PCHYPRE).
 //
 //   analyze(A)   nothing beyond A's size (the preconditioner's structure needs A's values)
-//   compute(A)   copies A into a PETSc matrix (MATAIJ on PETSC_COMM_SELF, the type that takes
-//                a communicator of many processes unchanged), gives it the near null space and
-//                sets up the preconditioner once; every later solve reuses it
+//   compute(A)   copies A into a PETSc matrix (MATAIJ on PETSC_COMM_WORLD), gives it the near
+//                null space and sets up the preconditioner once; every later solve reuses it
 //   solve(b, x)  iterates from x = 0 until ||b - A x|| <= rtol ||b|| (the unpreconditioned
 //                residual norm, the contract's figure) or the outcome says why not (last_solve())
 //   inertia()    none: an iterative method does not factorise
@@ -16,6 +15,16 @@
 // spaces from: for a frame, the six rigid-body modes of every node restricted to the free DOFs
 // (solvers/near_null_space.hpp). Without it GAMG assumes the constant vector, which is the null
 // space of a scalar Laplacian, not of a beam.
+//
+// One process or many. PETSC_COMM_WORLD is this process alone unless the program started PETSc on
+// all its MPI processes (initialize_petsc_on_all_processes: `beamfea run` under mpirun). Then
+// every process holds the same A, b and near null space (the model and its assembly are
+// replicated), and the solver distributes them: each process owns a contiguous block of A's rows
+// (PETSc's split of the n rows, PETSC_DECIDE), inserts only those rows into a MATMPIAIJ and the
+// same rows of b and of the near null space, and every process gets the whole answer x back (a
+// gather to all), so that what follows a solve stays replicated. Every call is collective: all
+// processes must make the same calls in the same order, which they do when they run the same
+// analyses of the same model.
 //
 // PETSc is initialised the first time a PetscSolver is made (ensure_petsc_initialized), with its
 // signal handlers off, and finalised by the program at exit (finalize_petsc, in cli/ and in the
@@ -60,6 +69,15 @@ bool petsc_has_hypre();
 // made one (a sweep under mpirun), else PETSc starts MPI itself. Its signal handlers are off
 // (-no_signal_handler), so that Ctrl-C reaches the program's. Throws Error when unavailable.
 void ensure_petsc_initialized();
+// PETSc's initialisation over all the processes of the program's MPI (MPI_COMM_WORLD), so that
+// every PetscSolver distributes its system over them; collective: every process calls it, after
+// MPI_Init and before any other PETSc call. For a program that runs one model on many processes
+// (`beamfea run` under mpirun); a sweep's processes solve cases of their own and keep
+// ensure_petsc_initialized's one-process world.
+void initialize_petsc_on_all_processes();
+// The number of processes PETSc's solves run on (1 unless initialize_petsc_on_all_processes ran
+// on several).
+int petsc_processes();
 // PetscFinalize where ensure_petsc_initialized ran it, once; nothing otherwise. Before
 // MPI_Finalize where the program made its own MPI_Init.
 void finalize_petsc();
