@@ -12,10 +12,10 @@
 #include <iostream>
 
 #include "app/sweep_runner.hpp"
+#include "cli/mpi_world.hpp"
 #include "core/errors.hpp"
 #include "io/sweep.hpp"
 #include "app/openblas.hpp"
-#include "solvers/petsc_solver.hpp"
 
 #ifdef BEAMFEA_HAVE_MPI
 #include <mpi.h>
@@ -61,12 +61,6 @@ class StopOnSignals {
 // oversubscribe the cores (and spin in sched_yield between the small factorisations).
 void single_threaded_blas() {
   beamfea::app::set_blas_threads(1);
-}
-
-// Processes of this run on this host, from the launcher (OpenMPI); all of them when it does not say.
-int ranks_on_this_host(int ranks) {
-  if (const char* l = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE")) return std::max(1, std::atoi(l));
-  return ranks;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -129,36 +123,23 @@ ProgressStyle progress_style(const SweepCommand& cmd) {
 // ---------------------------------------------------------------------------------------------
 // Processes
 
-// Number of processes the launcher started, from its environment (1 when not under mpirun).
-int launched_ranks() {
-  for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
-    if (const char* v = std::getenv(var)) return std::max(1, std::atoi(v));
-  return 1;
-}
-
 #ifdef BEAMFEA_HAVE_MPI
 // MPI transport: rank 0's plan broadcast, rows sent to rank 0. Only the main thread calls MPI.
 class MpiComm : public SweepComm {
  public:
   MpiComm() {
-    int provided = 0;
-    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-    MPI_Comm_size(MPI_COMM_WORLD, &size_);
     // A rank that dies is found by rank 0's heartbeat timeout (app/sweep_runner.hpp), not by an
     // error that aborts the job from inside a receive.
     MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
   }
   ~MpiComm() override {
-    if (abandoned_) MPI_Abort(MPI_COMM_WORLD, 1);  // a lost rank would never join MPI_Finalize
-    finalize_petsc();  // PETSc (and SLEPc), when a case solved iteratively, runs on this MPI
-    MPI_Finalize();
-  }
+    if (abandoned_) world_.abort(1);  // a lost rank would never join MPI_Finalize
+  }  // then world_ ends PETSc (a case that solved iteratively) and MPI
   MpiComm(const MpiComm&) = delete;
   MpiComm& operator=(const MpiComm&) = delete;
 
-  int rank() const override { return rank_; }
-  int size() const override { return size_; }
+  int rank() const override { return world_.rank(); }
+  int size() const override { return world_.size(); }
 
   void broadcast(std::string& text) override {
     unsigned long long n = text.size();
@@ -189,7 +170,7 @@ class MpiComm : public SweepComm {
 
  private:
   static constexpr int kRows = 1, kLast = 2;
-  int rank_ = 0, size_ = 1;
+  MpiWorld world_{MpiWorld::Threads::MainOnly};  // made first, ended last
   bool abandoned_ = false;
 };
 #endif
