@@ -217,6 +217,7 @@ void run_into(const Model& model, const nlohmann::json& document, const RunOptio
   results.finish();
   if (staging) {
     write_results_json_file(report.results, staging->path() / "results.json", options.parallel, defer);
+    if (options.before_commit) options.before_commit();
     staging->commit("results.json");
     deferred.erase_placeholders(report.results);
   }

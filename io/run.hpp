@@ -5,6 +5,7 @@
 // gives results.json and the files of the others.
 #include <atomic>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <nlohmann/json.hpp>
@@ -43,6 +44,10 @@ struct RunOptions {
   // is written, member by member, instead of holding them in the results tree
   // (io/deferred_results.hpp); RunReport::results lacks those objects. No effect without out_dir.
   bool results_in_memory = true;
+  // May be empty. Called once every output is staged (results.json included), just before they
+  // are moved into place; an exception from it leaves DIR as it was. A program that runs one model
+  // on several processes waits there until every process has finished its part.
+  std::function<void()> before_commit;
 };
 
 // Thrown by run_document when RunOptions::cancel is set.
