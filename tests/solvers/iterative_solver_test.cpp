@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "core/assembly.hpp"
+#include "core/errors.hpp"
 #include "solvers/condensed_stiffness.hpp"
 #include "solvers/linear_static.hpp"
 #include "solvers/near_null_space.hpp"
@@ -245,6 +246,16 @@ TEST(IterativeSolver, HypreBoomerAmgEqualsTheDirectSolver) {
   ASSERT_EQ(h.status, SolveStatus::Succeeded) << h.message;
   EXPECT_LE(h.solver.residual, kRtol);
   EXPECT_LT((h.u - d.u).cwiseAbs().maxCoeff(), kAgreement * d.u.cwiseAbs().maxCoeff());
+}
+
+// A process that did not start PETSc on all the processes of a program's MPI (a test, the Python
+// module, a sweep's rank: ensure_petsc_initialized) solves alone, and cannot be turned into one
+// process of many afterwards: the one-process path is what it was.
+TEST(IterativeSolver, SolvesOnThisProcessAloneUnlessTheProgramStartedPetscOnAll) {
+  ensure_petsc_initialized();
+  EXPECT_EQ(petsc_processes(), 1);
+  EXPECT_THROW(initialize_petsc_on_all_processes(), Error);
+  EXPECT_EQ(petsc_processes(), 1);
 }
 
 // Through the program: results.json's solver report, and the exit codes of the failures.
