@@ -80,6 +80,14 @@ int run_alone(const RunCommand& cmd, const app::ProgramSettings& settings) {
 // MPI_Abort ends the others before they print theirs, so that the job says it once.
 constexpr std::chrono::milliseconds kNonRootAbortDelay{1000};
 
+// Ends every process of the job with this process's message (MPI_Abort, exit `code`).
+[[noreturn]] void end_job(const MpiWorld& world, const std::string& what, int code) {
+  if (world.rank() != 0) std::this_thread::sleep_for(kNonRootAbortDelay);
+  std::cerr << "beamfea: error: rank " << world.rank() << " of " << world.size() << ": " << what << " (ending all "
+            << world.size() << " processes; no results written)" << std::endl;
+  world.abort(code);
+}
+
 // Several processes, one model. What is distributed and what is replicated:
 //   - every process reads and checks the model; the processes agree on the outcome (one
 //     collective) before anything else, so that bad input, or a file one process cannot read,
@@ -92,7 +100,10 @@ constexpr std::chrono::milliseconds kNonRootAbortDelay{1000};
 //     process has finished (RunOptions::before_commit), and prints the progress and the warnings.
 // A process that throws during the run (a failure of its own: memory, a PETSc error) cannot tell
 // the others, which may be waiting in a collective call: it ends the job (MPI_Abort) with its
-// message naming it. Rank 0's staged files are then never moved into place (no results.json; its
+// message naming it. So does an analysis that throws anything but a ModelError (which the model
+// decides, hence every process meets alike and reports as the analysis's failure, as one process
+// does): where one process alone may have met it, an analysis failure of that process alone would
+// leave the others waiting. Rank 0's staged files are then never moved into place (no results.json; its
 // hidden staging folder may stay in DIR, as when a one-process run is killed).
 int run_distributed(const RunCommand& cmd, const app::ProgramSettings& settings, const MpiWorld& world) {
   const bool root = world.rank() == 0;
@@ -133,6 +144,9 @@ int run_distributed(const RunCommand& cmd, const app::ProgramSettings& settings,
       finished_together = true;
     };
     if (root) opt.before_commit = finish_together;
+    opt.on_analysis_error = [&world](const std::string& id, const std::exception& e) {
+      if (!dynamic_cast<const ModelError*>(&e)) end_job(world, "analysis '" + id + "': " + e.what(), 1);
+    };
     if (root && !cmd.quiet)
       std::cerr << "beamfea: one model on " << ranks << " processes (iterative solves distributed, rank 0 writes)\n";
     state.report = run_document(state.model, state.document, opt);
@@ -140,10 +154,7 @@ int run_distributed(const RunCommand& cmd, const app::ProgramSettings& settings,
     if (root && !cmd.quiet) std::cerr << "beamfea: wrote " << (opt.out_dir / "results.json").string() << "\n";
     return state.report.failed ? 1 : 0;  // the same on every process: the analyses ran alike
   } catch (const std::exception& e) {
-    if (!root) std::this_thread::sleep_for(kNonRootAbortDelay);
-    std::cerr << "beamfea: error: rank " << world.rank() << " of " << ranks << ": " << e.what()
-              << " (ending all " << ranks << " processes; no results written)" << std::endl;
-    world.abort(exit_code_of(e));
+    end_job(world, e.what(), exit_code_of(e));
   }
 }
 #endif

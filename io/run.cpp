@@ -41,7 +41,8 @@ namespace {
 
 // Runs one analysis; a ModelError or solver error raised while running (after validation) is
 // that analysis's failure, reported in results.json, not a crash of the run.
-AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx, const nlohmann::json& spec) {
+AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx, const nlohmann::json& spec,
+                        const RunOptions& options) {
   AnalysisOutcome o;
   try {
     o = type.run(ctx, spec);
@@ -50,6 +51,7 @@ AnalysisOutcome run_one(const AnalysisType& type, const AnalysisContext& ctx, co
   } catch (const RunCancelled&) {
     throw;  // the caller stopped the run: no result at all
   } catch (const std::exception& e) {
+    if (options.on_analysis_error) options.on_analysis_error(ctx.id, e);
     o = AnalysisOutcome{};
     o.result["type"] = type.name;
     o.result["status"] = kFailedStatus;
@@ -192,7 +194,7 @@ void run_into(const Model& model, const nlohmann::json& document, const RunOptio
         if (options.progress) options.progress("[" + id + "] " + s);
       };
     const auto t0 = std::chrono::steady_clock::now();
-    AnalysisOutcome o = run_one(*type, ctx, spec);
+    AnalysisOutcome o = run_one(*type, ctx, spec, options);
     const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     o.result["wall_time_s"] = dt;
     if (options.progress) options.progress("[" + id + "] " + o.brief_report() + " (" + std::to_string(dt) + " s)");

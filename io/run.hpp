@@ -48,6 +48,11 @@ struct RunOptions {
   // are moved into place; an exception from it leaves DIR as it was. A program that runs one model
   // on several processes waits there until every process has finished its part.
   std::function<void()> before_commit;
+  // May be empty. Called with what an analysis threw while running (after validation), before it
+  // becomes that analysis's failure in results.json; it may throw instead, which ends the run
+  // (nothing written). A program that runs one model on several processes ends them all there
+  // for what may have struck one process alone: the others could be waiting for it.
+  std::function<void(const std::string& analysis_id, const std::exception& error)> on_analysis_error;
 };
 
 // Thrown by run_document when RunOptions::cancel is set.

@@ -184,8 +184,9 @@ TEST(RunCommandUnderMpirun, TwoRanksGiveTheOneRankAnswerAndRankZeroAloneWrites) 
 }
 
 // A process that fails ends every process with one message naming it, and nothing is written:
-// before the run (rank 1 cannot read the model: all exit 2 together) and during it (rank 1 meets
-// bad input of its own once rank 0 is solving: it ends the job while rank 0 waits for it).
+// before the run (rank 1 cannot read the model: all exit 2 together), during it (rank 1 meets
+// bad input of its own once rank 0 is solving: it ends the job while rank 0 waits for it), and
+// inside an analysis.
 TEST(RunCommandUnderMpirun, ARankThatFailsEndsAllRanksWithOneMessageAndNothingWritten) {
   ASSERT_EQ(sh("command -v mpirun > /dev/null"), 0) << "mpirun not found";
   const auto dir = temp_dir("run_mpi_fail");
@@ -213,6 +214,20 @@ TEST(RunCommandUnderMpirun, ARankThatFailsEndsAllRanksWithOneMessageAndNothingWr
     EXPECT_EQ(messages, 1u) << c.name << ":\n" << text;
     EXPECT_FALSE(fs::exists(out / "results.json")) << c.name;
   }
+  // An analysis that throws (here PETSc, told to use a KSP type it does not have; the same on both
+  // ranks): one process reports the analysis as failed in results.json, several end the job, since
+  // such an error may strike one process alone while the others wait in a collective call.
+  const auto out = dir / "petsc_error";
+  const auto log = dir / "petsc_error.txt";
+  const int rc = sh("PETSC_OPTIONS='-ksp_type no_such_type' " + mpirun(2) + "-x PETSC_OPTIONS " + exe() + " run " +
+                    model.string() + " --out " + out.string() + " -q > " + log.string() + " 2>&1");
+  const std::string text = read(log);
+  EXPECT_EQ(rc, 1) << text;
+  EXPECT_NE(text.find("of 2: analysis 'lin': PETSc: KSPSetFromOptions failed"), std::string::npos) << text;
+  std::size_t messages = 0;
+  for (std::size_t at = text.find("beamfea: error"); at != std::string::npos; at = text.find("beamfea: error", at + 1)) ++messages;
+  EXPECT_EQ(messages, 1u) << text;
+  EXPECT_FALSE(fs::exists(out / "results.json"));
 }
 
 // Without mpirun nothing changes: one process, no MPI started by the program, the same solve
