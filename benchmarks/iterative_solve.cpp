@@ -2,15 +2,18 @@
 // cube frames of bench_frame_solve (benchmarks/frame_models.hpp), for docs/analyses/solver.md:
 //   direct      LinearSystem with "solver": {"type": "direct"}: assembly, CHOLMOD's factorisation,
 //               one solve (the whole linear_static solve, results aside)
-//   gamg        the same with "iterative" (GAMG given the six rigid-body modes of the nodes)
-//   gamg-bare   PETSc's GAMG on the same K_ff without the rigid-body modes (its default near
-//               null space, the constant vector), set up and solved alone
+//   gamg        the same with "iterative" (GAMG given the six rigid-body modes of the nodes, and
+//               the matrix's block size 6 where the free DOFs are whole nodes: it aggregates nodes)
+//   gamg-dofs   PETSc's GAMG on the same K_ff with the rigid-body modes but no block size (it
+//               aggregates single DOFs), set up and solved alone
+//   gamg-bare   the same without the rigid-body modes (its default near null space, the constant
+//               vector)
 //   hypre       "iterative" with "preconditioner": "hypre"
 // Each row: free DOFs, wall seconds of each and the CG iterations to rtol 1e-8 (the issue's
 // large-model tolerance). Wall time on this machine, one process.
 //
 // Usage: bench_iterative_solve [--sizes 3000,30000,...]  (element targets, cube frames)
-//                              [--rtol 1e-8] [--skip direct,gamg-bare,hypre]
+//                              [--rtol 1e-8] [--skip direct,gamg-dofs,gamg-bare,hypre]
 #include <fmt/format.h>
 
 #include <chrono>
@@ -52,8 +55,9 @@ Run linear_static(Model m, SolverChoice::Type type, SolverChoice::Preconditioner
   return out;
 }
 
-// GAMG on K_ff alone, without the near null space (the assembly is not timed).
-Run bare_gamg(const Model& m, double rtol) {
+// GAMG on K_ff alone, with or without the rigid-body modes, without a block size (the assembly
+// is not timed).
+Run gamg_alone(const Model& m, double rtol, bool with_modes, const char* what) {
   const DofMap map(m);
   const LinearStructure structure(m);
   SystemAssembler assembler(map);
@@ -61,10 +65,11 @@ Run bare_gamg(const Model& m, double rtol) {
   const Eigen::VectorXd f = map.reduce(external_force(m, map));
   const auto t0 = std::chrono::steady_clock::now();
   PetscSolver cg(IterativeOptions{.rtol = rtol});
+  if (with_modes) cg.set_near_null_space(rigid_body_modes(m, map));
   cg.compute(assembler.K_ff());
   Eigen::VectorXd u(f.size());
   cg.solve(f, u);
-  if (!cg.last_solve().converged()) fmt::print(stderr, "  gamg-bare: {}\n", cg.last_solve().reason);
+  if (!cg.last_solve().converged()) fmt::print(stderr, "  {}: {}\n", what, cg.last_solve().reason);
   Run out{seconds_since(t0), cg.last_solve().iterations, 0.0};
   Eigen::VectorXd r = f - assembler.K_ff() * u;
   out.residual = r.norm() / f.norm();
@@ -95,22 +100,25 @@ int main(int argc, char** argv) {
     }
   }
   const auto skipped = [&](const char* what) { return skip.find(what) != std::string::npos; };
-  fmt::print("| frame | free DOFs | direct s | GAMG + modes s (its.) | GAMG bare s (its.) | hypre s (its.) |\n");
-  fmt::print("|---|---:|---:|---:|---:|---:|\n");
+  fmt::print("| frame | free DOFs | direct s | GAMG, nodes + modes s (its.) | GAMG, DOFs + modes s (its.) | "
+             "GAMG bare s (its.) | hypre s (its.) |\n");
+  fmt::print("|---|---:|---:|---:|---:|---:|---:|\n");
   for (const long target : sizes) {
     const bench::Dims d = bench::choose_dims(target);
     const Model m = bench::make_frame(d);
-    const int dofs = DofMap(m).free_size();
-    fmt::print(stderr, "{}x{}x{}: {} free DOFs\n", d.nx, d.ny, d.nz, dofs);
+    const DofMap map(m);
+    const int free_dofs = map.free_size();
+    fmt::print(stderr, "{}x{}x{}: {} free DOFs, block size {}\n", d.nx, d.ny, d.nz, free_dofs, node_block_size(map));
     using T = SolverChoice::Type;
     using P = SolverChoice::Preconditioner;
     const Run direct = skipped("direct") ? Run{} : linear_static(m, T::Direct, P::Gamg, rtol);
     const Run gamg = linear_static(m, T::Iterative, P::Gamg, rtol);
-    const Run bare = skipped("gamg-bare") ? Run{} : bare_gamg(m, rtol);
+    const Run dofs = skipped("gamg-dofs") ? Run{} : gamg_alone(m, rtol, true, "gamg-dofs");
+    const Run bare = skipped("gamg-bare") ? Run{} : gamg_alone(m, rtol, false, "gamg-bare");
     const Run hypre = skipped("hypre") ? Run{} : linear_static(m, T::Iterative, P::Hypre, rtol);
-    fmt::print("| {}x{}x{} | {} | {:.2f} | {:.2f} ({}) | {:.2f} ({}) | {:.2f} ({}) |\n", d.nx, d.ny, d.nz, dofs,
-               direct.seconds, gamg.seconds, gamg.iterations, bare.seconds, bare.iterations, hypre.seconds,
-               hypre.iterations);
+    fmt::print("| {}x{}x{} | {} | {:.2f} | {:.2f} ({}) | {:.2f} ({}) | {:.2f} ({}) | {:.2f} ({}) |\n", d.nx, d.ny,
+               d.nz, free_dofs, direct.seconds, gamg.seconds, gamg.iterations, dofs.seconds, dofs.iterations,
+               bare.seconds, bare.iterations, hypre.seconds, hypre.iterations);
     std::fflush(stdout);
   }
   finalize_petsc();

@@ -209,10 +209,11 @@ struct Damping {
 // algebraic multigrid preconditioner (PETSc), or the choice made from the model's size (Auto).
 struct SolverChoice {
   enum class Type { Auto, Direct, Iterative };
-  enum class Preconditioner { Gamg, Hypre };
+  // Default: hypre's BoomerAMG where PETSc has it (Debian's has), GAMG otherwise.
+  enum class Preconditioner { Default, Gamg, Hypre };
   Type type = Type::Auto;
   double rtol = 1e-10;                  // relative residual ||F - K u|| / ||F|| an iterative solve must reach
-  Preconditioner preconditioner = Preconditioner::Gamg;
+  Preconditioner preconditioner = Preconditioner::Default;
   int max_iterations = 10000;           // an iterative solve that needs more has not converged
   bool given = false;                   // the model has a "solver"
 };

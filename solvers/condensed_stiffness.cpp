@@ -289,6 +289,7 @@ void condense_to_node_of(const Model& model, const DofMap& map, const Matrix& K,
     if (solves_iteratively(model.solver, n)) {
       cg.emplace(iterative_options(model.solver));
       cg->set_near_null_space(rigid_body_modes(model, map));
+      cg->set_block_size(node_block_size(map));
       if (cg->compute(K) == FactorStatus::Succeeded) w.cg = &*cg;
       else cg.reset();  // not positive definite: the direct saddle point decides
     }

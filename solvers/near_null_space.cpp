@@ -44,4 +44,17 @@ Eigen::MatrixXd rigid_body_modes(const Model& model, const DofMap& map) {
   return out;
 }
 
+int node_block_size(const DofMap& map) {
+  const int n = map.free_size();
+  if (n == 0 || n % 6 != 0) return 1;
+  for (int i = 0; i < n; ++i) {
+    const DofRef& d = map.free_dofs()[i];
+    const DofRef& first = map.free_dofs()[i - i % 6];
+    if (d.owner != DofRef::Owner::Node || first.owner != DofRef::Owner::Node || d.index != first.index ||
+        d.comp != i % 6)
+      return 1;
+  }
+  return 6;
+}
+
 }  // namespace beamfea

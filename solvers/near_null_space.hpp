@@ -23,4 +23,10 @@ namespace beamfea {
 // others) is left out, so the result has at most six columns.
 Eigen::MatrixXd rigid_body_modes(const Model& model, const DofMap& map);
 
+// 6 when `map`'s free DOFs are whole nodes, each node's six components consecutive and in order
+// (no joint coordinate and no partly supported node among them); 1 otherwise. Smoothed aggregation then
+// aggregates nodes instead of single DOFs, keeping each node's six DOFs in one aggregate as the
+// rigid-body modes couple them (PETSc's MatSetBlockSize).
+int node_block_size(const DofMap& map);
+
 }  // namespace beamfea

@@ -192,9 +192,10 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
   PetscMPIInt rank = 0, size = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  s.local = PETSC_DECIDE;
-  check(PetscSplitOwnership(PETSC_COMM_WORLD, &s.local, &n), "PetscSplitOwnership");
-  s.first = rank * (n / size) + std::min<PetscInt>(rank, n % size);
+  // With a block size the split is of whole blocks (nodes), so that no node straddles two processes.
+  const PetscInt bs = block_size_ > 1 && n % block_size_ == 0 ? block_size_ : 1, blocks = n / bs;
+  s.local = bs * (blocks / size + (rank < blocks % size ? 1 : 0));
+  s.first = bs * (rank * (blocks / size) + std::min<PetscInt>(rank, blocks % size));
   // A's columns are its rows (symmetric): the CSC arrays of columns [first, first + local) are
   // the CSR arrays of those rows, with global column indices, as MATMPIAIJ takes them.
   const int* outer = A->outerIndexPtr();
@@ -205,6 +206,7 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
   check(MatCreate(PETSC_COMM_WORLD, &s.A), "MatCreate");
   check(MatSetSizes(s.A, s.local, s.local, n, n), "MatSetSizes");
   check(MatSetType(s.A, MATAIJ), "MatSetType");  // MATSEQAIJ on one process, MATMPIAIJ on several
+  if (bs > 1) check(MatSetBlockSize(s.A, bs), "MatSetBlockSize");
   check(MatSeqAIJSetPreallocationCSR(s.A, row_starts.data(), cols, vals), "MatSeqAIJSetPreallocationCSR");
   check(MatMPIAIJSetPreallocationCSR(s.A, row_starts.data(), cols, vals), "MatMPIAIJSetPreallocationCSR");
   check(MatSetOption(s.A, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");

@@ -95,6 +95,9 @@ class PetscSolver final : public LinearSolver {
   // The near null space of the next compute(): orthonormal columns (rows: A's size); an empty
   // matrix: none (GAMG then assumes the constant vector).
   void set_near_null_space(const Eigen::MatrixXd& modes);
+  // The block size of the next compute(): 6 where the rows come in whole nodes
+  // (solvers/near_null_space.hpp's node_block_size), for multigrid to aggregate nodes; 1: none.
+  void set_block_size(int block_size) { block_size_ = block_size; }
 
   void analyze(const Sparse& A) override;
   // Sets up the preconditioner of A (A square, symmetric, both triangles stored). Singular when
@@ -120,6 +123,7 @@ class PetscSolver final : public LinearSolver {
   IterativeOptions options_;
   std::unique_ptr<Impl> impl_;
   Eigen::MatrixXd near_null_;
+  int block_size_ = 1;
   Eigen::Index n_ = 0;
   FactorStatus status_ = FactorStatus::Singular;
   mutable IterativeSolveReport last_;

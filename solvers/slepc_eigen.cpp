@@ -11,6 +11,7 @@
 
 #include "core/errors.hpp"
 #include "solvers/petsc_solver.hpp"
+#include "solvers/solver_choice.hpp"
 
 #ifdef BEAMFEA_HAVE_SLEPC
 #include <slepceps.h>
@@ -54,7 +55,7 @@ SlepcEigenOptions slepc_options(const SolverChoice& choice, int count) {
   o.count = count;
   o.rtol = choice.rtol;
   o.max_linear_iterations = choice.max_iterations;
-  o.preconditioner = choice.preconditioner;
+  o.preconditioner = resolve_preconditioner(choice.preconditioner);
   return o;
 }
 

@@ -16,12 +16,18 @@ bool solves_iteratively(const SolverChoice& choice, int free_dofs) {
   return false;
 }
 
+SolverChoice::Preconditioner resolve_preconditioner(SolverChoice::Preconditioner p) {
+  if (p != SolverChoice::Preconditioner::Default) return p;
+  return petsc_available() && petsc_has_hypre() ? SolverChoice::Preconditioner::Hypre : SolverChoice::Preconditioner::Gamg;
+}
+
 IterativeOptions iterative_options(const SolverChoice& choice) {
   IterativeOptions o;
   o.rtol = choice.rtol;
   o.max_iterations = choice.max_iterations;
-  o.preconditioner = choice.preconditioner == SolverChoice::Preconditioner::Hypre ? IterativeOptions::Preconditioner::Hypre
-                                                                                  : IterativeOptions::Preconditioner::Gamg;
+  o.preconditioner = resolve_preconditioner(choice.preconditioner) == SolverChoice::Preconditioner::Hypre
+                         ? IterativeOptions::Preconditioner::Hypre
+                         : IterativeOptions::Preconditioner::Gamg;
   return o;
 }
 

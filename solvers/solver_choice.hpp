@@ -11,10 +11,16 @@
 namespace beamfea {
 
 // "auto" solves iteratively from this many free DOFs, directly below. Measured on the generated
-// cube frames of bench_frame_solve (docs/analyses/solver.md, "auto"): CHOLMOD's factorisation and
-// solve stay faster than CG with GAMG and the rigid-body modes up to this size on this 2-core
-// machine, and its factor (about 2e8 entries there, 1.6 GB) still fits comfortably in memory.
-inline constexpr int kAutoIterativeMinDofs = 400'000;
+// cube frames of bench_frame_solve (docs/analyses/solver.md, "auto"): from about 2e4 free DOFs CG
+// with hypre's BoomerAMG is faster than CHOLMOD's factorisation and solve of one load case, 5x at
+// 1e5; below 1e5 the direct solve takes seconds at most, its factor fits comfortably in memory,
+// it serves many load cases and the six solves of a node's stiffness at one factorisation, and it
+// diagnoses a mechanism whatever the loads and estimates the conditioning.
+inline constexpr int kAutoIterativeMinDofs = 100'000;
+
+// The preconditioner that runs: Default resolved to hypre's BoomerAMG where this PETSc has it,
+// GAMG otherwise.
+SolverChoice::Preconditioner resolve_preconditioner(SolverChoice::Preconditioner p);
 
 // Whether `choice` solves a system of `free_dofs` unknowns iteratively (a build without PETSc
 // solves "auto" directly; "iterative" then fails when the system is made).
