@@ -77,22 +77,30 @@ Mat12 to_global(const Mat12& k, const Mat3& R) {
 }  // namespace
 
 BeamElement::BeamElement(const BeamSection& section, const Vec3& x1, const Vec3& x2, const Vec3& orientation)
-    : section_(section), X1_(x1), X2_(x2), L_((x2 - x1).norm()), R_(beam_local_axes(x1, x2, orientation)),
-      T_(beam_transformation(R_)), kl_(beam_local_stiffness(section, L_)), K_(to_global(kl_, R_)) {}
+    : section_(section), X1_(x1), X2_(x2), L_((x2 - x1).norm()), R_(beam_local_axes(x1, x2, orientation)) {}
+
+Mat12 BeamElement::local_stiffness() const { return condensed_ ? *condensed_ : beam_local_stiffness(section_, L_); }
+
+Mat12 BeamElement::stiffness() const { return to_global(local_stiffness(), R_); }
+
+Vec12 BeamElement::local_end_forces(const Vec12& u) const {
+  Vec12 local;
+  for (int i = 0; i < 4; ++i) local.segment<3>(3 * i).noalias() = R_ * u.segment<3>(3 * i);
+  return local_stiffness() * local;
+}
 
 void BeamElement::condense_local(const Mat12& C) {
-  kl_ = C.transpose() * kl_ * C;
-  K_ = to_global(kl_, R_);
+  condensed_ = std::make_shared<const Mat12>(C.transpose() * local_stiffness() * C);
 }
 
 Mat12 BeamElement::geometric_stiffness(const Vec12& f, GeometricStiffness kind) const {
   const Mat12 kg = kind == GeometricStiffness::Full ? beam_local_geometric_stiffness(L_, section_.A, section_.Iy, section_.Iz, f)
                                                     : beam_local_axial_geometric_stiffness(section_, L_, f);
-  return T_.transpose() * kg * T_;
+  return to_global(kg, R_);
 }
 
 Mat12 BeamElement::mass(MassKind kind, double density) const {
-  return T_.transpose() * beam_local_mass(section_, density, L_, kind) * T_;
+  return to_global(beam_local_mass(section_, density, L_, kind), R_);
 }
 
 Vec12 BeamElement::equivalent_loads(const ElementLoads& loads) const {
@@ -134,10 +142,11 @@ Vec12 LinearBeam::displacements(const NodalPoses& p) const {
 ElementResponse LinearBeam::respond(const NodalPoses& p, Evaluate what) const {
   const Vec12 u = displacements(p);
   ElementResponse r;
-  r.force = K_ * u;
+  const Mat12 K = stiffness();
+  r.force = K * u;
   r.energy = 0.5 * u.dot(r.force);
   r.local_end_forces = local_end_forces(u);
-  if (what == Evaluate::ForceAndTangent) r.tangent = K_;
+  if (what == Evaluate::ForceAndTangent) r.tangent = K;
   else r.tangent.setZero();
   return r;
 }

@@ -166,7 +166,8 @@ CorotationalResponse CorotationalBeam::evaluate(const Vec3& x1, const Mat3& R1, 
   dl(6) = ln - L_;
   dl.segment<3>(9) = F.theta2;
   CorotationalResponse out;
-  out.local_end_forces = kl_ * dl;
+  const Mat12 kl = local_stiffness();
+  out.local_end_forces = kl * dl;
   out.energy = 0.5 * dl.dot(out.local_end_forces);
   const double N = out.local_end_forces(6);
   const Vec3 m[2] = {out.local_end_forces.segment<3>(3), out.local_end_forces.segment<3>(9)};
@@ -202,11 +203,11 @@ CorotationalResponse CorotationalBeam::evaluate(const Vec3& x1, const Mat3& R1, 
   constexpr int rot[6] = {3, 4, 5, 9, 10, 11};
   Eigen::Matrix<double, 6, 6> k_rot;
   for (int a = 0; a < 6; ++a)
-    for (int b = 0; b < 6; ++b) k_rot(a, b) = kl_(rot[a], rot[b]);
+    for (int b = 0; b < 6; ++b) k_rot(a, b) = kl(rot[a], rot[b]);
   Eigen::Matrix<double, 6, 12> Brot;
   Brot.topRows<3>() = TP[0];
   Brot.bottomRows<3>() = TP[1];
-  Mat12 K = kl_(6, 6) * r.transpose() * r + Brot.transpose() * k_rot * Brot;
+  Mat12 K = kl(6, 6) * r.transpose() * r + Brot.transpose() * k_rot * Brot;
 
   // Geometric part 1: d r.
   const Mat3 A = (Mat3::Identity() - r1 * r1.transpose()) / ln;

@@ -103,8 +103,9 @@ class FrameElement {
   virtual Mat3 axes_at(const NodalPoses& p) const = 0;
 
   // Linear (small-displacement) answers, global displacements u in the DOF order above.
-  // Elastic stiffness at the reference, global: K = T^T k T.
-  virtual const Mat12& stiffness() const = 0;
+  // Elastic stiffness at the reference, global: K = T^T k T (by value: a beam keeps k and R
+  // alone, not K, so that a million-member lattice keeps a gigabyte less).
+  virtual Mat12 stiffness() const = 0;
   // Local end forces k T u of the small displacements u (without member loads).
   virtual Vec12 local_end_forces(const Vec12& u) const = 0;
 

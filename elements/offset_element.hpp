@@ -46,7 +46,7 @@ class OffsetElement final : public FrameElement {
   NodalPoses reference_poses() const override;
   Mat3 axes_at(const NodalPoses& p) const override { return flexible_->axes_at(flexible_poses(p)); }
 
-  const Mat12& stiffness() const override { return K_; }
+  Mat12 stiffness() const override { return K_; }
   Vec12 local_end_forces(const Vec12& u) const override { return flexible_->local_end_forces(B0_ * u); }
   ElementResponse respond(const NodalPoses& p, Evaluate what) const override;
   NodalPoses advance(const NodalPoses& p, const Vec12& d) const override { return flexible_->advance(p, d); }

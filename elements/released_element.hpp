@@ -51,7 +51,7 @@ class ReleasedElement final : public FrameElement {
   NodalPoses reference_poses() const override { return beam_->reference_poses(); }
   Mat3 axes_at(const NodalPoses& p) const override { return beam_->axes_at(p); }
 
-  const Mat12& stiffness() const override { return beam_->stiffness(); }
+  Mat12 stiffness() const override { return beam_->stiffness(); }
   Vec12 local_end_forces(const Vec12& u) const override { return beam_->local_end_forces(u); }
   ElementResponse respond(const NodalPoses& p, Evaluate what) const override { return beam_->respond(p, what); }
   NodalPoses advance(const NodalPoses& p, const Vec12& d) const override { return beam_->advance(p, d); }

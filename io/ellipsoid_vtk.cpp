@@ -88,6 +88,9 @@ void write_compliance_ellipsoid(const std::string& path, const Vec3& centre, con
     w->SetInputData(poly);
     w->SetDataModeToAppended();
     w->EncodeAppendedDataOff();
+    // LZ4 rather than VTK's default zlib: a few times faster to write (zlib took 40% of a
+    // 400,000-DOF lattice's whole run) for files about a third larger; ParaView reads both.
+    w->SetCompressorTypeToLZ4();
     if (w->Write() != 1) throw Error("cannot write VTK file '" + path + "'");
   });
 }

@@ -146,11 +146,12 @@ class Increment {
         a_.add(dofs, f ? beam->geometric_stiffness((*f)[e], kind) : Mat12::Zero());
         continue;
       }
-      Mat12 h = -beam->stiffness();
+      const Mat12 k = beam->stiffness();
+      Mat12 h = -k;
       const Element& el = model_.elements[e];
       for (int j = 0; j < 2; ++j)
         if (model_.nodes[el.nodes[j]].member == el.member)
-          for (int c = 6 * j; c < 6 * j + 6; ++c) h(c, c) += beam->stiffness()(c, c);
+          for (int c = 6 * j; c < 6 * j + 6; ++c) h(c, c) += k(c, c);
       a_.add(dofs, h);
     }
     a_.end();
