@@ -61,6 +61,7 @@ class VtuBuilder {
   const VtkFrame& frame_;
   const bool diagrams_;     // frame.section_forces given
   const bool have_forces_;  // frame.end_forces given, one per element
+  const int segments_;      // line cells per beam
   vtkNew<vtkPoints> points_;
   vtkNew<vtkCellArray> cells_;
   std::vector<int> cell_types_;
@@ -76,7 +77,8 @@ VtuBuilder::VtuBuilder(const Model& model, const VtkFrame& frame)
     : model_(model),
       frame_(frame),
       diagrams_(static_cast<bool>(frame.section_forces)),
-      have_forces_(frame.end_forces.size() == model.elements.size()) {
+      have_forces_(frame.end_forces.size() == model.elements.size()),
+      segments_(frame.segments > 0 ? frame.segments : vtk_beam_segments(model)) {
   points_->SetDataTypeToDouble();
   disp_->SetName("displacement");
   disp_->SetNumberOfComponents(3);
@@ -143,7 +145,7 @@ void VtuBuilder::add_element(int e) {
   const int a = el.nodes[0], b = el.nodes[1];
   const std::string id = el.member >= 0 ? model_.members[el.member].id : el.id;
   const Vec12 sf = have_forces_ ? section_forces(frame_.end_forces[e]) : Vec12::Zero();
-  const int n = el.type == MemberType::Beam ? std::max(1, frame_.segments) : 1;
+  const int n = el.type == MemberType::Beam ? segments_ : 1;
   // A beam with rigid arms (offsets, rigid ends) is drawn as its arms, node to flexible end, and
   // its flexible part between the flexible ends.
   const bool beam = el.type == MemberType::Beam;
@@ -250,6 +252,12 @@ void VtuBuilder::fill(vtkUnstructuredGrid& grid) {
 }
 
 }  // namespace
+
+int vtk_beam_segments(const Model& model) {
+  const auto beams = std::count_if(model.elements.begin(), model.elements.end(),
+                                   [](const Element& el) { return el.type == MemberType::Beam; });
+  return static_cast<int>(std::clamp<long>(beams > 0 ? kVtkBeamCellBudget / beams : 8, 1, 8));
+}
 
 void write_vtu(const std::string& path, const Model& model, const VtkFrame& frame) {
   VtuBuilder builder(model, frame);

@@ -83,6 +83,7 @@ LinearSystem::LinearSystem(const Model& model, const LinearStaticOptions& option
     s.iterative = std::make_unique<PetscSolver>(iterative_options(model.solver));
     s.iterative->set_near_null_space(rigid_body_modes(model, s.map));
     s.iterative->set_block_size(node_block_size(s.map));
+    s.iterative->set_borrow_matrix(true);  // K_ff lives beside it, unchanged, for as long
     if (s.iterative->compute(K) != FactorStatus::Succeeded) {
       // A zero or negative diagonal entry, or a zero pivot in the multigrid's set-up.
       res.modes = zero_energy_modes(model, s.map, K, 12, options.zero_energy_tolerance);

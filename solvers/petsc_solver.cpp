@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <mutex>
+#include <type_traits>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -203,12 +204,22 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
   for (PetscInt k = 0; k <= s.local; ++k) row_starts[static_cast<std::size_t>(k)] = outer[s.first + k] - outer[s.first];
   const PetscInt* cols = A->innerIndexPtr() + outer[s.first];
   const PetscScalar* vals = A->valuePtr() + outer[s.first];
-  check(MatCreate(PETSC_COMM_WORLD, &s.A), "MatCreate");
-  check(MatSetSizes(s.A, s.local, s.local, n, n), "MatSetSizes");
-  check(MatSetType(s.A, MATAIJ), "MatSetType");  // MATSEQAIJ on one process, MATMPIAIJ on several
-  if (bs > 1) check(MatSetBlockSize(s.A, bs), "MatSetBlockSize");
-  check(MatSeqAIJSetPreallocationCSR(s.A, row_starts.data(), cols, vals), "MatSeqAIJSetPreallocationCSR");
-  check(MatMPIAIJSetPreallocationCSR(s.A, row_starts.data(), cols, vals), "MatMPIAIJSetPreallocationCSR");
+  if (borrow_ && size == 1 && A == &A_in) {
+    // PETSc's matrix on A's own arrays (PetscInt is A's index type: Debian's PETSc has 32-bit
+    // indices): no copy, as set_borrow_matrix says. PETSc writes nothing into them.
+    static_assert(std::is_same_v<PetscInt, Sparse::StorageIndex>);
+    check(MatCreateSeqAIJWithArrays(PETSC_COMM_WORLD, n, n, const_cast<PetscInt*>(outer), const_cast<PetscInt*>(cols),
+                                    const_cast<PetscScalar*>(vals), &s.A),
+          "MatCreateSeqAIJWithArrays");
+    if (bs > 1) check(MatSetBlockSize(s.A, bs), "MatSetBlockSize");
+  } else {
+    check(MatCreate(PETSC_COMM_WORLD, &s.A), "MatCreate");
+    check(MatSetSizes(s.A, s.local, s.local, n, n), "MatSetSizes");
+    check(MatSetType(s.A, MATAIJ), "MatSetType");  // MATSEQAIJ on one process, MATMPIAIJ on several
+    if (bs > 1) check(MatSetBlockSize(s.A, bs), "MatSetBlockSize");
+    check(MatSeqAIJSetPreallocationCSR(s.A, row_starts.data(), cols, vals), "MatSeqAIJSetPreallocationCSR");
+    check(MatMPIAIJSetPreallocationCSR(s.A, row_starts.data(), cols, vals), "MatMPIAIJSetPreallocationCSR");
+  }
   check(MatSetOption(s.A, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   check(MatSetOption(s.A, MAT_SPD, PETSC_TRUE), "MatSetOption");
   check(MatCreateVecs(s.A, &s.x, &s.b), "MatCreateVecs");

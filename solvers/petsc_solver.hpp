@@ -5,7 +5,7 @@
 // smoothed aggregation (PCGAMG) or hypre's BoomerAMG (PCHYPRE).
 //
 //   analyze(A)   nothing beyond A's size (the preconditioner's structure needs A's values)
-//   compute(A)   copies A into a PETSc matrix (MATAIJ on PETSC_COMM_WORLD), gives it the near
+//   compute(A)   copies A (or borrows its arrays: set_borrow_matrix) into a PETSc matrix (MATAIJ on PETSC_COMM_WORLD), gives it the near
 //                null space and sets up the preconditioner once; every later solve reuses it
 //   solve(b, x)  iterates from x = 0 until ||b - A x|| <= rtol ||b|| (the unpreconditioned
 //                residual norm, the contract's figure) or the outcome says why not (last_solve())
@@ -98,6 +98,10 @@ class PetscSolver final : public LinearSolver {
   // The block size of the next compute(): 6 where the rows come in whole nodes
   // (solvers/near_null_space.hpp's node_block_size), for multigrid to aggregate nodes; 1: none.
   void set_block_size(int block_size) { block_size_ = block_size; }
+  // On one process, let the next compute(A) use A's arrays instead of copying them (a gigabyte
+  // less at 2e6 DOFs): A, compressed, must then stay alive and unchanged until the solver is
+  // destroyed or computes again. Under MPI the rows are copied as always.
+  void set_borrow_matrix(bool borrow) { borrow_ = borrow; }
 
   void analyze(const Sparse& A) override;
   // Sets up the preconditioner of A (A square, symmetric, both triangles stored). Singular when
@@ -124,6 +128,7 @@ class PetscSolver final : public LinearSolver {
   std::unique_ptr<Impl> impl_;
   Eigen::MatrixXd near_null_;
   int block_size_ = 1;
+  bool borrow_ = false;
   Eigen::Index n_ = 0;
   FactorStatus status_ = FactorStatus::Singular;
   mutable IterativeSolveReport last_;
