@@ -3,6 +3,7 @@
 
 #include <sstream>
 
+#include "io/vtk_writer.hpp"
 #include "support/models.hpp"
 
 namespace results_output_test {
@@ -76,6 +77,28 @@ TEST(ResultsOutput, VtuOpensInVtksOwnReader) {
   EXPECT_EQ(cells, 2 * 8);  // two elements, 8 line cells each
   EXPECT_NEAR(min_uy, -1000.0 * 8.0 / (3 * 2.1e11 * 3e-6), 1e-12);  // tip: P L^3 / 3EI
   EXPECT_EQ(components, 6);
+}
+
+// A large model's beams are drawn in fewer segments, so that the .vtu's beams stay within
+// kVtkBeamCellBudget (1,000,000) line cells: 8 up to 125,000 beams, then 1,000,000 / beams, at
+// least 1. Rigid links (one cell each) do not count.
+TEST(ResultsOutput, LargeModelsDrawTheirBeamsInFewerSegments) {
+  Model m;
+  auto with = [&m](std::size_t beams, std::size_t rigid) {
+    m.elements.assign(beams, Element{});
+    for (auto& el : m.elements) el.type = MemberType::Beam;
+    Element link;
+    link.type = MemberType::Rigid;
+    m.elements.insert(m.elements.end(), rigid, link);
+    return vtk_beam_segments(m);
+  };
+  EXPECT_EQ(with(1, 0), 8);
+  EXPECT_EQ(with(125'000, 0), 8);
+  EXPECT_EQ(with(125'001, 0), 7);
+  EXPECT_EQ(with(201'720, 0), 4);  // the 40^3-cell lattice of benchmarks/lattice_model.py
+  EXPECT_EQ(with(1'014'300, 0), 1);  // its 69^3-cell one (2,028,600 free DOFs)
+  EXPECT_EQ(with(0, 10), 8);
+  EXPECT_EQ(with(100'000, 900'000), 8);
 }
 
 }  // namespace results_output_test
