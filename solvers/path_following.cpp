@@ -195,12 +195,15 @@ bool PathRun::cut(PathTermination why, const std::string& what) {
   // Displacement control at a snap-back of the controlled DOF: on under arc length, with the
   // arc length of the last accepted step.
   const Eigen::VectorXd& d = predictor_.previous_direction();
-  if (sys_.has_loads() && d.size() && control_.fall_back_to_arc_length(cur_, std::sqrt(sys_.arc_dot(d, d)))) {
+  if (d.size() && control_.fall_back_to_arc_length(cur_, std::sqrt(sys_.arc_dot(d, d)))) {
     cuts_ = 0;
     say(fmt::format("step {}: the controlled DOF turns back: arc length from here (ds {:.4g})", step_ + 1,
                     control_.h()));
     return true;
   }
+  if (displacement() && !std::isnan(control_.last_turn()))
+    report_ = fmt::format("the controlled DOF turns back at {:.6g} again, not past its earlier turn at {:.6g}: "
+                          "the target {:.6g} is out of its reach", control_.value(cur_), control_.last_turn(), o_.target);
   if (!ends_at_singularity()) res_.finish(why, cur_.lambda, cuts_, report_);
   return false;
 }

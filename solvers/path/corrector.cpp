@@ -30,6 +30,12 @@ ChordOutcome chord_correct(const PathSystem& sys, FactorCache& factors, const Co
     return out;
   }
   const int n = sys.unknowns(s);
+  if (s.kind == StepKind::Arc && !sys.has_loads()) {
+    // The start factor is of the imposed motion's system (its last row holds the controlled DOF),
+    // not of the arc-length step that frees it: no chord.
+    out.why = "an imposed motion's arc-length step";
+    return out;
+  }
   // The factor is of the step's own system (load control; imposed motion, whose tangent system holds
   // the controlled DOF), or of its leading block (the extra unknown is the load factor): bordered.
   const bool bordered = m == n - 1 && sys.extra_is_lambda(s);
@@ -127,7 +133,7 @@ StepSolution Corrector::solve(const Converged& start, const StepSpec& s, Eigen::
     c.state = e.st;
     c.lambda = e.lambda;
     c.mu = uu.segment(sys_.nf(), sys_.nc());
-    c.extra_mu = (s.kind == StepKind::Control && !sys_.has_loads()) ? uu[sys_.nf() + sys_.nc()] : 0.0;
+    c.extra_mu = (s.kind != StepKind::Load && !sys_.has_loads()) ? uu[sys_.nf() + sys_.nc()] : 0.0;
     out.converged = true;
     return c;
   };

@@ -201,7 +201,9 @@ PathSystem::Eval PathSystem::state_of(const Converged& start, const StepSpec& s,
   for (int c = 0; c < ncs_; ++c)
     for_each_term(cons_[c], [&](int node, int comp, double coefficient) { e.f_app[map.raw_node(node, comp)] += coefficient * u[nf_ + c]; });
   e.mu_closure = closure_multipliers(u.segment(nf_, nc_));
-  if (s.kind == StepKind::Control && !has_loads_) e.f_app[map.raw_node(ctrl_.node, ctrl_.comp)] += u[nf_ + nc_];
+  // Imposed motion (no loads): the extra unknown is the force at the controlled DOF, its reaction,
+  // also on the arc-length steps of a snap-back fall-back (which free the controlled DOF).
+  if (s.kind != StepKind::Load && !has_loads_) e.f_app[map.raw_node(ctrl_.node, ctrl_.comp)] += u[nf_ + nc_];
   return e;
 }
 

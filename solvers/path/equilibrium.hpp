@@ -117,7 +117,7 @@ class PathSystem {
 
   int unknowns(const StepSpec& s) const { return nf_ + nc_ + (s.kind == StepKind::Load ? 0 : 1); }
   bool extra_is_lambda(const StepSpec& s) const {
-    return s.kind == StepKind::Arc || (s.kind == StepKind::Control && has_loads_);
+    return has_loads_ && (s.kind == StepKind::Arc || s.kind == StepKind::Control);
   }
   // Arc-length weight of a free coordinate: 1 on translations, L^2 on rotations.
   double weight(int gen) const { return ns_.is_rotation(gen) ? L_ * L_ : 1.0; }

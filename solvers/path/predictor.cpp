@@ -62,13 +62,20 @@ StepPrediction Predictor::arc_step(const Converged& c, double h, const Eigen::Ve
   Eigen::VectorXd& u = out.u;
   u = P.start_unknowns(c, s);
   Eigen::VectorXd d;  // [Delta_f, dlambda] direction
+  // The tangent's rates are per unit load factor (loads), or per unit of the controlled DOF (an
+  // imposed motion alone: the arc-length steps of its snap-back fall-back, where d's last entry is
+  // the reaction's rate, outside the metric: psi is 0 without loads).
+  double along = 1.0;  // the sign of d against the tangent
   if (direction) {
     d = *direction;
   } else if (t.size()) {
     d.resize(nf + 1);
     d.head(nf) = t.head(nf);
-    d[nf] = 1.0;
-    if (previous_.size() && P.arc_dot(d, previous_) < 0.0) d = -d;
+    d[nf] = P.has_loads() ? 1.0 : t[nf + nc];
+    if (previous_.size() && P.arc_dot(d, previous_) < 0.0) {
+      d = -d;
+      along = -1.0;
+    }
   } else if (previous_.size()) {
     d = previous_;  // secant predictor where the tangent is singular
   } else {
@@ -78,7 +85,7 @@ StepPrediction Predictor::arc_step(const Converged& c, double h, const Eigen::Ve
   const double a = h / std::sqrt(std::max(P.arc_dot(d, d), kTinyPredictorRate));
   u.head(nf) += a * d.head(nf);
   u[nf + nc] += a * d[nf];
-  if (t.size() && !direction) u.segment(nf, nc) += a * d[nf] * t.segment(nf, nc);
+  if (t.size() && !direction) u.segment(nf, nc) += a * along * t.segment(nf, nc);
   return out;
 }
 

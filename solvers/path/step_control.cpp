@@ -47,10 +47,14 @@ bool StepControl::cut() {
 
 bool StepControl::fall_back_to_arc_length(const Converged& cur, double ds) {
   if (o_.control != PathControl::Displacement || mode_ != PathControl::Displacement || !(ds > 0.0)) return false;
+  const double v = value(cur), toward = o_.target >= v ? 1.0 : -1.0;
+  if (!std::isnan(turned_at_) && (v - turned_at_) * toward <= turn_step_) return false;
+  turned_at_ = v;
+  turn_step_ = std::abs(h_);
   h_disp_ = h0_;
   hmin_disp_ = hmin_;
   hmax_disp_ = hmax_;
-  toward_ = o_.target >= value(cur) ? 1.0 : -1.0;
+  toward_ = toward;
   moved_back_ = false;
   mode_ = PathControl::ArcLength;
   h_ = ds;

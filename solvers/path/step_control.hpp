@@ -7,8 +7,9 @@
 //   arc length     h = ds, within [min_arc_length, max_arc_length] (defaults relative to the first ds).
 // After a converged step h <- h * clamp(sqrt(desired / iterations), 1/2, 2) (Crisfield 1991, vol. 1,
 // eq. 9.40 with the exponent 1/2); after a failure h <- h / 2.
-#include <Eigen/Core>
 #include <cmath>
+
+#include <Eigen/Core>
 
 #include "solvers/path/equilibrium.hpp"
 #include "solvers/path/path_types.hpp"
@@ -71,11 +72,14 @@ class StepControl {
   // Displacement control through a snap-back of the controlled DOF (where it turns back, no step
   // toward the target converges): the steps go on under arc length (first step ds, bounds relative
   // to it) until the controlled DOF, having moved back, moves toward its target again; then
-  // displacement control resumes with its last step. False when not under displacement control.
+  // displacement control resumes with its last step. False when not under displacement control,
+  // and when the controlled DOF turns back again without having passed its last turn by more than
+  // the smallest step that failed there (a bound it cannot pass: the target is out of reach).
   bool fall_back_to_arc_length(const Converged& cur, double ds);
   // After an accepted step from prev to next: true when displacement control resumes.
   bool resume_displacement(const Converged& prev, const Converged& next);
 
+  double last_turn() const { return turned_at_; }  // the controlled DOF's last turn back (NaN: none)
   PathControl mode() const { return mode_; }  // the control of the next step (o.control, or ArcLength in a fall-back)
   double h() const { return h_; }             // signed step (load factor, control value or arc length)
   double path_length() const { return path_length_; }  // arc length: sum of the accepted |h|
@@ -92,6 +96,8 @@ class StepControl {
   double h_disp_ = 0.0, hmin_disp_ = 0.0, hmax_disp_ = 0.0;
   double toward_ = 1.0;
   bool moved_back_ = false;
+  // Where the controlled DOF last turned back, and the smallest step that failed beyond it.
+  double turned_at_ = NAN, turn_step_ = 0.0;
 };
 
 }  // namespace beamfea

@@ -207,6 +207,10 @@ TEST(NonlinearStructure, PathBeyondReachStopsCleanlyKeepingConvergedSteps) {
   ASSERT_GE(r.steps.size(), 3u);
   for (const auto& st : r.steps) EXPECT_LT(st.track[0][1], L);
   EXPECT_GT(r.steps.back().track[0][1], 0.8 * L);
+  // Where y turns back (the link across the x axis) the path goes on under arc length, around the
+  // hinge, until y turns back again short of its first turn: the target is out of reach.
+  EXPECT_NE(r.brief_report().find("is out of its reach"), std::string::npos) << r.brief_report();
+  std::printf("%zu steps: %s\n", r.steps.size() - 1, r.brief_report().c_str());
 }
 
 namespace {
