@@ -77,8 +77,9 @@ int run_alone(const RunCommand& cmd, const app::ProgramSettings& settings) {
 #ifdef BEAMFEA_HAVE_MPI
 // A process other than rank 0 that fails waits this long before it prints and ends the job: when
 // every process fails alike (the same model, the same code), rank 0's message comes first and its
-// MPI_Abort ends the others before they print theirs, so that the job says it once.
-constexpr std::chrono::milliseconds kNonRootAbortDelay{1000};
+// MPI_Abort ends the others before they print theirs, so that the job says it once. (One second
+// was not always enough on a loaded 2-core machine: mpirun's ending of the others can take longer.)
+constexpr std::chrono::milliseconds kNonRootAbortDelay{5000};
 
 // Ends every process of the job with this process's message (MPI_Abort, exit `code`).
 [[noreturn]] void end_job(const MpiWorld& world, const std::string& what, int code) {
