@@ -237,12 +237,21 @@ std::string read_all(const std::filesystem::path& p) {
 }
 
 // The table's rows without their wall_time_s cell (the one cell that differs between two runs).
+// The rows without their times: the case's wall time (the last column) and any analysis's
+// `wall_time_s` that the outputs asked for (a re-run case takes another time).
 std::vector<std::string> rows_without_time(const beamfea::SweepTable& t) {
+  const auto is_time = [&t](std::size_t column) {
+    if (column >= t.header.size()) return false;
+    const std::string& h = t.header[column];
+    return column + 1 == t.header.size() || h == "wall_time_s" || h.ends_with(".wall_time_s");
+  };
   std::vector<std::string> rows;
   for (const auto& row : t.rows) {
-    auto cells = beamfea::csv_split(row.substr(0, row.size() - 1));
-    if (!cells.empty()) cells.pop_back();
-    rows.push_back(beamfea::csv_line(cells));
+    const auto cells = beamfea::csv_split(row.substr(0, row.size() - 1));
+    std::vector<std::string> kept;
+    for (std::size_t c = 0; c < cells.size(); ++c)
+      if (!is_time(c)) kept.push_back(cells[c]);
+    rows.push_back(beamfea::csv_line(kept));
   }
   return rows;
 }
