@@ -1,5 +1,7 @@
 #include "cli/run_command.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <iostream>
@@ -81,11 +83,19 @@ int run_alone(const RunCommand& cmd, const app::ProgramSettings& settings) {
 // was not always enough on a loaded 2-core machine: mpirun's ending of the others can take longer.)
 constexpr std::chrono::milliseconds kNonRootAbortDelay{5000};
 
+// One line to stderr in one write: mpirun forwards each process's output as it arrives and
+// prints its own notices (MPI_Abort's) among them, so a line written piece by piece can be cut.
+void print_line(const std::string& line) {
+  const std::string text = line + "\n";
+  std::cerr.write(text.data(), static_cast<std::streamsize>(text.size()));
+  std::cerr.flush();
+}
+
 // Ends every process of the job with this process's message (MPI_Abort, exit `code`).
 [[noreturn]] void end_job(const MpiWorld& world, const std::string& what, int code) {
   if (world.rank() != 0) std::this_thread::sleep_for(kNonRootAbortDelay);
-  std::cerr << "beamfea: error: rank " << world.rank() << " of " << world.size() << ": " << what << " (ending all "
-            << world.size() << " processes; no results written)" << std::endl;
+  print_line(fmt::format("beamfea: error: rank {} of {}: {} (ending all {} processes; no results written)", world.rank(),
+                         world.size(), what, world.size()));
   world.abort(code);
 }
 
@@ -128,9 +138,9 @@ int run_distributed(const RunCommand& cmd, const app::ProgramSettings& settings,
   const int agreed = world.max_over_ranks(code);
   const int root_code = world.from_rank_0(code);
   if (agreed != 0) {
-    if (root && code != 0) std::cerr << "beamfea: error: " << message << "\n";
+    if (root && code != 0) print_line("beamfea: error: " + message);
     if (!root && code != 0 && root_code == 0)
-      std::cerr << "beamfea: error: rank " << world.rank() << " of " << ranks << ": " << message << "\n";
+      print_line(fmt::format("beamfea: error: rank {} of {}: {}", world.rank(), ranks, message));
     return agreed;
   }
   try {
