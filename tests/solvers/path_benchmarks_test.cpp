@@ -142,6 +142,7 @@ TEST(PathBenchmarks, WilliamsToggleLimitPointUnderDisplacementControl) {
 // The deep arch under displacement control of the apex: the load maximum (898.3) is a limit point;
 // where the apex turns back (a snap-back of the controlled DOF, at uy ~ -120.4) the steps go on
 // under arc length, recorded as such, and displacement control resumes until the target.
+// Then the same with no load and the apex driven by an imposed motion alone.
 TEST(PathBenchmarks, DeepArchThroughItsSnapBackUnderDisplacementControl) {
   const Model m = read_model(deep_arch(80, 1.0));
   PathOptions o;
@@ -173,60 +174,47 @@ TEST(PathBenchmarks, DeepArchThroughItsSnapBackUnderDisplacementControl) {
   EXPECT_TRUE(back);
   EXPECT_NEAR(umin_arc, -120.4, 0.5);
   EXPECT_EQ(r.steps.back().step_control, PathControl::Displacement);
-}
 
-// The same arch with no load, its apex pushed down by an imposed motion alone: the path is the
-// loaded one's with the apex's reaction in place of the load (R = -lambda P, P = 1 downward). Where
-// the apex turns back (uy ~ -120.4) the steps go on under arc length with the reaction as the extra
-// unknown, and displacement control resumes until the target; the end state is the loaded path's.
-TEST(PathBenchmarks, DeepArchDrivenByItsApexAloneThroughTheSnapBack) {
-  PathOptions o;
-  o.control = PathControl::Displacement;
-  o.control_dof = 1;
-  o.target = -125.0;
-  o.increments = 30;
-  const Model loaded = read_model(deep_arch(80, 1.0));
+  // The same arch with no load, its apex pushed down by an imposed motion alone: the path is the
+  // loaded one's with the apex's reaction in place of the load (R = -lambda P, P = 1 downward). Where
+  // the apex turns back the steps go on under arc length with the reaction as the extra unknown, and
+  // displacement control resumes until the target; the end state is the loaded path's.
   nlohmann::json d = deep_arch(80, 1.0);
   d.erase("loads");
-  const Model m = read_model(d);
-  o.control_node = m.find_node("apex");
-  o.track = {m.find_node("apex")};
-  const PathResult r = run(m, o);
-  ASSERT_TRUE(r.completed) << r.brief_report();
-  EXPECT_NEAR(r.steps.back().track[0][1], -125.0, 1e-9);
-  int arc = 0;
-  double umin_arc = 0.0, rmax = 0.0;
-  bool back = false;
-  for (std::size_t i = 1; i < r.steps.size(); ++i) {
-    const auto& s = r.steps[i];
+  const Model free_arch = read_model(d);
+  PathOptions om = o;
+  om.control_node = free_arch.find_node("apex");
+  om.track = {free_arch.find_node("apex")};
+  const PathResult rm = run(free_arch, om);
+  ASSERT_TRUE(rm.completed) << rm.brief_report();
+  EXPECT_NEAR(rm.steps.back().track[0][1], -125.0, 1e-9);
+  int arc_m = 0;
+  double umin_m = 0.0, push = 0.0;
+  bool back_m = false;
+  for (std::size_t i = 1; i < rm.steps.size(); ++i) {
+    const auto& s = rm.steps[i];
     EXPECT_EQ(s.load_factor, 0.0);  // no load: the reaction is the unknown
-    rmax = std::max(rmax, -s.reaction);  // the force pushing the apex down
+    push = std::max(push, -s.reaction);  // the force pushing the apex down
     if (s.step_control != PathControl::ArcLength) continue;
-    ++arc;
-    umin_arc = std::min(umin_arc, s.track[0][1]);
-    if (s.track[0][1] > r.steps[i - 1].track[0][1]) back = true;
+    ++arc_m;
+    umin_m = std::min(umin_m, s.track[0][1]);
+    if (s.track[0][1] > rm.steps[i - 1].track[0][1]) back_m = true;
   }
-  EXPECT_GT(arc, 0);
-  EXPECT_TRUE(back);
-  EXPECT_NEAR(umin_arc, -120.4, 0.5);
-  EXPECT_EQ(r.steps.back().step_control, PathControl::Displacement);
-  // The largest push: below the loaded arch's limit load (897.0 in the test above), at least 0.95 of it.
-  EXPECT_LT(rmax, 898.3);
-  EXPECT_GT(rmax, 0.95 * 897.0);
-  // The loaded path at the same target: the same state, R = -lambda (the load is lambda (0, -1)).
-  PathOptions ol = o;
-  ol.control_node = loaded.find_node("apex");
-  ol.track = {loaded.find_node("apex")};
-  const PathResult rl = run(loaded, ol);
-  ASSERT_TRUE(rl.completed) << rl.brief_report();
-  const double lambda = rl.steps.back().load_factor;
+  EXPECT_GT(arc_m, 0);
+  EXPECT_TRUE(back_m);
+  EXPECT_NEAR(umin_m, -120.4, 0.5);
+  EXPECT_EQ(rm.steps.back().step_control, PathControl::Displacement);
+  // The largest push: below the loaded arch's limit load (898.3 above), at least 0.95 of it.
+  EXPECT_LT(push, 898.3);
+  EXPECT_GT(push, 0.95 * 897.0);
   // Both ends converge to the convergence test (docs/analyses/path.md), whose force scale without a
   // load is its round-off floor (1e-5 of the stiffest element's force for a displacement L): they
   // differ by 1.4e-6 of the reaction.
-  EXPECT_NEAR(r.steps.back().reaction, -lambda, 1e-5 * std::abs(lambda));
-  std::printf("imposed apex motion: %d arc-length steps, lowest apex %.3f on them, largest reaction %.2f, "
+  const double lambda = r.steps.back().load_factor;
+  EXPECT_NEAR(rm.steps.back().reaction, -lambda, 1e-5 * std::abs(lambda));
+  std::printf("imposed apex motion: %d arc-length steps, lowest apex %.3f on them, largest push %.2f, "
               "end reaction %.6f against the loaded path's -lambda %.6f\n",
-              arc, umin_arc, rmax, r.steps.back().reaction, -lambda);
+              arc_m, umin_m, push, rm.steps.back().reaction, -lambda);
 }
 
 // A path stopped by max_steps is incomplete.
