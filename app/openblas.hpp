@@ -4,7 +4,7 @@
 //
 // OpenBLAS builds with DYNAMIC_ARCH (Debian's) pick their kernels at load time from the CPU model.
 // Before 0.3.25 a model the library does not know fell back to the generic "Prescott" kernels
-// (SSE3) whatever the CPU could do (OpenBLAS issue 4267, fixed by pull request 4268). Debian 12
+// (SSE3) whatever the CPU could do (fixed upstream: github.com/OpenMathLib/OpenBLAS/pull/4268). Debian 12
 // ships 0.3.21: on this project's Xeon (family 6, model 207) dgemm ran at 6-10 GFlop/s on one core
 // instead of 45-69 GFlop/s with the AVX-512 kernels, and every large factorisation was that much
 // slower (docs/performance.md, "The BLAS"). When the library reports Prescott, nobody chose it

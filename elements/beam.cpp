@@ -83,11 +83,13 @@ Mat12 BeamElement::local_stiffness() const { return condensed_ ? *condensed_ : b
 
 Mat12 BeamElement::stiffness() const { return to_global(local_stiffness(), R_); }
 
-Vec12 BeamElement::local_end_forces(const Vec12& u) const {
+Vec12 BeamElement::to_local(const Vec12& u) const {
   Vec12 local;
   for (int i = 0; i < 4; ++i) local.segment<3>(3 * i).noalias() = R_ * u.segment<3>(3 * i);
-  return local_stiffness() * local;
+  return local;
 }
+
+Vec12 BeamElement::local_end_forces(const Vec12& u) const { return local_stiffness() * to_local(u); }
 
 void BeamElement::condense_local(const Mat12& C) {
   condensed_ = std::make_shared<const Mat12>(C.transpose() * local_stiffness() * C);
@@ -142,10 +144,11 @@ Vec12 LinearBeam::displacements(const NodalPoses& p) const {
 ElementResponse LinearBeam::respond(const NodalPoses& p, Evaluate what) const {
   const Vec12 u = displacements(p);
   ElementResponse r;
-  const Mat12 K = stiffness();
+  const Mat12 kl = local_stiffness();  // made once for K and the local end forces
+  const Mat12 K = to_global(kl, R_);
   r.force = K * u;
   r.energy = 0.5 * u.dot(r.force);
-  r.local_end_forces = local_end_forces(u);
+  r.local_end_forces = kl * to_local(u);
   if (what == Evaluate::ForceAndTangent) r.tangent = K;
   else r.tangent.setZero();
   return r;

@@ -96,6 +96,8 @@ class BeamElement : public FrameElement {
   Mat12 transformation() const { return beam_transformation(R_); }
 
  protected:
+  Vec12 to_local(const Vec12& u) const;  // T u: the end vectors in the local axes
+
   BeamSection section_;
   Vec3 X1_, X2_;
   double L_;

@@ -90,6 +90,16 @@ IterativeSolveReport::Outcome outcome_of(KSPConvergedReason reason) {
 
 bool petsc_available() { return true; }
 
+void set_boomeramg_defaults(const std::string& prefix) {
+  // Aggressive coarsening on the first level: a beam lattice's classical coarse grids are dense
+  // (operator complexity 2.3 on a 400,000-DOF cube lattice); the set-up and solve take 0.76-0.83 of
+  // the default's time for one or two more CG iterations (docs/analyses/solver.md).
+  const std::string name = "-" + prefix + "pc_hypre_boomeramg_agg_nl";
+  PetscBool user_set = PETSC_FALSE;
+  check(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &user_set), "PetscOptionsHasName");
+  if (!user_set) check(PetscOptionsSetValue(nullptr, name.c_str(), "1"), "PetscOptionsSetValue");
+}
+
 bool petsc_has_hypre() {
   ensure_petsc_initialized();
   const std::lock_guard<std::mutex> lock(petsc_lock());
@@ -200,8 +210,6 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
   // A's columns are its rows (symmetric): the CSC arrays of columns [first, first + local) are
   // the CSR arrays of those rows, with global column indices, as MATMPIAIJ takes them.
   const int* outer = A->outerIndexPtr();
-  std::vector<PetscInt> row_starts(static_cast<std::size_t>(s.local) + 1);
-  for (PetscInt k = 0; k <= s.local; ++k) row_starts[static_cast<std::size_t>(k)] = outer[s.first + k] - outer[s.first];
   const PetscInt* cols = A->innerIndexPtr() + outer[s.first];
   const PetscScalar* vals = A->valuePtr() + outer[s.first];
   if (borrow_ && size == 1 && A == &A_in) {
@@ -213,6 +221,8 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
           "MatCreateSeqAIJWithArrays");
     if (bs > 1) check(MatSetBlockSize(s.A, bs), "MatSetBlockSize");
   } else {
+    std::vector<PetscInt> row_starts(static_cast<std::size_t>(s.local) + 1);
+    for (PetscInt k = 0; k <= s.local; ++k) row_starts[static_cast<std::size_t>(k)] = outer[s.first + k] - outer[s.first];
     check(MatCreate(PETSC_COMM_WORLD, &s.A), "MatCreate");
     check(MatSetSizes(s.A, s.local, s.local, n, n), "MatSetSizes");
     check(MatSetType(s.A, MATAIJ), "MatSetType");  // MATSEQAIJ on one process, MATMPIAIJ on several
@@ -254,13 +264,7 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
     if (!has) throw Error("solver: this PETSc was built without hypre (preconditioner \"hypre\"); use \"gamg\"");
     check(PCSetType(pc, PCHYPRE), "PCSetType");
     check(PCHYPRESetType(pc, "boomeramg"), "PCHYPRESetType");
-    // Aggressive coarsening on the first level: a beam lattice's classical coarse grids are
-    // dense (operator complexity 2.3 on a 400,000-DOF cube lattice); this set-up and solve take
-    // 0.71 of the default's time for one more CG iteration (docs/analyses/solver.md). The user's
-    // own -pc_hypre_boomeramg_agg_nl (PETSC_OPTIONS) wins.
-    PetscBool user_set = PETSC_FALSE;
-    check(PetscOptionsHasName(nullptr, nullptr, "-pc_hypre_boomeramg_agg_nl", &user_set), "PetscOptionsHasName");
-    if (!user_set) check(PetscOptionsSetValue(nullptr, "-pc_hypre_boomeramg_agg_nl", "1"), "PetscOptionsSetValue");
+    set_boomeramg_defaults("");
   } else {
     check(PCSetType(pc, PCGAMG), "PCSetType");
   }
@@ -353,6 +357,7 @@ namespace {
 
 bool petsc_available() { return false; }
 bool petsc_has_hypre() { return false; }
+void set_boomeramg_defaults(const std::string&) {}
 void ensure_petsc_initialized() { unavailable(); }
 void initialize_petsc_on_all_processes() { unavailable(); }
 int petsc_processes() { return 1; }

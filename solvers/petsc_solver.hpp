@@ -5,8 +5,8 @@
 // smoothed aggregation (PCGAMG) or hypre's BoomerAMG (PCHYPRE).
 //
 //   analyze(A)   nothing beyond A's size (the preconditioner's structure needs A's values)
-//   compute(A)   copies A (or borrows its arrays: set_borrow_matrix) into a PETSc matrix (MATAIJ on PETSC_COMM_WORLD), gives it the near
-//                null space and sets up the preconditioner once; every later solve reuses it
+//   compute(A)   copies A (or borrows its arrays: set_borrow_matrix) into a PETSc matrix (MATAIJ
+//                on PETSC_COMM_WORLD), gives it the near null space and sets up the preconditioner once; every later solve reuses it
 //   solve(b, x)  iterates from x = 0 until ||b - A x|| <= rtol ||b|| (the unpreconditioned
 //                residual norm, the contract's figure) or the outcome says why not (last_solve())
 //   inertia()    none: an iterative method does not factorise
@@ -65,6 +65,11 @@ struct IterativeSolveReport {
 bool petsc_available();
 // Whether this PETSc has hypre's BoomerAMG (Debian's has).
 bool petsc_has_hypre();
+// beamfea's defaults for a BoomerAMG whose options carry `prefix` ("" for the linear solver's,
+// "st_" for SLEPc's shift-and-invert), set in PETSc's options database where the user's
+// PETSC_OPTIONS did not set them: aggressive coarsening on the first level (agg_nl 1). Call
+// before the PC reads its options.
+void set_boomeramg_defaults(const std::string& prefix);
 // PETSc's one-time initialisation, idempotent and thread-safe: after MPI_Init where the program
 // made one (a sweep under mpirun), else PETSc starts MPI itself. Its signal handlers are off
 // (-no_signal_handler), so that Ctrl-C reaches the program's. Throws Error when unavailable.

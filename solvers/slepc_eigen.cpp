@@ -186,10 +186,7 @@ void configure_linear_solve(ST st, const SlepcEigenOptions& o, Eigen::Index n, b
     // options carry its prefix (-st_): the user's -st_pc_hypre_boomeramg_* options are read too.
     const char* prefix = nullptr;
     check(PCGetOptionsPrefix(pc, &prefix), "PCGetOptionsPrefix");
-    const std::string name = std::string("-") + (prefix ? prefix : "") + "pc_hypre_boomeramg_agg_nl";
-    PetscBool set = PETSC_FALSE;
-    check(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &set), "PetscOptionsHasName");
-    if (!set) check(PetscOptionsSetValue(nullptr, name.c_str(), "1"), "PetscOptionsSetValue");
+    set_boomeramg_defaults(prefix ? prefix : "");
     check(PCSetFromOptions(pc), "PCSetFromOptions");
   } else {
     check(PCSetType(pc, PCGAMG), "PCSetType gamg");
