@@ -183,11 +183,10 @@ void configure_linear_solve(ST st, const SlepcEigenOptions& o, Eigen::Index n, b
     check(PCHYPRESetType(pc, "boomeramg"), "PCHYPRESetType");
     // Aggressive coarsening on the first level, as the linear solver's BoomerAMG (solvers/petsc_solver.cpp):
     // 0.60-0.84x the eigen-solve's time on a 52,920-DOF lattice (docs/performance.md). The ST's
-    // options carry its prefix (-st_): the user's -st_pc_hypre_boomeramg_* options are read too.
+    // options carry its prefix (-st_), as the user's do (read by read_user_options).
     const char* prefix = nullptr;
     check(PCGetOptionsPrefix(pc, &prefix), "PCGetOptionsPrefix");
     set_boomeramg_defaults(prefix ? prefix : "");
-    check(PCSetFromOptions(pc), "PCSetFromOptions");
   } else {
     check(PCSetType(pc, PCGAMG), "PCSetType gamg");
   }
@@ -279,6 +278,11 @@ SlepcEigenPairs solve_and_collect(EPS eps, Mat A, int count, const char* what, d
   return out;
 }
 
+// The user's PETSC_OPTIONS, read last so that they tune what beamfea set: -eps_* for the
+// eigen-solver, -st_ksp_* and -st_pc_* for its inner linear solve (EPSSetFromOptions reads the
+// ST's, which reads its KSP's and PC's).
+void read_user_options(EPS eps) { check(EPSSetFromOptions(eps), "EPSSetFromOptions"); }
+
 void configure_eps(EPS eps, Mat A, Mat B, int count, const SlepcEigenOptions& o) {
   check(EPSSetOperators(eps, A, B), "EPSSetOperators");
   check(EPSSetProblemType(eps, EPS_GHEP), "EPSSetProblemType");
@@ -313,6 +317,7 @@ SlepcEigenPairs slepc_vibration_pairs(const SparseMatrix& K, const SparseMatrix&
     check(STSetType(st, STSINVERT), "STSetType");
     check(STSetPreconditionerMat(st, P.h), "STSetPreconditionerMat");
     configure_linear_solve(st, options, n, options.indefinite);
+    read_user_options(eps.h);
     SlepcEigenPairs out = solve_and_collect(eps.h, A.h, count, "modal", options.target);
     for (Eigen::Index k = 0; k < out.vectors.cols(); ++k) {
       const double m = out.vectors.col(k).dot(M * out.vectors.col(k));
@@ -346,6 +351,7 @@ SlepcEigenPairs slepc_buckling_pairs(const SparseMatrix& K, const SparseMatrix& 
     check(EPSGetST(eps.h, &st), "EPSGetST");
     check(STSetType(st, STSHIFT), "STSetType");
     configure_linear_solve(st, options, n, false);
+    read_user_options(eps.h);
     SlepcEigenPairs mu = solve_and_collect(eps.h, A.h, count, "buckling", std::numeric_limits<double>::infinity());
     if (!mu.converged) return mu;
     // mu = 1/lambda: the positive ones, as load factors, ascending.

@@ -253,4 +253,35 @@ TEST(RunCommand, WithoutMpirunTheRunIsOneProcessAsBefore) {
   }
 }
 
+// The user's PETSC_OPTIONS reach SLEPc's eigen-solver and its inner linear solve (-eps_*, -st_ksp_*,
+// -st_pc_*), read after beamfea's own settings: a KSP type this PETSc does not have, given to the
+// shift-and-invert's KSP alone, fails the modal analysis (reported in results.json, exit 1) and names where; without it the same run
+// succeeds.
+TEST(RunCommand, TheUsersPetscOptionsReachTheEigenSolversInnerSolve) {
+  const auto dir = temp_dir("run_slepc_options");
+  json d;
+  d["nodes"] = json::array({{{"id", "A"}, {"xyz", {0, 0, 0}}}, {{"id", "B"}, {"xyz", {1, 0, 0}}}});
+  d["materials"] = json::array({{{"id", "steel"}, {"E", 2.1e11}, {"G", 8.1e10}, {"density", 7850}}});
+  d["sections"] = json::array({{{"id", "rod"}, {"A", 1e-4}, {"Iy", 1e-8}, {"Iz", 2e-8}, {"J", 2e-8}}});
+  d["elements"] = json::array({{{"id", "e"}, {"type", "beam"}, {"nodes", {"A", "B"}}, {"material", "steel"},
+                                {"section", "rod"}, {"divisions", 8}}});
+  d["supports"] = json::array({{{"node", "A"}, {"fix", "all"}}});
+  d["solver"] = {{"type", "iterative"}};
+  d["analyses"] = json::array({{{"id", "m"}, {"type", "modal"}, {"modes", 3}}});
+  write(dir / "m.json", d.dump());
+  const auto log = dir / "log.txt";
+  ASSERT_EQ(sh(exe() + " run " + (dir / "m.json").string() + " --out " + (dir / "ok").string() + " -q > " +
+               log.string() + " 2>&1"), 0) << read(log);
+  const int rc = sh("PETSC_OPTIONS='-st_ksp_type no_such_type' " + exe() + " run " + (dir / "m.json").string() +
+                    " --out " + (dir / "bad").string() + " -q > " + log.string() + " 2>&1");
+  const std::string text = read(log);
+  EXPECT_EQ(rc, 1) << text;
+  const json bad = json::parse(read(dir / "bad" / "results.json"));
+  EXPECT_EQ(bad["analyses"]["m"]["status"], "failed");
+  EXPECT_NE(bad["analyses"]["m"]["message"].get<std::string>().find("EPSSetFromOptions failed (Unknown type"),
+            std::string::npos) << bad["analyses"]["m"]["message"];
+  const json ok = json::parse(read(dir / "ok" / "results.json"));
+  EXPECT_EQ(ok["analyses"]["m"]["frequencies"].size(), 3u);
+}
+
 }  // namespace run_mpi_cli_test
