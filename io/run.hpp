@@ -42,7 +42,8 @@ struct RunOptions {
   // false: the caller reads results.json, not RunReport::results (the program). The analyses may
   // then make their largest objects (a linear analysis's nodes and members) only while results.json
   // is written, member by member, instead of holding them in the results tree
-  // (io/deferred_results.hpp); RunReport::results lacks those objects. No effect without out_dir.
+  // (io/deferred_results.hpp); RunReport::results lacks those objects. Without out_dir they are
+  // never made (a process of a distributed run that runs the analyses and writes nothing).
   bool results_in_memory = true;
   // May be empty. Called once every output is staged (results.json included), just before they
   // are moved into place; an exception from it leaves DIR as it was. A program that runs one model

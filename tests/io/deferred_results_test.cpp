@@ -150,6 +150,29 @@ TEST(DeferredResults, ALargeFrameIsWrittenByteForByteAsFromTheTree) {
   EXPECT_TRUE(lin["nodes"]["n0_0_0"].contains("reaction"));
 }
 
+// A run that writes nothing and whose caller reads no results tree (a process of a distributed
+// `beamfea run` other than rank 0) makes the deferred objects never: its tree holds the
+// analysis's status and figures, without nodes or members, and no placeholder.
+TEST(DeferredResults, ARunThatWritesNothingNeverMakesTheDeferredObjects) {
+  const json doc = frame(6, 6, 3);
+  const beamfea::Model model = beamfea::load_and_check(doc);
+  beamfea::RunOptions options;
+  options.write_vtk = false;
+  options.results_in_memory = false;
+  const beamfea::RunReport report = beamfea::run_document(model, doc, options);
+  ASSERT_FALSE(report.failed);
+  const ojson& lin = report.results["analyses"]["lin"];
+  EXPECT_EQ(lin["status"], "ok");
+  EXPECT_FALSE(lin.contains("nodes"));
+  EXPECT_FALSE(lin.contains("elements"));
+  EXPECT_TRUE(lin.contains("joints"));
+  EXPECT_GT(lin["solver"]["iterations"].get<int>(), 0);
+  // The same run with the tree kept has them (what the absence above is measured against).
+  options.results_in_memory = true;
+  const beamfea::RunReport kept = beamfea::run_document(model, doc, options);
+  EXPECT_EQ(kept.results["analyses"]["lin"]["nodes"].size(), 7u * 7u * 4u + 2u + 7u * 7u * 3u);  // with the arm, the tip and the columns' middle nodes
+}
+
 TEST(DeferredResults, TheExamplesAreWrittenByteForByteAsFromTheTree) {
   for (const char* example : {"01_space_frame", "04_load_sweep", "09_robot_arm_self_weight"}) {
     const json doc = read_json(beamfea::test::source_path("examples") / example / "model.json");
