@@ -63,6 +63,7 @@ void SystemAssembler::add_planned(int n, const Eigen::Ref<const Eigen::MatrixXd>
   for (int b = 0; b < n; ++b)
     for (int jb = start_f_[b]; jb < start_f_[b + 1]; ++jb) {
       const auto [j, cj] = terms_f_[jb];
+      if (!owned_.contains(j)) continue;
       const int* first = inner + outer[j];
       const int* last = inner + outer[j + 1];
       const int* at = last;
@@ -102,15 +103,26 @@ void SystemAssembler::add(std::span<const int> raw, const Eigen::Ref<const Eigen
   for (int a = 0; a < n; ++a)
     for (int ia = start_f_[a]; ia < start_f_[a + 1]; ++ia) {
       const auto [i, ci] = terms_f_[ia];
+      const bool owned_row = owned_.contains(i);
       for (int b = 0; b < n; ++b) {
         const double kab = ci * K(a, b);
         if (!planned_)
           for (int jb = start_f_[b]; jb < start_f_[b + 1]; ++jb)
-            put(tff_, pos_ff_, kff_, Kff_, i, terms_f_[jb].first, kab * terms_f_[jb].second);
-        for (int jb = start_p_[b]; jb < start_p_[b + 1]; ++jb)
-          put(tfp_, pos_fp_, kfp_, Kfp_, i, terms_p_[jb].first, kab * terms_p_[jb].second);
+            if (owned_.contains(terms_f_[jb].first))
+              put(tff_, pos_ff_, kff_, Kff_, i, terms_f_[jb].first, kab * terms_f_[jb].second);
+        if (owned_row)
+          for (int jb = start_p_[b]; jb < start_p_[b + 1]; ++jb)
+            put(tfp_, pos_fp_, kfp_, Kfp_, i, terms_p_[jb].first, kab * terms_p_[jb].second);
       }
     }
+}
+
+bool SystemAssembler::reaches_owned(std::span<const int> raw) const {
+  if (owned_.all()) return true;
+  for (const int r : raw)
+    for (SparseRowMatrix::InnerIterator it(map_->T_free(), r); it; ++it)
+      if (owned_.contains(static_cast<int>(it.col()))) return true;
+  return false;
 }
 
 void SystemAssembler::build(SparseMatrix& A, int rows, int cols, const std::vector<Triplet>& trip, std::vector<int>* pos_out) {
@@ -149,19 +161,24 @@ void SystemAssembler::end() {
   built_ = !one_pass_;  // one pass: no positions, so a later pass collects triplets again
 }
 
-SparseMatrix planned_pattern(const DofMap& map, const AssemblyBlocks& blocks) {
+SparseMatrix planned_pattern(const DofMap& map, const AssemblyBlocks& blocks) { return planned_pattern(map, blocks, {}); }
+
+SparseMatrix planned_pattern(const DofMap& map, const AssemblyBlocks& blocks, OwnedColumns owned) {
   const SparseRowMatrix& Tf = map.T_free();
   const int n = map.free_size();
   const std::size_t nb = blocks.size();
-  // The free DOFs each block reaches, sorted, once each.
+  // The free DOFs each block reaches, sorted, once each; none for a block that reaches no owned
+  // column (it adds nothing to them).
   std::vector<int> fstart(nb + 1, 0), free;
-  free.reserve(blocks.raw.size());
+  free.reserve(owned.all() ? blocks.raw.size() : blocks.raw.size() / 2);
   for (std::size_t b = 0; b < nb; ++b) {
     const auto first = static_cast<std::ptrdiff_t>(free.size());
     for (const int r : blocks.block(b))
       for (SparseRowMatrix::InnerIterator it(Tf, r); it; ++it) free.push_back(static_cast<int>(it.col()));
     std::sort(free.begin() + first, free.end());
     free.erase(std::unique(free.begin() + first, free.end()), free.end());
+    if (!owned.all() && std::none_of(free.begin() + first, free.end(), [&](int j) { return owned.contains(j); }))
+      free.resize(static_cast<std::size_t>(first));
     fstart[b + 1] = static_cast<int>(free.size());
   }
   // The blocks of each free DOF, in block order.
@@ -179,9 +196,9 @@ SparseMatrix planned_pattern(const DofMap& map, const AssemblyBlocks& blocks) {
   rows.reserve(free.size() * 4);
   for (int j = 0; j < n; ++j) {
     const int* inc = incident.data() + istart[j];
-    const int count = istart[j + 1] - istart[j];
+    const int count = owned.contains(j) ? istart[j + 1] - istart[j] : 0;
     const std::size_t at = rows.size();
-    if (j > 0 && count == istart[j] - istart[j - 1] &&
+    if (j > 0 && count > 0 && owned.contains(j - 1) && count == istart[j] - istart[j - 1] &&
         std::equal(inc, inc + count, incident.data() + istart[j - 1])) {
       const std::size_t from = outer[j - 1], len = at - from;
       rows.resize(at + len);

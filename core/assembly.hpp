@@ -11,6 +11,7 @@
 // the pattern can be ordered and analysed while the element matrices are computed
 // (solvers/linear_static.cpp).
 #include <Eigen/SparseCore>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -39,6 +40,20 @@ struct AssemblyBlocks {
 // included, as the first pass's triplets make it.
 SparseMatrix planned_pattern(const DofMap& map, const AssemblyBlocks& blocks);
 
+// A contiguous range [first, end) of the free DOFs: the columns of K_ff (and rows of K_fp) one
+// process of a distributed solve owns. The default is every free DOF.
+struct OwnedColumns {
+  int first = 0;
+  int end = std::numeric_limits<int>::max();
+  bool contains(int j) const { return j >= first && j < end; }
+  bool all() const { return first == 0 && end == std::numeric_limits<int>::max(); }
+};
+
+// planned_pattern's pattern with only the columns in `owned` (those of every block that reaches
+// one of them: their rows may lie outside); the other columns empty. Each column is the one
+// planned_pattern(map, blocks) makes.
+SparseMatrix planned_pattern(const DofMap& map, const AssemblyBlocks& blocks, OwnedColumns owned);
+
 class SystemAssembler {
  public:
   explicit SystemAssembler(const DofMap& map) : map_(&map) {}
@@ -61,6 +76,13 @@ class SystemAssembler {
   // the pass will add (in any order). The first pass then writes K_ff's values into it instead of
   // collecting triplets (K_fp, small, still comes from triplets). Adding outside the plan throws.
   void plan(SparseMatrix pattern);
+  // Before the first pass: only K_ff's columns and K_fp's rows in `owned` are assembled (one
+  // process's share of a distributed solve; K_ff is symmetric, so its owned columns are its owned
+  // rows), the others stay empty. An add whose raw DOFs reach no owned free DOF adds nothing:
+  // `reaches_owned` tells the caller so before it makes the element's matrix.
+  void own(OwnedColumns owned) { owned_ = owned; }
+  const OwnedColumns& owned() const { return owned_; }
+  bool reaches_owned(std::span<const int> raw) const;
 
   const SparseMatrix& K_ff() const { return Kff_; }   // free x free
   const SparseMatrix& K_fp() const { return Kfp_; }   // free x prescribed
@@ -87,6 +109,7 @@ class SystemAssembler {
   bool one_pass_ = false;
   bool built_ = false;
   bool planned_ = false;
+  OwnedColumns owned_;
   SparseMatrix Kff_, Kfp_;
   std::vector<Triplet> tff_, tfp_;
   std::vector<int> pos_ff_, pos_fp_;

@@ -45,6 +45,15 @@ struct LinearSystem::Impl {
   std::unique_ptr<PetscSolver> iterative;  // when the model's "solver" chose it (then no factor)
   Eigen::VectorXd up;
   LinearStaticResult failure;  // status != Converged when the system cannot be solved
+  // K_ff whole: the assembled one, or, where this process assembled only its share (a distributed
+  // solve), one assembled whole into `holder` (for the diagnosis of a mechanism, which reads all).
+  const SparseMatrix& whole_K_ff(SparseMatrix& holder) const {
+    if (assembler.owned().all()) return assembler.K_ff();
+    SystemAssembler all(map);
+    structure.assemble_stiffness(map, all);
+    holder = all.K_ff();
+    return holder;
+  }
 };
 
 LinearSystem::~LinearSystem() = default;
@@ -62,8 +71,17 @@ LinearSystem::LinearSystem(const Model& model, const LinearStaticOptions& option
   // value) while the element matrices are computed and assembled into it, without triplets to
   // sort. The two tasks share K_ff: the analysis reads its pattern, the assembly writes its values.
   // Below kParallelMinDofs they run one after the other: a second thread would gain little.
-  s.assembler.plan(planned_pattern(s.map, LinearStructure::assembly_blocks(model, s.map)));
   const bool iterative = solves_iteratively(model.solver, s.map.free_size());
+  // One model on several processes (`beamfea run` under mpirun): each assembles only the columns
+  // of K_ff (and rows of K_fp) of the rows its iterative solve owns, from the elements that reach
+  // them: about 1/processes of the matrix and of the element matrices each.
+  OwnedColumns owned;
+  if (iterative && petsc_processes() > 1) {
+    const ProcessRows rows = petsc_process_rows(s.map.free_size(), node_block_size(s.map));
+    owned = {static_cast<int>(rows.first), static_cast<int>(rows.first + rows.count)};
+    s.assembler.own(owned);
+  }
+  s.assembler.plan(planned_pattern(s.map, LinearStructure::assembly_blocks(model, s.map), owned));
   const auto tasks = [&](std::size_t task) {
     if (task == 0) {
       s.structure.rebuild(model);
@@ -84,9 +102,11 @@ LinearSystem::LinearSystem(const Model& model, const LinearStaticOptions& option
     s.iterative->set_near_null_space(rigid_body_modes(model, s.map));
     s.iterative->set_block_size(node_block_size(s.map));
     s.iterative->set_borrow_matrix(true);  // K_ff lives beside it, unchanged, for as long
+    s.iterative->set_owned_columns_only(!owned.all());
     if (s.iterative->compute(K) != FactorStatus::Succeeded) {
       // A zero or negative diagonal entry, or a zero pivot in the multigrid's set-up.
-      res.modes = zero_energy_modes(model, s.map, K, 12, options.zero_energy_tolerance);
+      SparseMatrix whole;
+      res.modes = zero_energy_modes(model, s.map, s.whole_K_ff(whole), 12, options.zero_energy_tolerance);
       res.status = res.modes.empty() ? SolveStatus::Failed : SolveStatus::Mechanism;
       res.message = res.modes.empty() ? "the multigrid preconditioner of the iterative solver could not be set up "
                                         "(the stiffness is not positive definite)"
@@ -233,9 +253,10 @@ bool LinearSystem::solve_iteratively(const Eigen::VectorXd& f, LinearStaticResul
   // mechanism when K has zero-energy modes. Iterations that ran out, or a residual short of rtol,
   // are a solve short of rtol (the diagnosis, an eigensolve of K, would cost more than the solve).
   if (last.outcome == IterativeSolveReport::Outcome::Breakdown ||
-      last.outcome == IterativeSolveReport::Outcome::PreconditionerFailed)
-    res.modes = zero_energy_modes(*model_, s.map, K, 12, zero_energy_tolerance_);
-  else
+      last.outcome == IterativeSolveReport::Outcome::PreconditionerFailed) {
+    SparseMatrix whole;
+    res.modes = zero_energy_modes(*model_, s.map, s.whole_K_ff(whole), 12, zero_energy_tolerance_);
+  } else
     res.modes.clear();
   res.status = res.modes.empty() ? SolveStatus::NotConverged : SolveStatus::Mechanism;
   res.message = res.modes.empty()

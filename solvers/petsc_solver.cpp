@@ -126,6 +126,28 @@ int petsc_processes() {
   return size;
 }
 
+ProcessRows petsc_process_rows(Eigen::Index n, int block_size) {
+  PetscMPIInt rank = 0, size = 1;
+  {
+    const std::lock_guard<std::mutex> lock(petsc_lock());
+    if (g_state == PetscState::Initialized) {
+      MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+      MPI_Comm_size(PETSC_COMM_WORLD, &size);
+    }
+  }
+  // In whole blocks (nodes), so that no node straddles two processes.
+  const Eigen::Index bs = block_size > 1 && n % block_size == 0 ? block_size : 1, blocks = n / bs;
+  return {bs * (rank * (blocks / size) + std::min<Eigen::Index>(rank, blocks % size)),
+          bs * (blocks / size + (rank < blocks % size ? 1 : 0))};
+}
+
+double sum_over_petsc_processes(double x) {
+  const std::lock_guard<std::mutex> lock(petsc_lock());
+  if (g_state != PetscState::Initialized) return x;
+  check(MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD), "MPI_Allreduce");
+  return x;
+}
+
 void finalize_petsc() {
   const std::lock_guard<std::mutex> lock(petsc_lock());
   if (g_state != PetscState::Initialized) return;
@@ -185,9 +207,12 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
   analyze(A_in);
   if (near_null_.size() > 0 && near_null_.rows() != n_) throw Error("PetscSolver: the near null space has the wrong size");
   status_ = FactorStatus::Singular;
-  // A zero or negative diagonal entry: not positive definite, and no multigrid smoother can use it.
-  for (Eigen::Index i = 0; i < n_; ++i)
-    if (!(A_in.coeff(i, i) > 0.0)) return status_;
+  rows_ = petsc_process_rows(n_, block_size_);
+  // A zero or negative diagonal entry: not positive definite, and no multigrid smoother can use
+  // it. Each process looks at its own rows; all take the same way out.
+  int bad = 0;
+  for (Eigen::Index i = rows_.first; i < rows_.first + rows_.count && !bad; ++i) bad = !(A_in.coeff(i, i) > 0.0);
+  if (sum_over_petsc_processes(bad) > 0.0) return status_;
   Sparse compressed;
   const Sparse* A = &A_in;
   if (!A_in.isCompressed()) {
@@ -199,14 +224,11 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
   Impl& s = *impl_;
   s.destroy();
   PetscInt n = static_cast<PetscInt>(n_);
-  // This process's rows: PETSc's own split of n rows (n / size, one more on the first n % size).
-  PetscMPIInt rank = 0, size = 1;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  PetscMPIInt size = 1;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  // With a block size the split is of whole blocks (nodes), so that no node straddles two processes.
-  const PetscInt bs = block_size_ > 1 && n % block_size_ == 0 ? block_size_ : 1, blocks = n / bs;
-  s.local = bs * (blocks / size + (rank < blocks % size ? 1 : 0));
-  s.first = bs * (rank * (blocks / size) + std::min<PetscInt>(rank, blocks % size));
+  const PetscInt bs = block_size_ > 1 && n % block_size_ == 0 ? block_size_ : 1;
+  s.first = static_cast<PetscInt>(rows_.first);
+  s.local = static_cast<PetscInt>(rows_.count);
   // A's columns are its rows (symmetric): the CSC arrays of columns [first, first + local) are
   // the CSR arrays of those rows, with global column indices, as MATMPIAIJ takes them.
   const int* outer = A->outerIndexPtr();
@@ -361,6 +383,8 @@ void set_boomeramg_defaults(const std::string&) {}
 void ensure_petsc_initialized() { unavailable(); }
 void initialize_petsc_on_all_processes() { unavailable(); }
 int petsc_processes() { return 1; }
+ProcessRows petsc_process_rows(Eigen::Index n, int) { return {0, n}; }
+double sum_over_petsc_processes(double x) { return x; }
 void finalize_petsc() {}
 std::mutex& petsc_lock() {
   static std::mutex m;

@@ -18,11 +18,12 @@
 //
 // One process or many. PETSC_COMM_WORLD is this process alone unless the program started PETSc on
 // all its MPI processes (initialize_petsc_on_all_processes: `beamfea run` under mpirun). Then
-// every process holds the same A, b and near null space (the model and its assembly are
-// replicated), and the solver distributes them: each process owns a contiguous block of A's rows
-// (PETSc's split of the n rows, PETSC_DECIDE), inserts only those rows into a MATMPIAIJ and the
-// same rows of b and of the near null space, and every process gets the whole answer x back (a
-// gather to all), so that what follows a solve stays replicated. Every call is collective: all
+// every process holds the same b and near null space (the model is replicated), and A's columns
+// of its own rows at least (a distributed assembly makes no others: set_owned_columns_only), and
+// the solver distributes them: each process owns a contiguous block of A's rows
+// (petsc_process_rows), inserts only those rows into a MATMPIAIJ and the same rows of b and of the
+// near null space, and every process gets the whole answer x back (a gather to all), so that what
+// follows a solve stays replicated. b need only be right in this process's rows. Every call is collective: all
 // processes must make the same calls in the same order, which they do when they run the same
 // analyses of the same model.
 //
@@ -83,6 +84,17 @@ void initialize_petsc_on_all_processes();
 // The number of processes PETSc's solves run on (1 unless initialize_petsc_on_all_processes ran
 // on several).
 int petsc_processes();
+// The rows of an n x n system that this process owns in a PetscSolver's distributed solve: PETSc's
+// split of the n rows, in whole blocks of `block_size` when n is a multiple of it (n / size
+// blocks, one more on the first n % size processes); all n on one process. A caller may assemble
+// only these columns of a symmetric A (PetscSolver::set_owned_columns_only).
+struct ProcessRows {
+  Eigen::Index first = 0, count = 0;
+  bool contains(Eigen::Index i) const { return i >= first && i < first + count; }
+};
+ProcessRows petsc_process_rows(Eigen::Index n, int block_size);
+// The sum of `x` over PETSc's processes (collective; `x` itself on one process).
+double sum_over_petsc_processes(double x);
 // PetscFinalize where ensure_petsc_initialized ran it, once; nothing otherwise. Before
 // MPI_Finalize where the program made its own MPI_Init.
 void finalize_petsc();
@@ -107,6 +119,14 @@ class PetscSolver final : public LinearSolver {
   // less at 2e6 DOFs): A, compressed, must then stay alive and unchanged until the solver is
   // destroyed or computes again. Under MPI the rows are copied as always.
   void set_borrow_matrix(bool borrow) { borrow_ = borrow; }
+  // Tells the solver that the A of the next compute() holds only this process's columns
+  // (petsc_process_rows with its block size; the others empty), as a distributed assembly makes
+  // it: a process reads only those anyway. What a caller computes from A itself (the residual:
+  // solvers/solver_choice.hpp) must then be summed over the processes.
+  void set_owned_columns_only(bool only) { owned_columns_only_ = only; }
+  bool owned_columns_only() const { return owned_columns_only_; }
+  // This process's rows of the last compute()'s system.
+  ProcessRows process_rows() const { return rows_; }
 
   void analyze(const Sparse& A) override;
   // Sets up the preconditioner of A (A square, symmetric, both triangles stored). Singular when
@@ -134,6 +154,8 @@ class PetscSolver final : public LinearSolver {
   Eigen::MatrixXd near_null_;
   int block_size_ = 1;
   bool borrow_ = false;
+  bool owned_columns_only_ = false;
+  ProcessRows rows_;
   Eigen::Index n_ = 0;
   FactorStatus status_ = FactorStatus::Singular;
   mutable IterativeSolveReport last_;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace beamfea {
 
@@ -45,15 +46,32 @@ double relative_residual(const SparseMatrix& K, const Eigen::VectorXd& f, const 
   return r.norm() / fn;
 }
 
+namespace {
+// relative_residual of a K that holds only this process's columns `rows` (symmetric: they are its
+// rows), f right in those rows: the squared norms of those rows summed over the processes.
+double distributed_relative_residual(const SparseMatrix& K, const Eigen::VectorXd& f, const Eigen::VectorXd& u,
+                                     ProcessRows rows, Eigen::VectorXd& r) {
+  r = f.segment(rows.first, rows.count);
+  r.noalias() -= K.middleCols(rows.first, rows.count).transpose() * u;
+  const double ff = sum_over_petsc_processes(f.segment(rows.first, rows.count).squaredNorm());
+  const double rr = sum_over_petsc_processes(r.squaredNorm());
+  return ff > 0.0 ? std::sqrt(rr / ff) : 0.0;
+}
+}  // namespace
+
 SolverReport solve_to_rtol(const PetscSolver& cg, const SparseMatrix& K, const Eigen::VectorXd& f, Eigen::VectorXd& u,
                            Eigen::VectorXd& r) {
+  const auto residual = [&] {
+    return cg.owned_columns_only() ? distributed_relative_residual(K, f, u, cg.process_rows(), r)
+                                   : relative_residual(K, f, u, r);
+  };
   u.resize(f.size());
   cg.solve(f, u);
-  SolverReport report{.iterative = true, .iterations = cg.last_solve().iterations, .residual = relative_residual(K, f, u, r)};
+  SolverReport report{.iterative = true, .iterations = cg.last_solve().iterations, .residual = residual()};
   for (int k = 0; k < kMaxRestarts && cg.last_solve().converged() && report.residual > cg.options().rtol; ++k) {
     cg.refine(f, u);
     report.iterations += cg.last_solve().iterations;
-    report.residual = relative_residual(K, f, u, r);
+    report.residual = residual();
   }
   return report;
 }

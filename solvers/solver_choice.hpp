@@ -45,6 +45,9 @@ double relative_residual(const SparseMatrix& K, const Eigen::VectorXd& f, const 
 // kMaxRestarts restarts from its answer while ||f - K u|| / ||f|| (computed, r as scratch) is
 // above rtol though CG's recursive residual reached it (their drift grows with K's condition).
 // The report sums the iterations of the restarts; cg.last_solve() says how the last one ended.
+// Where K holds only this process's columns (cg.owned_columns_only(): a distributed assembly), f
+// is right in this process's rows only, and the residual of those rows (r: them alone) is summed
+// over the processes.
 inline constexpr int kMaxRestarts = 3;
 SolverReport solve_to_rtol(const PetscSolver& cg, const SparseMatrix& K, const Eigen::VectorXd& f, Eigen::VectorXd& u,
                            Eigen::VectorXd& r);

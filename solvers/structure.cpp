@@ -106,6 +106,9 @@ void LinearStructure::assemble_into(const DofMap& map, Assembler& assembler) con
     const FrameElement* b = beam(static_cast<int>(e));
     if (!b) continue;
     const auto dofs = element_dofs(map, static_cast<int>(e));
+    // One process's share of a distributed solve: the matrices of the elements it needs, only.
+    if constexpr (std::is_same_v<Assembler, SystemAssembler>)
+      if (!assembler.reaches_owned(dofs)) continue;
     assembler.add(dofs, b->stiffness());
   }
   // A joint has at most 6 coordinates: its stiffness and DOF list stay on the stack.

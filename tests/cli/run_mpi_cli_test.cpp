@@ -230,6 +230,38 @@ TEST(RunCommandUnderMpirun, ARankThatFailsEndsAllRanksWithOneMessageAndNothingWr
   EXPECT_FALSE(fs::exists(out / "results.json"));
 }
 
+// A mechanism under two processes is named as under one: each process assembles only its share of
+// the stiffness, and the diagnosis (which reads the whole) assembles it whole. A 5 x 5 x 6 lattice
+// tower with an arm on a revolute joint without a spring: the arm swings about z.
+TEST(RunCommandUnderMpirun, AMechanismIsNamedAsOnOneProcess) {
+  const auto dir = temp_dir("run_mpi_mechanism");
+  json d;
+  d["materials"] = json::array({{{"id", "steel"}, {"E", 2.1e11}, {"G", 8.1e10}}});
+  d["sections"] = json::array({{{"id", "rod"}, {"A", 1e-4}, {"Iy", 1e-8}, {"Iz", 1e-8}, {"J", 2e-8}}});
+  d["generate"] = {{"lattice", {{"cells", {5, 5, 6}}, {"pitch", 0.1}, {"section", "rod"}, {"material", "steel"}}}};
+  d["nodes"] = json::array({{{"id", "a1"}, {"xyz", {0.5, 0.5, 0.6}}}, {{"id", "t1"}, {"xyz", {1.0, 0.5, 0.6}}}});
+  d["elements"] = json::array({{{"id", "arm1"}, {"type", "beam"}, {"nodes", {"a1", "t1"}}, {"material", "steel"}, {"section", "rod"}}});
+  d["joints"] = json::array({{{"id", "j1"}, {"type", "revolute"}, {"nodes", {"5_5_6", "a1"}}, {"axes", {{0, 0, 1}}}}});
+  d["supports"] = json::array();
+  for (int i = 0; i <= 5; ++i)
+    for (int j = 0; j <= 5; ++j) d["supports"].push_back({{"node", std::to_string(i) + "_" + std::to_string(j) + "_0"}, {"fix", "all"}});
+  d["loads"] = json::array({{{"node", "t1"}, {"force", {0, -200, -100}}}});
+  d["solver"] = {{"type", "iterative"}, {"rtol", kRtol}};
+  d["analyses"] = json::array({{{"id", "lin"}, {"type", "linear_static"}}});
+  const auto model = dir / "model.json";
+  write(model, d.dump());
+  EXPECT_EQ(sh(exe() + " run " + model.string() + " --out " + (dir / "one").string() + " -q"), 1);
+  const auto log = dir / "two.txt";
+  EXPECT_EQ(sh(mpirun(2) + exe() + " run " + model.string() + " --out " + (dir / "two").string() + " -q > " + log.string() +
+               " 2>&1"), 1) << read(log);
+  const json r1 = json::parse(read(dir / "one" / "results.json"));
+  const json r2 = json::parse(read(dir / "two" / "results.json"));
+  const std::string m1 = r1["analyses"]["lin"]["message"], m2 = r2["analyses"]["lin"]["message"];
+  EXPECT_NE(m1.find("mechanism"), std::string::npos) << m1;
+  EXPECT_NE(m1.find("joint 'j1' coordinate 0"), std::string::npos) << m1;
+  EXPECT_EQ(m2, m1);
+}
+
 // Without mpirun nothing changes: one process, no MPI started by the program, the same solve
 // (the tower's answer equal to the direct solver's to the same bound as above).
 TEST(RunCommand, WithoutMpirunTheRunIsOneProcessAsBefore) {

@@ -139,6 +139,55 @@ TEST(PlannedAssembly, AFrameWithoutConstraintsGetsTheTripletsValuesBitForBit) {
   EXPECT_TRUE(planned.Kff.coeffs().cwiseEqual(triplets.Kff.coeffs()).all());
 }
 
+// One process's share of a distributed assembly (SystemAssembler::own, planned_pattern with
+// owned columns): three processes splitting the free DOFs into three ranges each assemble K_ff's
+// columns and K_fp's rows of their range, every one equal to the whole assembly's, the others
+// empty; the three shares add up to the whole K_ff and K_fp. Each process adds the matrices of
+// fewer elements than the whole (those that reach its range).
+TEST(PlannedAssembly, EachProcessAssemblesItsOwnColumnsAsTheWholeAssemblyHasThem) {
+  const Model model = test::model_from(frame(4, 3, 3));
+  const DofMap map(model);
+  const Assembled whole = assemble(model, map, true);
+  const int n = map.free_size();
+  ASSERT_GT(map.prescribed_size(), 0);
+  const int cut[4] = {0, n / 3, 2 * n / 3, n};
+  SparseMatrix sum_ff(n, n), sum_fp(n, map.prescribed_size());
+  const LinearStructure structure(model);
+  const AssemblyBlocks blocks = LinearStructure::assembly_blocks(model, map);
+  for (int p = 0; p < 3; ++p) {
+    SCOPED_TRACE(p);
+    const OwnedColumns owned{cut[p], cut[p + 1]};
+    SystemAssembler a(map, SystemAssembler::Passes::One);
+    a.own(owned);
+    a.plan(planned_pattern(map, blocks, owned));
+    a.begin();
+    structure.assemble(map, a);
+    a.end();
+    const SparseMatrix& K = a.K_ff();
+    for (int j = 0; j < n; ++j) {
+      const Eigen::VectorXd mine = K.col(j), all = whole.Kff.col(j);
+      if (owned.contains(j)) {
+        EXPECT_EQ(K.col(j).nonZeros(), whole.Kff.col(j).nonZeros()) << "column " << j;
+        EXPECT_TRUE(mine.cwiseEqual(all).all()) << "column " << j;
+      } else {
+        EXPECT_EQ(K.col(j).nonZeros(), 0) << "column " << j;
+      }
+    }
+    const Eigen::MatrixXd fp = a.K_fp(), fp_all = whole.Kfp;
+    for (int i = 0; i < n; ++i)
+      EXPECT_TRUE(fp.row(i).cwiseEqual(owned.contains(i) ? Eigen::RowVectorXd(fp_all.row(i))
+                                                         : Eigen::RowVectorXd::Zero(fp.cols())).all()) << "row " << i;
+    int reached = 0;
+    for (std::size_t b = 0; b < blocks.size(); ++b) reached += a.reaches_owned(blocks.block(b)) ? 1 : 0;
+    EXPECT_GT(reached, 0);
+    EXPECT_LT(reached, static_cast<int>(blocks.size()));
+    sum_ff += K;
+    sum_fp += a.K_fp();
+  }
+  EXPECT_EQ(SparseMatrix(sum_ff - whole.Kff).norm(), 0.0);
+  EXPECT_EQ(SparseMatrix(sum_fp - whole.Kfp).norm(), 0.0);
+}
+
 TEST(PlannedAssembly, AnEntryOutsideThePlanAndAPlanForManyPassesAreRefused) {
   const Model model = test::model_from(frame(1, 1, 1));
   const DofMap map(model);
