@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "solvers/blas_threads.hpp"
 #include "solvers/petsc_solver.hpp"
 #include "solvers/solver_choice.hpp"
 
@@ -119,24 +120,43 @@ using OwnedMat = Owned<Mat, MatDestroy>;
 using OwnedVec = Owned<Vec, VecDestroy>;
 using OwnedEps = Owned<EPS, EPSDestroy>;
 
-// A sequential AIJ copy of a symmetric Eigen matrix: its CSC arrays are the CSR arrays of its
-// transpose, which is itself.
-void petsc_matrix(const SparseMatrix& A, bool spd, OwnedMat& out) {
+// Where the eigen-problem lives: this process alone, or (one model on several processes, the
+// multigrid path) all of PETSc's processes, each owning a block of rows (petsc_process_rows).
+struct Layout {
+  MPI_Comm comm = PETSC_COMM_SELF;
+  ProcessRows rows;
+};
+
+// Computed before petsc_lock() is taken (petsc_process_rows takes it). The factorised path stays
+// on this process: PETSc's own Cholesky and LU are sequential, and the systems it takes are small.
+Layout layout_for(Eigen::Index n, bool factor) {
+  if (factor || petsc_processes() == 1) return {PETSC_COMM_SELF, {0, n}};
+  return {PETSC_COMM_WORLD, petsc_process_rows(n, 1)};
+}
+
+// An AIJ copy of this process's rows of a symmetric Eigen matrix (held whole by every process): its
+// CSC arrays of those columns are the CSR arrays of those rows, the matrix being its transpose.
+void petsc_matrix(const SparseMatrix& A, bool spd, const Layout& at, OwnedMat& out) {
   SparseMatrix C = A;
   C.makeCompressed();
   const auto n = static_cast<PetscInt>(C.rows());
-  std::vector<PetscInt> ia(C.outerIndexPtr(), C.outerIndexPtr() + n + 1);
-  std::vector<PetscInt> ja(C.innerIndexPtr(), C.innerIndexPtr() + C.nonZeros());
-  check(MatCreate(PETSC_COMM_SELF, &out.h), "MatCreate");
-  check(MatSetSizes(out.h, n, n, n, n), "MatSetSizes");
-  check(MatSetType(out.h, MATSEQAIJ), "MatSetType");
-  check(MatSeqAIJSetPreallocationCSR(out.h, ia.data(), ja.data(), C.valuePtr()), "MatSeqAIJSetPreallocationCSR");
+  const auto first = static_cast<PetscInt>(at.rows.first), local = static_cast<PetscInt>(at.rows.count);
+  const int* outer = C.outerIndexPtr();
+  std::vector<PetscInt> ia(static_cast<std::size_t>(local) + 1);
+  for (PetscInt k = 0; k <= local; ++k) ia[static_cast<std::size_t>(k)] = outer[first + k] - outer[first];
+  std::vector<PetscInt> ja(C.innerIndexPtr() + outer[first], C.innerIndexPtr() + outer[first + local]);
+  const PetscScalar* values = C.valuePtr() + outer[first];
+  check(MatCreate(at.comm, &out.h), "MatCreate");
+  check(MatSetSizes(out.h, local, local, n, n), "MatSetSizes");
+  check(MatSetType(out.h, MATAIJ), "MatSetType");  // sequential on one process, MPIAIJ on several
+  check(MatSeqAIJSetPreallocationCSR(out.h, ia.data(), ja.data(), values), "MatSeqAIJSetPreallocationCSR");
+  check(MatMPIAIJSetPreallocationCSR(out.h, ia.data(), ja.data(), values), "MatMPIAIJSetPreallocationCSR");
   check(MatSetOption(out.h, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   if (spd) check(MatSetOption(out.h, MAT_SPD, PETSC_TRUE), "MatSetOption");
 }
 
 // The multigrid's near null space: the columns of Z, orthonormalised (PETSc requires it).
-void attach_near_null_space(Mat P, const Eigen::MatrixXd* Z) {
+void attach_near_null_space(Mat P, const Eigen::MatrixXd* Z, const Layout& at) {
   if (!Z || Z->cols() == 0) return;
   PetscInt n = 0;
   check(MatGetSize(P, &n, nullptr), "MatGetSize");
@@ -151,11 +171,11 @@ void attach_near_null_space(Mat P, const Eigen::MatrixXd* Z) {
     ierr = MatCreateVecs(P, &v, nullptr);
     PetscScalar* a = nullptr;
     if (!ierr) ierr = VecGetArray(v, &a);
-    if (!ierr) std::copy(Q.col(c).data(), Q.col(c).data() + n, a);
+    if (!ierr) std::copy_n(Q.col(c).data() + at.rows.first, at.rows.count, a);
     if (!ierr) ierr = VecRestoreArray(v, &a);
   }
   MatNullSpace ns = nullptr;
-  if (!ierr) ierr = MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, static_cast<PetscInt>(rank), vecs.data(), &ns);
+  if (!ierr) ierr = MatNullSpaceCreate(at.comm, PETSC_FALSE, static_cast<PetscInt>(rank), vecs.data(), &ns);
   if (!ierr) ierr = MatSetNearNullSpace(P, ns);
   if (ns) MatNullSpaceDestroy(&ns);
   for (Vec& v : vecs)
@@ -164,14 +184,16 @@ void attach_near_null_space(Mat P, const Eigen::MatrixXd* Z) {
 }
 
 // The ST's linear solver: a factorisation, or a Krylov method with algebraic multigrid.
+bool factorises(const SlepcEigenOptions& o, Eigen::Index n) {
+  return o.linear == SlepcEigenOptions::Linear::Factor || (o.linear == SlepcEigenOptions::Linear::Auto && n <= kFactorDofs);
+}
+
 void configure_linear_solve(ST st, const SlepcEigenOptions& o, Eigen::Index n, bool indefinite) {
   KSP ksp = nullptr;
   PC pc = nullptr;
   check(STGetKSP(st, &ksp), "STGetKSP");
   check(KSPGetPC(ksp, &pc), "KSPGetPC");
-  const bool factor = o.linear == SlepcEigenOptions::Linear::Factor ||
-                      (o.linear == SlepcEigenOptions::Linear::Auto && n <= kFactorDofs);
-  if (factor) {
+  if (factorises(o, n)) {
     check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
     check(PCSetType(pc, indefinite ? PCLU : PCCHOLESKY), "PCSetType");
     check(PCFactorSetMatOrderingType(pc, MATORDERINGND), "PCFactorSetMatOrderingType");
@@ -248,19 +270,30 @@ SlepcEigenPairs solve_and_collect(EPS eps, Mat A, int count, const char* what, d
                               what, nconv, count, its, progress.error);
     return out;
   }
-  OwnedVec xr;
+  OwnedVec xr, whole;
   check(MatCreateVecs(A, &xr.h, nullptr), "MatCreateVecs");
   PetscInt n = 0;
   check(MatGetSize(A, &n, nullptr), "MatGetSize");
+  // On several processes each vector is gathered whole on every one (what follows is replicated).
+  PetscMPIInt processes = 1;
+  check(MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(A)), &processes), "MPI_Comm_size");
+  VecScatter to_all = nullptr;
+  if (processes > 1) check(VecScatterCreateToAll(xr.h, &to_all, &whole.h), "VecScatterCreateToAll");
   std::vector<std::pair<double, Eigen::VectorXd>> pairs;
   for (PetscInt i = 0; i < nconv; ++i) {
     PetscScalar kr = 0.0;
     check(EPSGetEigenpair(eps, i, &kr, nullptr, xr.h, nullptr), "EPSGetEigenpair");
+    if (to_all) {
+      check(VecScatterBegin(to_all, xr.h, whole.h, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+      check(VecScatterEnd(to_all, xr.h, whole.h, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    }
+    const Vec v = to_all ? whole.h : xr.h;
     const PetscScalar* a = nullptr;
-    check(VecGetArrayRead(xr.h, &a), "VecGetArrayRead");
+    check(VecGetArrayRead(v, &a), "VecGetArrayRead");
     pairs.emplace_back(kr, Eigen::Map<const Eigen::VectorXd>(a, n));
-    check(VecRestoreArrayRead(xr.h, &a), "VecRestoreArrayRead");
+    check(VecRestoreArrayRead(v, &a), "VecRestoreArrayRead");
   }
+  if (to_all) VecScatterDestroy(&to_all);
   if (std::isfinite(target)) {
     std::sort(pairs.begin(), pairs.end(), [&](const auto& a, const auto& b) {
       return std::abs(a.first - target) < std::abs(b.first - target);
@@ -296,19 +329,23 @@ void configure_eps(EPS eps, Mat A, Mat B, int count, const SlepcEigenOptions& o)
 SlepcEigenPairs slepc_vibration_pairs(const SparseMatrix& K, const SparseMatrix& M, const SlepcEigenOptions& options,
                                       const Eigen::MatrixXd* rigid_body_modes) {
   options.validate();
+  // SLEPc's BLAS calls (the basis's orthogonalisation) are small, one after each inner solve: the
+  // BLAS's second thread spins between them (sched_yield) and slows the solve (docs/performance.md).
+  const SingleBlasThread one_blas_thread;
   const Eigen::Index n = K.rows();
   const int count = static_cast<int>(std::min<Eigen::Index>(options.count, n));
   try {
     ensure_slepc();
+    const Layout at = layout_for(n, factorises(options, n));
     const std::lock_guard<std::mutex> lock(petsc_lock());  // held until the PETSc objects are gone
     OwnedMat A, B, P;
-    petsc_matrix(K, false, A);
-    petsc_matrix(M, false, B);
+    petsc_matrix(K, false, at, A);
+    petsc_matrix(M, false, at, B);
     // The preconditioner's matrix: K - sigma M itself, carrying the near null space.
-    petsc_matrix(SparseMatrix(K - options.target * M), !options.indefinite, P);
-    attach_near_null_space(P.h, rigid_body_modes);
+    petsc_matrix(SparseMatrix(K - options.target * M), !options.indefinite, at, P);
+    attach_near_null_space(P.h, rigid_body_modes, at);
     OwnedEps eps;
-    check(EPSCreate(PETSC_COMM_SELF, &eps.h), "EPSCreate");
+    check(EPSCreate(at.comm, &eps.h), "EPSCreate");
     configure_eps(eps.h, A.h, B.h, count, options);
     check(EPSSetWhichEigenpairs(eps.h, EPS_TARGET_MAGNITUDE), "EPSSetWhichEigenpairs");
     check(EPSSetTarget(eps.h, options.target), "EPSSetTarget");
@@ -334,17 +371,21 @@ SlepcEigenPairs slepc_vibration_pairs(const SparseMatrix& K, const SparseMatrix&
 SlepcEigenPairs slepc_buckling_pairs(const SparseMatrix& K, const SparseMatrix& KG, const SlepcEigenOptions& options,
                                      const Eigen::MatrixXd* rigid_body_modes) {
   options.validate();
+  // SLEPc's BLAS calls (the basis's orthogonalisation) are small, one after each inner solve: the
+  // BLAS's second thread spins between them (sched_yield) and slows the solve (docs/performance.md).
+  const SingleBlasThread one_blas_thread;
   const Eigen::Index n = K.rows();
   const int count = static_cast<int>(std::min<Eigen::Index>(options.count, n));
   try {
     ensure_slepc();
+    const Layout at = layout_for(n, factorises(options, n));
     const std::lock_guard<std::mutex> lock(petsc_lock());  // held until the PETSc objects are gone
     OwnedMat A, B;
-    petsc_matrix(KG, false, A);
-    petsc_matrix(K, true, B);
-    attach_near_null_space(B.h, rigid_body_modes);
+    petsc_matrix(KG, false, at, A);
+    petsc_matrix(K, true, at, B);
+    attach_near_null_space(B.h, rigid_body_modes, at);
     OwnedEps eps;
-    check(EPSCreate(PETSC_COMM_SELF, &eps.h), "EPSCreate");
+    check(EPSCreate(at.comm, &eps.h), "EPSCreate");
     configure_eps(eps.h, A.h, B.h, count, options);
     check(EPSSetWhichEigenpairs(eps.h, EPS_LARGEST_REAL), "EPSSetWhichEigenpairs");
     ST st = nullptr;

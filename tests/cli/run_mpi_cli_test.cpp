@@ -262,6 +262,52 @@ TEST(RunCommandUnderMpirun, AMechanismIsNamedAsOnOneProcess) {
   EXPECT_EQ(m2, m1);
 }
 
+// An eigen-analysis on SLEPc under two processes is distributed too (above the 20,000 DOFs up to
+// which its inner solves are factorised on each process) and gives the one-process modes. A 15^3
+// lattice of aluminium rods (benchmarks/lattice_model.py 15 --eigen: 23,040 free DOFs), its two
+// lowest modes: a degenerate pair (the lattice is square), so that only their frequencies and the
+// pair's summed effective masses are defined. SLEPc stops at a relative residual of rtol 1e-10,
+// which bounds each omega^2's error by about that (Rayleigh quotient of a residual-rtol vector);
+// 1e-8 of the frequencies allows a hundred times that, and a fault of the distribution (a row or
+// a mode on the wrong process) changes them at the first digit or does not converge.
+TEST(RunCommandUnderMpirun, AModalAnalysisOnSlepcGivesTheOneProcessModes) {
+  const auto dir = temp_dir("run_mpi_modal");
+  const int n = 15;
+  json d;
+  d["materials"] = json::array({{{"id", "al"}, {"E", 70e9}, {"G", 26e9}, {"density", 2700}}});
+  d["sections"] = json::array({{{"id", "rod"}, {"shape", "circle"}, {"d", 0.002}}});
+  d["generate"] = {{"lattice", {{"cells", {n, n, n}}, {"pitch", 0.01}, {"section", "rod"}, {"material", "al"}}}};
+  d["supports"] = json::array();
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) d["supports"].push_back({{"node", std::to_string(i) + "_" + std::to_string(j) + "_0"}, {"fix", "all"}});
+  d["solver"] = {{"type", "iterative"}, {"rtol", 1e-10}};
+  d["analyses"] = json::array({{{"id", "m"}, {"type", "modal"}, {"modes", 2}}});
+  const auto model = dir / "model.json";
+  write(model, d.dump());
+  ASSERT_EQ(sh(exe() + " run " + model.string() + " --out " + (dir / "one").string() + " --no-vtk -q"), 0);
+  const auto log = dir / "two.txt";
+  ASSERT_EQ(sh(mpirun(2) + exe() + " run " + model.string() + " --out " + (dir / "two").string() + " --no-vtk > " +
+               log.string() + " 2>&1"), 0) << read(log);
+  const json m1 = json::parse(read(dir / "one" / "results.json"))["analyses"]["m"];
+  const json m2 = json::parse(read(dir / "two" / "results.json"))["analyses"]["m"];
+  EXPECT_EQ(m1["free_dofs"], 23040);
+  EXPECT_EQ(m2["solver"]["type"], "iterative");
+  EXPECT_GT(m2["solver"]["linear_iterations"].get<long long>(), 0) << "the inner solves were factorised, not distributed";
+  ASSERT_EQ(m1["frequencies"].size(), 2u);
+  ASSERT_EQ(m2["frequencies"].size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    const double f1 = m1["frequencies"][k], f2 = m2["frequencies"][k];
+    EXPECT_NEAR(f2, f1, 1e-8 * f1) << "mode " << k;
+  }
+  // The pair's effective masses in x and y (each about three quarters of the moving mass) agree
+  // to what the eigen-tolerance leaves in the vectors.
+  for (const char* dof : {"ux", "uy"}) {
+    const double e1 = m1["effective_mass_sum"][dof], e2 = m2["effective_mass_sum"][dof];
+    EXPECT_GT(e1, 0.5) << dof;
+    EXPECT_NEAR(e2, e1, 1e-6 * e1) << dof;
+  }
+}
+
 // Without mpirun nothing changes: one process, no MPI started by the program, the same solve
 // (the tower's answer equal to the direct solver's to the same bound as above).
 TEST(RunCommand, WithoutMpirunTheRunIsOneProcessAsBefore) {
