@@ -41,6 +41,14 @@ Model imperfect_model(const Model& model, const LoadSet& loads, int mode, double
 
 namespace {
 
+// The departure (over the model length, or in radians) of a row dropped as redundant at the
+// reference beyond which the rows kept there no longer hold the loops closed. Where the rank stays
+// the reference's, a dropped row follows the kept ones, which Newton satisfies to its function
+// tolerance (1e-9 of the model length): 1e6 times less than this. Where it grows, the dropped row
+// departs at second order in the step (a flat four-bar's coupler shortens by L (1 - cos theta)),
+// 1e-3 of the model length after a first step of 0.05 L.
+constexpr double kDroppedRowDeparture = 1e-6;
+
 // The stop conditions after a converged step; sets the termination.
 bool stopped(PathResult& res, const PathOptions& o, const Model& original, const Converged& nx, int step) {
   if (o.stop_load_factor) {
@@ -115,6 +123,10 @@ class PathRun {
   void locate_singularities(const Converged& next, const Eigen::VectorXd& m_next, const Eigen::VectorXd& dir);
   // The path ends: true (and the termination set) when it ends at a singular pose of a loop.
   bool ends_at_singularity();
+  // True (and the termination set, `next` not taken) when a row dropped as redundant at the
+  // reference departs from its target at `next` (PathSystem::dropped_row_departure): the reference
+  // pose is singular for the loops, and the rows kept there do not hold them closed beyond it.
+  bool rank_changed(const Converged& next);
   // The measures of the singular poses at cur_ (and the state before it) after cur_ changed.
   void track_singularities(const Eigen::VectorXd& m_next, const Converged& before);
 
@@ -225,6 +237,18 @@ void PathRun::locate_singularities(const Converged& next, const Eigen::VectorXd&
     say(fmt::format("critical point (singularity) at load factor {:.6g}, step {}: {}", cp.load_factor, step_, cp.what));
     res_.critical_points.push_back(std::move(cp));
   }
+}
+
+bool PathRun::rank_changed(const Converged& next) {
+  const PathSystem::Departure d = sys_.dropped_row_departure(next.state);
+  if (!(d.value > kDroppedRowDeparture)) return false;
+  res_.finish(PathTermination::RankChanged, cur_.lambda, 0,
+              fmt::format("{}, dropped as redundant at the reference pose, departs from its target by {:.3g} of the "
+                          "model length at load factor {:.6g}: the reference pose is singular for the loops (their "
+                          "rows lose rank there); build the model at a pose off it",
+                          d.row, d.value, next.lambda));
+  say(res_.brief_report());
+  return true;
 }
 
 bool PathRun::ends_at_singularity() {
@@ -351,6 +375,7 @@ void PathRun::run() {
       continue;
     }
     const Converged next = std::move(sol.state);
+    if (rank_changed(next)) return;
     const Eigen::VectorXd dir = sys_.direction(cur_, next);
     if (const auto r = rejected(pred, dir)) {
       if (!cut(r->why, r->what)) return;

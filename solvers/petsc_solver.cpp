@@ -144,7 +144,9 @@ ProcessRows petsc_process_rows(Eigen::Index n, int block_size) {
 double sum_over_petsc_processes(double x) {
   const std::lock_guard<std::mutex> lock(petsc_lock());
   if (g_state != PetscState::Initialized) return x;
-  check(MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD), "MPI_Allreduce");
+  PetscMPIInt size = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (size > 1) check(MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD), "MPI_Allreduce");
   return x;
 }
 

@@ -151,12 +151,31 @@ void PathSystem::select_independent_constraints() {
     if (i < static_cast<int>(cons_.size())) kept.push_back(cons_[i]);
     else closure_rows_.push_back(i - static_cast<int>(cons_.size()));
   }
-  for (int i : sel.redundant)
-    redundant_.push_back(i < static_cast<int>(cons_.size())
-                            ? ns_.model().describe({DofRef::Owner::Node, cons_[i].node, cons_[i].comp})
-                            : ns_.describe_closure_row(i - static_cast<int>(cons_.size())));
+  for (int i : sel.redundant) {
+    const bool closure = i >= static_cast<int>(cons_.size());
+    redundant_.push_back(!closure ? ns_.model().describe({DofRef::Owner::Node, cons_[i].node, cons_[i].comp})
+                                  : ns_.describe_closure_row(i - static_cast<int>(cons_.size())));
+    dropped_.push_back(closure ? Dropped{{}, i - static_cast<int>(cons_.size())} : Dropped{cons_[i], -1});
+  }
   cons_ = std::move(kept);
   ncs_ = static_cast<int>(cons_.size());
+}
+
+PathSystem::Departure PathSystem::dropped_row_departure(const NonlinearState& st) const {
+  Departure worst;
+  Eigen::VectorXd closure;
+  for (std::size_t k = 0; k < dropped_.size(); ++k) {
+    const Dropped& d = dropped_[k];
+    double v = 0.0;
+    if (d.closure_row >= 0) {
+      if (closure.size() == 0) closure = ns_.closure_values(st);
+      v = closure[d.closure_row] / (d.closure_row % 6 < 3 ? L_ : 1.0);
+    } else {
+      v = (constraint_value(st, d.constraint) - d.constraint.target) / (d.constraint.comp < 3 ? L_ : 1.0);
+    }
+    if (std::abs(v) > worst.value) worst = {std::abs(v), redundant_[k]};
+  }
+  return worst;
 }
 
 Eigen::VectorXd PathSystem::closure_multipliers(const Eigen::VectorXd& mu) const {

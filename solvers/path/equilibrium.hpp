@@ -107,6 +107,18 @@ class PathSystem {
   const std::vector<int>& closure_rows() const { return closure_rows_; }   // the next ones
   // The dropped rows: statically indeterminate reactions (reported as zero).
   const std::vector<std::string>& redundant() const { return redundant_; }
+  // How far the dropped rows are from their targets at a state: the largest departure (translation
+  // rows over L, rotation rows in radians: free of units) and the row's name (redundant()). Rows
+  // dependent at the reference stay satisfied wherever the constraint rank stays that of the
+  // reference (they are functions of the kept rows there); one that departs shows that the rank grew
+  // away from a reference pose singular for the loops (a flat change-point four-bar: its closure's
+  // row along the links vanishes to first order there, not beyond), and that a solution with the
+  // reference's rows alone opens the loop.
+  struct Departure {
+    double value = 0.0;
+    std::string row;
+  };
+  Departure dropped_row_departure(const NonlinearState& st) const;
   const ConstraintDef& controlled() const { return ctrl_; }
   bool has_loads() const { return has_loads_; }
 
@@ -202,6 +214,12 @@ class PathSystem {
   std::vector<ConstraintDef> cons_;
   std::vector<int> closure_rows_;   // independent closure rows, into the structure's closure rows
   std::vector<std::string> redundant_;
+  // The dropped rows, in redundant_'s order: a slave constraint (its definition) or a closure row.
+  struct Dropped {
+    ConstraintDef constraint;
+    int closure_row = -1;  // >= 0: a closure row (structure numbering), else `constraint`
+  };
+  std::vector<Dropped> dropped_;
   int ncs_ = 0;
   ConstraintDef ctrl_;
   Eigen::VectorXd f_ext_;

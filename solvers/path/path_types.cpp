@@ -42,7 +42,8 @@ bool is_completed(PathTermination t) {
     case PathTermination::NoForwardSolution:
     case PathTermination::InitialStateFailed:
     case PathTermination::NoAutomaticStep:
-    case PathTermination::Singularity: return false;
+    case PathTermination::Singularity:
+    case PathTermination::RankChanged: return false;
   }
   return false;
 }
@@ -75,6 +76,8 @@ std::string PathResult::brief_report() const {
     case PathTermination::Singularity:
       return fmt::format("singular pose at load factor {:.6g}: {} (no step converged beyond it)", termination_value,
                          termination_detail);
+    case PathTermination::RankChanged:
+      return fmt::format("the constraint rank changes after load factor {:.6g}: {}", termination_value, termination_detail);
   }
   return "?";
 }

@@ -118,6 +118,8 @@ enum class PathTermination {
   InitialStateFailed,   // the prescribed values could not be imposed at the start
   NoAutomaticStep,      // "arc_length": "auto" found no scale (a singular tangent at the start)
   Singularity,          // no step converged beyond a singular pose of a loop (the last critical point)
+  RankChanged,          // a constraint row dropped as redundant at the reference departs from its
+                        // target: the constraint rank grew away from a singular reference pose
 };
 bool is_completed(PathTermination t);
 

@@ -199,4 +199,40 @@ TEST(PathSingularity, FourBarDrivenThroughItsTogglePosition) {
   EXPECT_NEAR(r.steps.back().control, o.target, 1e-9);
 }
 
+// A change-point four-bar (crank 2, coupler 1, rocker 2, ground 3: shortest + longest = the other
+// two) built flat, every link on the x axis: there the loop's closure row along the links vanishes to
+// first order, so the rank-revealing selection at the reference drops it as redundant, but away from
+// the flat pose it is independent (the coupler's length is cos-like in the angles). Solved with the
+// reference's rows alone, the coupler would shorten as the linkage rises (to 0.865 of its length at
+// load factor 2.7 before this was caught): the path must stop at its first step, naming the row,
+// instead of reporting a loop that does not close.
+TEST(PathSingularity, ARowDroppedAtAFlatReferencePoseThatDepartsStopsThePath) {
+  json d;
+  const auto node = [](const std::string& id, double x) { return json{{"id", id}, {"xyz", xyz(x, 0.0)}}; };
+  d["nodes"] = json::array({node("A", 0), node("Ap", 0), node("B", 2), node("Bc", 2), node("C", 1), node("Cc", 1),
+                            node("D", 3), node("Dp", 3), node("M", 1.5)});
+  d["elements"] = json::array({{{"id", "crank"}, {"type", "rigid"}, {"nodes", {"Ap", "B"}}},
+                               {{"id", "coupler"}, {"type", "rigid"}, {"nodes", {"Bc", "Cc"}}},
+                               {{"id", "middle"}, {"type", "rigid"}, {"nodes", {"Bc", "M"}}},
+                               {{"id", "rocker"}, {"type", "rigid"}, {"nodes", {"Dp", "C"}}}});
+  const json z = json::array({0, 0, 1});
+  d["joints"] = json::array({{{"id", "jA"}, {"type", "revolute"}, {"nodes", {"A", "Ap"}}, {"axes", {z}}, {"stiffness", {100.0}}},
+                             {{"id", "jB"}, {"type", "revolute"}, {"nodes", {"B", "Bc"}}, {"axes", {z}}},
+                             {{"id", "jC"}, {"type", "revolute"}, {"nodes", {"C", "Cc"}}, {"axes", {z}}},
+                             {{"id", "jD"}, {"type", "revolute"}, {"nodes", {"D", "Dp"}}, {"axes", {z}}, {"stiffness", {100.0}}}});
+  d["supports"] = json::array({fix("A", {"ux", "uy", "uz", "rx", "ry", "rz"}), fix("D", {"ux", "uy", "uz", "rx", "ry", "rz"}),
+                               fix("Ap", {"uz", "rx", "ry"}), fix("Dp", {"uz", "rx", "ry"})});
+  d["loads"] = json::array({load("M", 0.0, 10.0, 0.0)});
+  const Model m = read_model(d);
+  PathOptions o;
+  o.control = PathControl::ArcLength;
+  o.arc_length = 0.05;
+  o.max_steps = 40;
+  const PathResult r = follow_path(m, o);
+  EXPECT_EQ(r.termination, PathTermination::RankChanged) << r.brief_report();
+  EXPECT_FALSE(r.completed);
+  EXPECT_EQ(r.steps.size(), 1u) << "a step with the loop open was taken";
+  EXPECT_NE(r.brief_report().find("element 'coupler' ux"), std::string::npos) << r.brief_report();
+}
+
 }  // namespace path_singularity_test
