@@ -170,8 +170,7 @@ void finalize_petsc() {
 struct PetscSolver::Impl {
   Mat A = nullptr;
   KSP ksp = nullptr;
-  Vec b = nullptr, x = nullptr;  // this process's rows [first, first + local) of b and x
-  PetscInt first = 0, local = 0;
+  Vec b = nullptr, x = nullptr;  // this process's rows (PetscSolver::rows_) of b and x
   // On several processes: the whole x on every one (x_all), gathered by to_all after each solve.
   Vec x_all = nullptr;
   VecScatter to_all = nullptr;
@@ -229,13 +228,12 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
   PetscMPIInt size = 1;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   const PetscInt bs = block_size_ > 1 && n % block_size_ == 0 ? block_size_ : 1;
-  s.first = static_cast<PetscInt>(rows_.first);
-  s.local = static_cast<PetscInt>(rows_.count);
+  const auto first = static_cast<PetscInt>(rows_.first), local = static_cast<PetscInt>(rows_.count);
   // A's columns are its rows (symmetric): the CSC arrays of columns [first, first + local) are
   // the CSR arrays of those rows, with global column indices, as MATMPIAIJ takes them.
   const int* outer = A->outerIndexPtr();
-  const PetscInt* cols = A->innerIndexPtr() + outer[s.first];
-  const PetscScalar* vals = A->valuePtr() + outer[s.first];
+  const PetscInt* cols = A->innerIndexPtr() + outer[first];
+  const PetscScalar* vals = A->valuePtr() + outer[first];
   if (borrow_ && size == 1 && A == &A_in) {
     // PETSc's matrix on A's own arrays (PetscInt is A's index type: Debian's PETSc has 32-bit
     // indices): no copy, as set_borrow_matrix says. PETSc writes nothing into them.
@@ -245,10 +243,10 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
           "MatCreateSeqAIJWithArrays");
     if (bs > 1) check(MatSetBlockSize(s.A, bs), "MatSetBlockSize");
   } else {
-    std::vector<PetscInt> row_starts(static_cast<std::size_t>(s.local) + 1);
-    for (PetscInt k = 0; k <= s.local; ++k) row_starts[static_cast<std::size_t>(k)] = outer[s.first + k] - outer[s.first];
+    std::vector<PetscInt> row_starts(static_cast<std::size_t>(local) + 1);
+    for (PetscInt k = 0; k <= local; ++k) row_starts[static_cast<std::size_t>(k)] = outer[first + k] - outer[first];
     check(MatCreate(PETSC_COMM_WORLD, &s.A), "MatCreate");
-    check(MatSetSizes(s.A, s.local, s.local, n, n), "MatSetSizes");
+    check(MatSetSizes(s.A, local, local, n, n), "MatSetSizes");
     check(MatSetType(s.A, MATAIJ), "MatSetType");  // MATSEQAIJ on one process, MATMPIAIJ on several
     if (bs > 1) check(MatSetBlockSize(s.A, bs), "MatSetBlockSize");
     check(MatSeqAIJSetPreallocationCSR(s.A, row_starts.data(), cols, vals), "MatSeqAIJSetPreallocationCSR");
@@ -263,7 +261,7 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
       check(VecDuplicate(s.x, &modes[k]), "VecDuplicate");
       PetscScalar* v = nullptr;
       check(VecGetArrayWrite(modes[k], &v), "VecGetArrayWrite");
-      std::copy_n(near_null_.col(static_cast<Eigen::Index>(k)).data() + s.first, s.local, v);
+      std::copy_n(near_null_.col(static_cast<Eigen::Index>(k)).data() + first, local, v);
       check(VecRestoreArrayWrite(modes[k], &v), "VecRestoreArrayWrite");
     }
     MatNullSpace space = nullptr;
@@ -319,11 +317,11 @@ void PetscSolver::iterate(Eigen::Ref<const Vector> b, Eigen::Ref<Vector> x, bool
   const Impl& s = *impl_;
   PetscScalar* v = nullptr;
   check(VecGetArrayWrite(s.b, &v), "VecGetArrayWrite");
-  std::copy_n(b.data() + s.first, s.local, v);
+  std::copy_n(b.data() + rows_.first, rows_.count, v);
   check(VecRestoreArrayWrite(s.b, &v), "VecRestoreArrayWrite");
   if (from_x) {
     check(VecGetArrayWrite(s.x, &v), "VecGetArrayWrite");
-    std::copy_n(x.data() + s.first, s.local, v);
+    std::copy_n(x.data() + rows_.first, rows_.count, v);
     check(VecRestoreArrayWrite(s.x, &v), "VecRestoreArrayWrite");
   }
   check(KSPSetInitialGuessNonzero(s.ksp, from_x ? PETSC_TRUE : PETSC_FALSE), "KSPSetInitialGuessNonzero");
