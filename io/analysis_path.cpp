@@ -16,7 +16,8 @@
 //          rank, null_space, unbounded_directions, rigid_directions, indices (when stiffness_node), reaction
 //          (imposed motion), frequencies (Hz, with "frequencies"; null and frequencies_failure when the
 //          eigen-solver failed), step_control (displacement control: "displacement", or "arc_length" through
-//          a snap-back of the controlled DOF)}, critical_points[] {type, load_factor, step, control,
+//          a snap-back of the controlled DOF), statically_indeterminate (where the redundant constraint
+//          rows were chosen afresh: those dropped from that step on)}, critical_points[] {type, load_factor, step, control,
 //          negative_before, negative_after, load_work, reaction (imposed motion), branch_switched,
 //          mode.nodes.<id>.displacement; a singularity also joints, nodes (ids) and passed},
 // files: csv, vtk. Files: DIR/<id>.csv (one row per step), DIR/<id>.pvd and DIR/<id>_step<k>.vtu.
@@ -292,6 +293,8 @@ ojson step_json(const Model& model, const PathOptions& o, const PathStep& s, boo
   }
   // Displacement control: "arc_length" on the steps taken through a snap-back of the controlled DOF.
   if (o.control == PathControl::Displacement) j["step_control"] = control_name(s.step_control);
+  // Where the redundant constraint rows were chosen afresh: the rows dropped from this step on.
+  if (s.statically_indeterminate) j["statically_indeterminate"] = *s.statically_indeterminate;
   return j;
 }
 

@@ -49,6 +49,20 @@ namespace {
 // 1e-3 of the model length after a first step of 0.05 L.
 constexpr double kDroppedRowDeparture = 1e-6;
 
+// The rows kept as independent are chosen afresh at a converged state (PathSystem::reselect) when
+// their smallest singular value has fallen below this fraction of a fresh selection's there: they
+// are losing rank where the constraints are not (the pose would look singular, and Newton on them
+// fail). The margin keeps a choice as good as the fresh one (the rank-revealing QR's pick is not
+// the best of all) from being changed back and forth.
+constexpr double kReselectRatio = 0.5;
+
+// A state whose dropped rows depart by d has grown rank where its rows have more singular values
+// above this many times d than rows are kept. A loop opened by d (Newton on rows that lost rank
+// within the step found a solution off the constraints) gains singular values of the order of d;
+// one leaving a singular reference pose gains one of the order of the step, while its dropped row
+// departs at second order (a flat change-point four-bar: 0.02 against 2.3e-5 of the model length).
+constexpr double kRankMargin = 10.0;
+
 // The stop conditions after a converged step; sets the termination.
 bool stopped(PathResult& res, const PathOptions& o, const Model& original, const Converged& nx, int step) {
   if (o.stop_load_factor) {
@@ -81,11 +95,19 @@ struct StepRejection {
   const char* what;
 };
 
+// What the rows dropped as redundant say of a converged step (PathRun::check_dropped_rows).
+enum class DroppedRows {
+  Held,        // they stay at their targets: the step stands
+  Reselected,  // they depart, the rows were chosen afresh at the step's start: solve the step again
+  Departed,    // they depart and no better choice exists at the start: cut the step
+  Stop         // the constraint rank grew: the path stopped (termination set)
+};
+
 // One path: the parts of solvers/path/ and the loop's state (the current state, the step count,
 // the cuts of the step, the last inertia and slope), composed by run().
 class PathRun {
  public:
-  PathRun(const Model& original, const PathOptions& o, const PathSystem& sys, FactorCache& factors,
+  PathRun(const Model& original, const PathOptions& o, PathSystem& sys, FactorCache& factors,
           KinsolSolver& kin, const Converged& start, double ds0, PathResult& res)
       : o_(o), original_(original), sys_(sys), factors_(factors),
         corrector_(sys, factors, kin, o.chord_corrector ? ChordIterations::On : ChordIterations::Off),
@@ -123,23 +145,41 @@ class PathRun {
   void locate_singularities(const Converged& next, const Eigen::VectorXd& m_next, const Eigen::VectorXd& dir);
   // The path ends: true (and the termination set) when it ends at a singular pose of a loop.
   bool ends_at_singularity();
-  // True (and the termination set, `next` not taken) when a row dropped as redundant at the
-  // reference departs from its target at `next` (PathSystem::dropped_row_departure): the reference
-  // pose is singular for the loops, and the rows kept there do not hold them closed beyond it.
-  bool rank_changed(const Converged& next);
+  // Whether a row dropped as redundant departs from its target at `next`
+  // (PathSystem::dropped_row_departure), and what follows. Where the constraint rank at `next` is
+  // higher than the rows kept, the pose where they were chosen is singular for the loops (a model
+  // built at a change point) and the rows kept there do not hold them closed beyond it: the path
+  // stops. Where it is the same, the kept rows stopped spanning the constraints within the step:
+  // they are chosen afresh at cur_ and the step solved again, or, were they the best there already,
+  // the step is cut.
+  DroppedRows check_dropped_rows(const Converged& next);
+  // Chooses the rows afresh at cur_ (the last converged state) when the rows kept lose rank there
+  // while the constraints do not (kReselectRatio); true when it changed them.
+  bool refresh_rows();
+  // A loop's passive Jacobian changes sign between cur_ and next (measures m_next at next) where
+  // the rows kept lose rank and the constraints do not (a pose inside the step; rows chosen well at
+  // both ends can lose rank in between). The rows are chosen afresh at cur_ from a fresh choice at
+  // the located pose (Reselected: the step is solved again) when that choice serves at cur_ too,
+  // else the step is too long to change them (TooLong: it is cut). None where the crossing is the
+  // linkage's own (a singular pose, located and reported by locate_singularities).
+  enum class RowCrossing { None, Reselected, TooLong };
+  RowCrossing rows_lose_rank_within(const Converged& next, const Eigen::VectorXd& m_next, const Eigen::VectorXd& dir);
+  // Keeps the fresh selection `rows` (taken at cur_) from here on: cur_'s multipliers carried over,
+  // the factor and the singularity measures dropped, the change recorded in cur_'s step.
+  void reselect(const PathSystem::RowsAt& rows, const std::string& why);
   // The measures of the singular poses at cur_ (and the state before it) after cur_ changed.
   void track_singularities(const Eigen::VectorXd& m_next, const Converged& before);
 
   const PathOptions& o_;
   const Model& original_;
-  const PathSystem& sys_;
+  PathSystem& sys_;
   FactorCache& factors_;
   Corrector corrector_;
   StabilityAnalyzer stability_;
   Predictor predictor_;
   StepControl control_;
   const CriticalPointParts parts_;
-  const SingularityMonitor monitor_;
+  SingularityMonitor monitor_;
   // The singularity measures at the start, at cur_ and at the state before it (its load factor and
   // control value); the size of the step that failed first from cur_.
   Eigen::VectorXd m_start_, m_cur_, m_prev_;
@@ -147,6 +187,7 @@ class PathRun {
   PathResult& res_;
   Converged cur_;
   std::string report_;   // the last solver report (the reason given when the path stops)
+  std::string rows_chosen_ = "at the reference pose";  // where the rows kept were chosen
   int step_ = 0, cuts_ = 0, neg_ = -1;
   double slope_ = NAN;
   bool switched_ = false;
@@ -199,6 +240,15 @@ void PathRun::record_stability(PathStep& ps, const Converged& c) {
 }
 
 bool PathRun::cut(PathTermination why, const std::string& what) {
+  // Rows chosen afresh at cur_, where better ones exist there, before the step is cut: the rows kept
+  // may be what failed it.
+  if (sys_.has_dropped_rows()) {
+    const PathSystem::RowsAt rows = sys_.rows_at(cur_.state);
+    if (rows.rank == sys_.nc() && !rows.same_as_kept && rows.kept < rows.best) {
+      reselect(rows, fmt::format("step {} failed: {}", step_ + 1, what));
+      return true;
+    }
+  }
   if (cuts_ == 0) h_failed_ = std::abs(control_.h());
   ++cuts_;
   const bool ok = control_.cut() && cuts_ <= o_.max_cuts;
@@ -239,16 +289,78 @@ void PathRun::locate_singularities(const Converged& next, const Eigen::VectorXd&
   }
 }
 
-bool PathRun::rank_changed(const Converged& next) {
+DroppedRows PathRun::check_dropped_rows(const Converged& next) {
   const PathSystem::Departure d = sys_.dropped_row_departure(next.state);
-  if (!(d.value > kDroppedRowDeparture)) return false;
-  res_.finish(PathTermination::RankChanged, cur_.lambda, 0,
-              fmt::format("{}, dropped as redundant at the reference pose, departs from its target by {:.3g} of the "
-                          "model length at load factor {:.6g}: the reference pose is singular for the loops (their "
-                          "rows lose rank there); build the model at a pose off it",
-                          d.row, d.value, next.lambda));
-  say(res_.brief_report());
+  if (!(d.value > kDroppedRowDeparture)) return DroppedRows::Held;
+  const std::string departs = fmt::format("{}, dropped as redundant {}, departs from its target by {:.3g} of the model "
+                                          "length at load factor {:.6g}",
+                                          d.row, rows_chosen_, d.value, next.lambda);
+  // The rank grew where the rows gained a singular value well above the departure, which an open
+  // loop has only to the order of its opening.
+  if (sys_.rank_above(next.state, kRankMargin * d.value) > sys_.nc()) {
+    const bool reference = step_ == 0 && rows_chosen_ == "at the reference pose";
+    res_.finish(PathTermination::RankChanged, cur_.lambda, 0,
+                fmt::format("{}: the {} is singular for the loops (their rows lose rank there){}", departs,
+                            reference ? "reference pose" : "pose where the rows were chosen",
+                            reference ? "; build the model at a pose off it" : ""));
+    say(res_.brief_report());
+    return DroppedRows::Stop;
+  }
+  const PathSystem::RowsAt at_cur = sys_.rows_at(cur_.state);
+  if (at_cur.rank == sys_.nc() && !at_cur.same_as_kept && at_cur.kept < at_cur.best) {
+    reselect(at_cur, departs);
+    return DroppedRows::Reselected;
+  }
+  report_ = departs;
+  return DroppedRows::Departed;
+}
+
+bool PathRun::refresh_rows() {
+  if (!sys_.has_dropped_rows()) return false;
+  const PathSystem::RowsAt rows = sys_.rows_at(cur_.state);
+  if (rows.rank != sys_.nc() || rows.same_as_kept || !(rows.kept < kReselectRatio * rows.best)) return false;
+  reselect(rows, fmt::format("the rows kept lose rank (smallest singular value {:.3g}, {:.3g} for a fresh choice)",
+                             rows.kept, rows.best));
   return true;
+}
+
+PathRun::RowCrossing PathRun::rows_lose_rank_within(const Converged& next, const Eigen::VectorXd& m_next,
+                                                    const Eigen::VectorXd& dir) {
+  if (!sys_.has_dropped_rows()) return RowCrossing::None;
+  const auto at = [&](const Converged& c, double f) { return control_at(c, f); };
+  for (int i = 0; i < m_next.size(); ++i) {
+    if (!monitor_.candidates()[i].square || !(m_cur_[i] * m_next[i] < 0.0)) continue;
+    Converged nearest;
+    locate_singularity(parts_, monitor_, i, cur_, next, m_cur_[i], m_next[i], control_.h(), dir, control_.mode(), at,
+                       &nearest);
+    const PathSystem::RowsAt rows = sys_.rows_at(nearest.state);
+    if (rows.rank < sys_.nc() || rows.same_as_kept || !(rows.kept < kReselectRatio * rows.best)) continue;
+    report_ = fmt::format("the rows kept lose rank at load factor {:.6g} (smallest singular value {:.3g}, {:.3g} for a "
+                          "fresh choice), not the loop: {} is not singular there",
+                          nearest.lambda, rows.kept, rows.best, monitor_.describe(i));
+    // The fresh rows must serve at the step's start too (where the rows kept still do).
+    if (!(sys_.rows_measure(cur_.state, rows.fresh.kept) >= kReselectRatio * sys_.rows_at(cur_.state).kept))
+      return RowCrossing::TooLong;
+    reselect(rows, report_);
+    return RowCrossing::Reselected;
+  }
+  return RowCrossing::None;
+}
+
+void PathRun::reselect(const PathSystem::RowsAt& rows, const std::string& why) {
+  cur_.mu = sys_.reselect(cur_.state, cur_.mu, rows.fresh);
+  factors_.forget();
+  monitor_.refresh();
+  if (!monitor_.empty()) {
+    m_start_ = m_cur_ = monitor_.measures(cur_.state);
+    m_prev_.resize(0);
+  }
+  rows_chosen_ = fmt::format("at load factor {:.6g} (step {})", cur_.lambda, step_);
+  res_.steps.back().statically_indeterminate = sys_.redundant();
+  std::string dropped;
+  for (const auto& r : sys_.redundant()) dropped += (dropped.empty() ? "" : ", ") + r;
+  say(fmt::format("step {}: redundant constraint rows chosen afresh at load factor {:.6g} ({}): now {}", step_,
+                  cur_.lambda, why, dropped));
 }
 
 bool PathRun::ends_at_singularity() {
@@ -375,11 +487,27 @@ void PathRun::run() {
       continue;
     }
     const Converged next = std::move(sol.state);
-    if (rank_changed(next)) return;
+    const DroppedRows dropped = check_dropped_rows(next);
+    if (dropped == DroppedRows::Stop) return;
+    if (dropped == DroppedRows::Reselected) continue;
+    if (dropped == DroppedRows::Departed) {
+      if (!cut(PathTermination::NoConvergence, report_)) return;
+      continue;
+    }
     const Eigen::VectorXd dir = sys_.direction(cur_, next);
     if (const auto r = rejected(pred, dir)) {
       if (!cut(r->why, r->what)) return;
       continue;
+    }
+    const Eigen::VectorXd m_next = monitor_.empty() ? Eigen::VectorXd() : monitor_.measures(next.state);
+    if (m_next.size()) {
+      const RowCrossing crossing = rows_lose_rank_within(next, m_next, dir);
+      if (crossing == RowCrossing::Reselected) continue;
+      if (crossing == RowCrossing::TooLong) {
+        if (!cut(PathTermination::NoConvergence, report_ + "; the rows chosen there do not serve at the step's start"))
+          return;
+        continue;
+      }
     }
     ++step_;
     control_.advance();
@@ -389,11 +517,11 @@ void PathRun::run() {
                     next.lambda, control_.value(next), next.iterations,
                     next.chord_iterations ? fmt::format(" ({} chord)", next.chord_iterations) : std::string(), neg_));
     const bool fall_back = control_.mode() != o_.control;  // a snap-back fall-back's arc-length step
-    const Eigen::VectorXd m_next = monitor_.empty() ? Eigen::VectorXd() : monitor_.measures(next.state);
     if (m_next.size()) locate_singularities(next, m_next, dir);
     const bool control_turns = displacement() && o_.locate_critical && locate_limit_point(next, dir);
     if (!control_turns && o_.stability && o_.locate_critical && neg_ >= 0 && neg_before >= 0 &&
         neg_ != neg_before && locate_inertia_change(next, dir, neg_before)) {
+      refresh_rows();
       if (stopped(res_, o_, original_, cur_, step_)) return;
       continue;
     }
@@ -405,6 +533,7 @@ void PathRun::run() {
       control_.adapt(adapt_count(next));
     cur_ = next;
     cuts_ = 0;
+    refresh_rows();
     if (stopped(res_, o_, original_, next, step_)) return;
   }
 }
@@ -452,7 +581,7 @@ PathResult follow_path(const Model& original, const LoadSet& loads, const PathOp
   // The structure's own scales: the arc-length weight of the load factor, the automatic first
   // step and the force scale of the convergence test (solvers/path/path_scales.hpp).
   const PathScales scales = path_scales(model, unscaled, factors, start.state);
-  const PathSystem sys = std::move(unscaled).with_scales(scales.lambda_ref, scales.psi);
+  PathSystem sys = std::move(unscaled).with_scales(scales.lambda_ref, scales.psi);
   const double ds0 = first_step(o, scales);
   if (o.control == PathControl::ArcLength && o.arc_length_auto && !(ds0 > 0.0)) {
     res.finish(PathTermination::NoAutomaticStep);

@@ -1,5 +1,8 @@
 #include "solvers/path/equilibrium.hpp"
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 
@@ -75,10 +78,11 @@ PathSystem::PathSystem(const Model& model, const LoadSet& loads, const PathOptio
   for (int p = 0; p < map.prescribed_size(); ++p) {
     const auto& pv = map.prescribed()[p];
     if (pv.constraint < 0 && pv.dof.owner == DofRef::Owner::Node && map.is_slave(pv.dof.index))
-      cons_.push_back({pv.dof.index, pv.dof.comp, pv.value, {}});
+      all_cons_.push_back({pv.dof.index, pv.dof.comp, pv.value, {}});
   }
-  add_user_rows(model, cons_);
-  select_independent_constraints();
+  add_user_rows(model, all_cons_);
+  nf_ = static_cast<int>(free_.size());
+  if (!all_cons_.empty() || ns_.closure_rows() > 0) keep_rows(independent_rows(scaled_rows(ns_.reference_state())));
   f_ext_ = external_force(model, map, loads);
   has_loads_ = f_ext_.size() > 0 && f_ext_.cwiseAbs().maxCoeff() > 0.0;
   if (o.control == PathControl::Displacement) {
@@ -90,8 +94,6 @@ PathSystem::PathSystem(const Model& model, const LoadSet& loads, const PathOptio
   }
   if (!has_loads_ && o.control != PathControl::Displacement)
     throw ModelError("loads", "path: the model has none; use displacement control to impose a motion");
-  nf_ = static_cast<int>(free_.size());
-  nc_ = ncs_ + static_cast<int>(closure_rows_.size());
   // Reference force for the convergence test.
   double fmax = 0.0;
   for (int n = 0; n < static_cast<int>(model.nodes.size()); ++n) {
@@ -122,43 +124,125 @@ void PathSystem::set_load_scale(double lambda_ref) {
   if (!(F_ref_ > 0.0)) F_ref_ = 1.0;
 }
 
-void PathSystem::select_independent_constraints() {
-  const NonlinearState s0 = ns_.reference_state();
-  const auto tw = ns_.twists(s0);
+Eigen::MatrixXd PathSystem::scaled_rows(const NonlinearState& st) const {
+  const auto tw = ns_.twists(st);
   const int nfree = static_cast<int>(free_.size());
-  const int nl = ns_.closure_rows();
-  const int m = static_cast<int>(cons_.size()) + nl;
-  if (m == 0) return;
-  // Rows and coordinates in lengths: rotation rows and rotation coordinates scaled by L.
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, nfree);
-  for (std::size_t c = 0; c < cons_.size(); ++c)
-    for_each_term(cons_[c], [&](int node, int comp, double coefficient) {
-      for (const auto& [g, v] : ns_.raw_row(s0, tw, node, comp))
-        if (gen_to_free_[g] >= 0) C(static_cast<Eigen::Index>(c), gen_to_free_[g]) += coefficient * v * (comp < 3 ? 1.0 : L_);
+  const int ncons = static_cast<int>(all_cons_.size());
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(ncons + ns_.closure_rows(), nfree);
+  for (int c = 0; c < ncons; ++c)
+    for_each_term(all_cons_[c], [&](int node, int comp, double coefficient) {
+      for (const auto& [g, v] : ns_.raw_row(st, tw, node, comp))
+        if (gen_to_free_[g] >= 0) C(c, gen_to_free_[g]) += coefficient * v * (comp < 3 ? 1.0 : L_);
     });
-  const SparseMatrix Cl = ns_.closure_jacobian(s0, tw);
-  for (int j = 0; j < Cl.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(Cl, j); it; ++it)
-      if (gen_to_free_[j] >= 0) {
-        const int r = static_cast<int>(it.row());
-        C(static_cast<Eigen::Index>(cons_.size()) + r, gen_to_free_[j]) += it.value() * (r % 6 < 3 ? 1.0 : L_);
-      }
+  if (ns_.closure_rows() > 0) {
+    const SparseMatrix Cl = ns_.closure_jacobian(st, tw);
+    for (int j = 0; j < Cl.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(Cl, j); it; ++it)
+        if (gen_to_free_[j] >= 0) {
+          const int r = static_cast<int>(it.row());
+          C(ncons + r, gen_to_free_[j]) += it.value() * (r % 6 < 3 ? 1.0 : L_);
+        }
+  }
   for (int k = 0; k < nfree; ++k)
     if (ns_.is_rotation(free_[k])) C.col(k) /= L_;
-  const RowSelection sel = independent_rows(C);
-  std::vector<ConstraintDef> kept;
+  return C;
+}
+
+void PathSystem::keep_rows(const RowSelection& sel) {
+  const int ncons = static_cast<int>(all_cons_.size());
+  kept_ = sel.kept;
+  cons_.clear();
+  closure_rows_.clear();
+  redundant_.clear();
+  dropped_.clear();
   for (int i : sel.kept) {
-    if (i < static_cast<int>(cons_.size())) kept.push_back(cons_[i]);
-    else closure_rows_.push_back(i - static_cast<int>(cons_.size()));
+    if (i < ncons) cons_.push_back(all_cons_[i]);
+    else closure_rows_.push_back(i - ncons);
   }
   for (int i : sel.redundant) {
-    const bool closure = i >= static_cast<int>(cons_.size());
-    redundant_.push_back(!closure ? ns_.model().describe({DofRef::Owner::Node, cons_[i].node, cons_[i].comp})
-                                  : ns_.describe_closure_row(i - static_cast<int>(cons_.size())));
-    dropped_.push_back(closure ? Dropped{{}, i - static_cast<int>(cons_.size())} : Dropped{cons_[i], -1});
+    const bool closure = i >= ncons;
+    redundant_.push_back(!closure ? ns_.model().describe({DofRef::Owner::Node, all_cons_[i].node, all_cons_[i].comp})
+                                  : ns_.describe_closure_row(i - ncons));
+    dropped_.push_back(closure ? Dropped{{}, i - ncons} : Dropped{all_cons_[i], -1});
   }
-  cons_ = std::move(kept);
   ncs_ = static_cast<int>(cons_.size());
+  nc_ = ncs_ + static_cast<int>(closure_rows_.size());
+}
+
+namespace {
+// The smallest singular value of the rows `rows` of C (0 for none): sigma_min^2, the lowest
+// eigenvalue of A A^T (rows x rows).
+double smallest_singular_value(const Eigen::MatrixXd& C, const std::vector<int>& rows) {
+  if (rows.empty()) return 0.0;
+  Eigen::MatrixXd A(static_cast<Eigen::Index>(rows.size()), C.cols());
+  for (std::size_t r = 0; r < rows.size(); ++r) A.row(static_cast<Eigen::Index>(r)) = C.row(rows[r]);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(A * A.transpose(), Eigen::EigenvaluesOnly);
+  return std::sqrt(std::max(0.0, es.eigenvalues()[0]));
+}
+
+// The `count` rows of C that a QR of C^T with column pivoting takes first (as independent_rows, without
+// its tolerance), ascending, and the others.
+RowSelection leading_rows(const Eigen::MatrixXd& C, int count) {
+  RowSelection out;
+  const int m = static_cast<int>(C.rows());
+  std::vector<char> lead(m, 0);
+  const double scale = C.cwiseAbs().maxCoeff();
+  if (scale > 0.0 && count > 0) {
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(C.transpose() / scale);
+    for (int k = 0; k < std::min(count, m); ++k) lead[qr.colsPermutation().indices()[k]] = 1;
+  }
+  for (int i = 0; i < m; ++i) (lead[i] ? out.kept : out.redundant).push_back(i);
+  return out;
+}
+}  // namespace
+
+PathSystem::RowsAt PathSystem::rows_at(const NonlinearState& st) const {
+  RowsAt out;
+  Eigen::MatrixXd C = scaled_rows(st);
+  // Only the coordinates the rows reach (a loop's joints and links among a frame's many DOFs).
+  std::vector<Eigen::Index> reached;
+  for (Eigen::Index k = 0; k < C.cols(); ++k)
+    if (C.col(k).cwiseAbs().maxCoeff() > 0.0) reached.push_back(k);
+  if (static_cast<Eigen::Index>(reached.size()) < C.cols()) C = Eigen::MatrixXd(C(Eigen::all, reached));
+  out.rank = static_cast<int>(independent_rows(C).kept.size());
+  out.fresh = leading_rows(C, nc_);
+  out.kept = smallest_singular_value(C, kept_);
+  out.best = smallest_singular_value(C, out.fresh.kept);
+  out.same_as_kept = out.fresh.kept == kept_;
+  return out;
+}
+
+int PathSystem::rank_above(const NonlinearState& st, double sigma) const {
+  const Eigen::MatrixXd C = scaled_rows(st);
+  if (C.size() == 0) return 0;
+  const Eigen::VectorXd s = Eigen::JacobiSVD<Eigen::MatrixXd>(C).singularValues();
+  return static_cast<int>((s.array() > sigma).count());
+}
+
+double PathSystem::rows_measure(const NonlinearState& st, const std::vector<int>& rows) const {
+  return smallest_singular_value(scaled_rows(st), rows);
+}
+
+Eigen::MatrixXd PathSystem::multiplier_forces(const NonlinearState& st) const {
+  const auto tw = ns_.twists(st);
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nf_, nc_);
+  for (int c = 0; c < ncs_; ++c)
+    for (const auto& [k, v] : constraint_row(st, tw, cons_[c], nullptr)) G(k, c) -= v;
+  if (!closure_rows_.empty()) {
+    const SparseRowMatrix B = ns_.closure_force_rows(st, tw);
+    for (std::size_t i = 0; i < closure_rows_.size(); ++i)
+      for (SparseRowMatrix::InnerIterator it(B, closure_rows_[i]); it; ++it)
+        if (gen_to_free_[it.col()] >= 0) G(gen_to_free_[it.col()], ncs_ + static_cast<Eigen::Index>(i)) += it.value();
+  }
+  return G;
+}
+
+Eigen::VectorXd PathSystem::reselect(const NonlinearState& st, const Eigen::VectorXd& mu, const RowSelection& fresh) {
+  const Eigen::VectorXd g = multiplier_forces(st) * mu;
+  keep_rows(fresh);
+  const Eigen::MatrixXd G = multiplier_forces(st);
+  if (G.cols() == 0) return Eigen::VectorXd();
+  return G.colPivHouseholderQr().solve(g);
 }
 
 PathSystem::Departure PathSystem::dropped_row_departure(const NonlinearState& st) const {

@@ -17,10 +17,11 @@
 // Closed loops (solvers/nonlinear_structure.hpp, "Closed loops"): the closures' rows c(x) = 0 join the
 // slave constraints, with multipliers mu_l; the residual gains B^T mu_l and the tangent the closure
 // curvature contracted with mu_l. Redundant rows among the slave constraints and the closures (a
-// planar loop in 3-D: three) are found once, rank-revealingly, at the reference state (independent_rows,
+// planar loop in 3-D: three) are found rank-revealingly at the reference state (independent_rows,
 // rows and coordinates scaled to lengths by the model length L) and dropped: the motion is solved
 // exactly with the independent rows; the dropped rows' reactions are statically indeterminate
-// (`redundant` names them) and reported as zero.
+// (`redundant` names them) and reported as zero. The path re-decides them where the rows kept stop
+// spanning the constraint rows at a pose (reselect).
 // The Jacobian is K_t D(Delta) bordered by the constraint rows and columns, D the derivative of the
 // retraction. The convergence test scales the rows (fscale) so that KINSOL's tolerance is relative
 // to the problem: forces by F_ref (the reference load at the structure's own load scale lambda_ref,
@@ -122,6 +123,39 @@ class PathSystem {
   const ConstraintDef& controlled() const { return ctrl_; }
   bool has_loads() const { return has_loads_; }
 
+  // Re-deciding the redundant rows along the path. Where the rank of the constraint rows stays that
+  // of the reference, the rows kept there still span them at most poses, but not at every one: the
+  // rows of a spatial over-constrained loop (a Bennett linkage: six closure rows of rank three) are
+  // dependent in combinations that turn with the pose, so that a choice of three rows good at the
+  // reference can lose rank where the loop itself does not. The kept rows' Jacobian is then singular
+  // (Newton fails, or a singularity is reported that the linkage does not have) and beyond it they
+  // no longer hold the loop closed. A fresh rank-revealing selection at the state (independent_rows
+  // over all the rows) does.
+  // All the rows at a state: their rank (independent_rows), the nc() rows a rank-revealing QR with
+  // column pivoting leads with (a fresh choice of as many rows as are kept), and the smallest
+  // singular value of the kept rows and of the fresh choice's (rows and coordinates scaled to
+  // lengths, as at the reference: free of units).
+  struct RowsAt {
+    int rank = 0;
+    RowSelection fresh;  // into all the rows: the slave constraints, then the structure's closure rows
+    double kept = 0.0, best = 0.0;
+    bool same_as_kept = false;  // the fresh choice is the rows kept now
+  };
+  RowsAt rows_at(const NonlinearState& st) const;
+  // How many singular values of all the rows at a state (scaled) exceed sigma: the rank that a
+  // departure of sigma from the constraints cannot have made (an open loop's rows gain rank with
+  // its opening).
+  int rank_above(const NonlinearState& st, double sigma) const;
+  // The smallest singular value of the rows `rows` (RowsAt::fresh's numbering) at a state, scaled.
+  double rows_measure(const NonlinearState& st, const std::vector<int>& rows) const;
+  // Whether rows were dropped (only then can the selection change without the rank changing).
+  bool has_dropped_rows() const { return !dropped_.empty(); }
+  // Keeps `fresh`'s rows from here on (rows_at(st).fresh, of the same rank as nc()) and returns the
+  // multipliers on them that transmit the same generalized forces at st as mu on the rows kept
+  // until now (least squares, exact where both sets span the rows), so that a converged state stays
+  // converged.
+  Eigen::VectorXd reselect(const NonlinearState& st, const Eigen::VectorXd& mu, const RowSelection& fresh);
+
   // Scales: the model length L, the force scale of the convergence test, psi^2 of the arc length.
   double length_scale() const { return L_; }
   double force_scale() const { return F_ref_; }
@@ -201,7 +235,14 @@ class PathSystem {
   Start reference_start() const;
 
  private:
-  void select_independent_constraints();
+  // All the rows at a state, scaled to lengths (rotation rows and rotation coordinates by L), over
+  // the free coordinates.
+  Eigen::MatrixXd scaled_rows(const NonlinearState& st) const;
+  // Keeps the rows `kept` of all the rows (ascending) and drops the others.
+  void keep_rows(const RowSelection& sel);
+  // The generalized force over the free coordinates of each multiplier at a state (nf x nc: the
+  // multipliers' columns of the Jacobian at Delta = 0).
+  Eigen::MatrixXd multiplier_forces(const NonlinearState& st) const;
   // The force scale of the convergence test at the load factor lambda_ref.
   void set_load_scale(double lambda_ref);
 
@@ -211,7 +252,9 @@ class PathSystem {
   double f_max_ = 0.0;    // largest reference load component (moments / L)
   double F_floor_ = 0.0;  // round-off: kRoundOffForceRatio x the stiffest element's force for a displacement L
   std::vector<int> free_, gen_to_free_;
-  std::vector<ConstraintDef> cons_;
+  std::vector<ConstraintDef> all_cons_;  // every slave constraint, kept or dropped
+  std::vector<ConstraintDef> cons_;      // the kept ones
+  std::vector<int> kept_;                // the kept rows, into all the rows (RowsAt::fresh's numbering)
   std::vector<int> closure_rows_;   // independent closure rows, into the structure's closure rows
   std::vector<std::string> redundant_;
   // The dropped rows, in redundant_'s order: a slave constraint (its definition) or a closure row.

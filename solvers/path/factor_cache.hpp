@@ -43,6 +43,8 @@ class FactorCache {
   // The size of the factorised tangent system at c when c is the state kept and its tangent was
   // computed and factorised successfully; -1 otherwise. No computation.
   int factor_rows(const Converged& c) const;
+  // Drops what is kept (the system's rows changed: PathSystem::reselect).
+  void forget() { valid_ = has_tangent_ = false; }
   // The kept factor of c is the symmetric tangent's LL^T (see above).
   bool is_cholesky(const Converged& c) const { return factor_rows(c) >= 0 && cholesky_; }
   // x = A^-1 b with the kept factor, b of its size: the LU without UMFPACK's iterative refinement

@@ -81,6 +81,10 @@ struct PathStep {
   // where omega^2 < 0: unstable), and why they are missing when the eigen-solver failed.
   Eigen::VectorXd frequencies;
   std::string frequencies_failure;
+  // Where the path re-decided the redundant constraint rows at this state (PathSystem::reselect):
+  // the rows dropped from here on, whose reactions are statically indeterminate (PathResult's
+  // statically_indeterminate names those of the reference).
+  std::optional<std::vector<std::string>> statically_indeterminate;
 };
 
 // Singularity: a singular pose of a closed loop (solvers/path/singularity.hpp).
@@ -118,8 +122,9 @@ enum class PathTermination {
   InitialStateFailed,   // the prescribed values could not be imposed at the start
   NoAutomaticStep,      // "arc_length": "auto" found no scale (a singular tangent at the start)
   Singularity,          // no step converged beyond a singular pose of a loop (the last critical point)
-  RankChanged,          // a constraint row dropped as redundant at the reference departs from its
-                        // target: the constraint rank grew away from a singular reference pose
+  RankChanged,          // a constraint row dropped as redundant departs from its target: the
+                        // constraint rank grew away from the pose (singular for the loops) where
+                        // the rows were chosen
 };
 bool is_completed(PathTermination t);
 

@@ -47,7 +47,9 @@ double measure_of(const Eigen::MatrixXd& M, bool square) {
 
 }  // namespace
 
-SingularityMonitor::SingularityMonitor(const PathSystem& sys) : sys_(sys) {
+void SingularityMonitor::refresh() {
+  candidates_.clear();
+  const PathSystem& sys = sys_;
   const NonlinearStructure& ns = sys.structure();
   const Model& m = ns.model();
   const auto& cl = ns.closures();
@@ -150,7 +152,8 @@ CriticalPoint singular_point(const SingularityMonitor& monitor, int candidate) {
 CriticalPoint locate_singularity(const CriticalPointParts& parts, const SingularityMonitor& monitor, int candidate,
                                  const Converged& cur, const Converged& next, double m_cur, double m_next, double h,
                                  const Eigen::VectorXd& dir, PathControl mode,
-                                 const std::function<double(const Converged&, double)>& control_at) {
+                                 const std::function<double(const Converged&, double)>& control_at,
+                                 Converged* nearest) {
   Converged before = cur, after = next;
   double lo = 0.0, hi = 1.0, m_lo = m_cur, m_hi = m_next;
   for (int it = 0; it < kMaxBisections && hi - lo > parts.options.critical_tolerance; ++it) {
@@ -172,6 +175,7 @@ CriticalPoint locate_singularity(const CriticalPointParts& parts, const Singular
   p.control = control_at(before, lo) + t * (control_at(after, hi) - control_at(before, lo));
   p.reaction = before.extra_mu + t * (after.extra_mu - before.extra_mu);
   p.passed = true;
+  if (nearest) *nearest = std::abs(m_lo) < std::abs(m_hi) ? before : after;
   return p;
 }
 

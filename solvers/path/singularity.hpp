@@ -46,7 +46,9 @@ struct SingularityCandidate {
 
 class SingularityMonitor {
  public:
-  explicit SingularityMonitor(const PathSystem& sys);
+  explicit SingularityMonitor(const PathSystem& sys) : sys_(sys) { refresh(); }
+  // The candidates afresh from the system's rows (after PathSystem::reselect).
+  void refresh();
   bool empty() const { return candidates_.empty(); }
   const std::vector<SingularityCandidate>& candidates() const { return candidates_; }
   // The measure of every candidate at a state (signed where square).
@@ -62,11 +64,13 @@ class SingularityMonitor {
 
 // A crossing of a signed candidate's singular pose between cur and next (measures m_cur, m_next of
 // opposite signs), located by bisection of the step on the sign of the measure; the point carries
-// the load factor and control value interpolated to the zero of the measure.
+// the load factor and control value interpolated to the zero of the measure. `nearest`, when given,
+// receives the end of the final bracket where the measure is smaller.
 CriticalPoint locate_singularity(const CriticalPointParts& parts, const SingularityMonitor& monitor, int candidate,
                                  const Converged& cur, const Converged& next, double m_cur, double m_next, double h,
                                  const Eigen::VectorXd& dir, PathControl mode,
-                                 const std::function<double(const Converged&, double)>& control_at);
+                                 const std::function<double(const Converged&, double)>& control_at,
+                                 Converged* nearest = nullptr);
 
 // The end of a path at a singular pose: of the candidates whose measure fell from m_prev to m_cur
 // (below kSingularDrop of m_start), the one whose squared measure, extrapolated linearly in the

@@ -44,7 +44,8 @@ def scaled(doc, a=A_LEN, b=B_FORCE):
     for n in d["nodes"]:
         n["xyz"] = [a * x for x in n["xyz"]]
     for j in d["joints"]:
-        j["stiffness"] = [a * b * k for k in j["stiffness"]]  # moment per radian
+        if "stiffness" in j:
+            j["stiffness"] = [a * b * k for k in j["stiffness"]]  # moment per radian
     for load in d["loads"]:
         load["force"] = [b * f for f in load["force"]]
     return d
@@ -107,3 +108,68 @@ def test_a_passed_singular_pose_is_reported_and_warned():
     assert sing[0]["control"] == pytest.approx(np.pi - 2.6, abs=1e-4)
     msgs = [str(w.message) for w in caught if issubclass(w.category, beamfea.BeamfeaWarning)]
     assert any("passed a singular pose" in m and "'jB'" in m for m in msgs), msgs
+
+
+def bennett(theta0_deg=100.0, turn_deg=150.0, increments=30):
+    """Bennett's linkage (Bennett 1903): Denavit-Hartenberg frames T_{i+1} = T_i Rz(theta_i) Tx(a_i)
+    Rx(alpha_i), links a, b, a, b of twists 60 and 90 degrees (a sin(beta) = b sin(alpha)), closed for
+    theta_3 = 2 pi - theta_1, theta_4 = 2 pi - theta_2, tan(theta_1/2) tan(theta_2/2) =
+    sin((beta + alpha)/2) / sin((beta - alpha)/2). Ground link 4 fixed, a spring k at joint 1 and the
+    moment k about its axis: theta_1 = theta_0 + lambda exactly (the passive joints carry nothing)."""
+    al, be, a = np.radians(60.0), np.radians(90.0), 1.0
+    b = a * np.sin(be) / np.sin(al)
+    K = np.sin((be + al) / 2) / np.sin((be - al) / 2)
+
+    def frames(t1):
+        t2 = 2 * np.arctan(K / np.tan(t1 / 2))
+        T, out = np.eye(4), [np.eye(4)]
+        for th, ln, tw in zip((t1, t2, 2 * np.pi - t1, 2 * np.pi - t2), (a, b, a, b), (al, be, al, be)):
+            c, s, ct, st = np.cos(th), np.sin(th), np.cos(tw), np.sin(tw)
+            T = T @ np.array([[c, -s * ct, s * st, ln * c], [s, c * ct, -c * st, ln * s], [0, st, ct, 0], [0, 0, 0, 1]])
+            out.append(T)
+        assert np.abs(out[4] - np.eye(4)).max() < 1e-12
+        return out
+
+    F = frames(np.radians(theta0_deg))
+    P = [f[:3, 3].tolist() for f in F[:4]]
+    Z = [f[:3, 2].tolist() for f in F[:4]]
+    nodes = [{"id": i, "xyz": P[j]} for i, j in (("J1g", 0), ("J1l", 0), ("J2a", 1), ("J2b", 1), ("J3a", 2),
+                                                 ("J3b", 2), ("J4a", 3), ("J4g", 3))]
+    k = 10.0
+    joints = [{"id": f"j{i + 1}", "type": "revolute", "nodes": n, "axes": [Z[i]]}
+              for i, n in enumerate((["J1g", "J1l"], ["J2a", "J2b"], ["J3a", "J3b"], ["J4a", "J4g"]))]
+    joints[0]["stiffness"] = [k]
+    doc = {"nodes": nodes,
+           "elements": [{"id": "l1", "type": "rigid", "nodes": ["J1l", "J2a"]},
+                        {"id": "l2", "type": "rigid", "nodes": ["J2b", "J3a"]},
+                        {"id": "l3", "type": "rigid", "nodes": ["J3b", "J4a"]}],
+           "joints": joints, "supports": [{"node": "J1g", "fix": "all"}, {"node": "J4g", "fix": "all"}],
+           "loads": [{"node": "J1l", "force": [0.0, 0.0, 0.0], "moment": [k * z for z in Z[0]]}],
+           "analyses": [{"id": "path", "type": "path", "track": ["J3a"],
+                         "control": {"load_factor": float(np.radians(turn_deg)), "increments": increments}}]}
+    return doc, lambda lam: frames(np.radians(theta0_deg) + lam)[2][:3, 3]
+
+
+def test_a_bennett_linkage_chooses_its_redundant_rows_afresh_and_stays_closed_in_any_units():
+    doc, joint3 = bennett()
+    mm = scaled(doc)
+    for load in mm["loads"]:
+        load["moment"] = [A_LEN * B_FORCE * m for m in load["moment"]]
+    runs = [beamfea.run(d)["analyses"]["path"] for d in (doc, mm)]
+    for r, a in zip(runs, (1.0, A_LEN)):
+        assert r["completed"] is True, r["termination"]
+        assert not [c for c in r["critical_points"] if c["type"] == "singularity"]
+        changed = [s for s in r["steps"] if "statically_indeterminate" in s]
+        assert len(changed) >= 1
+        # Chosen afresh before the rows kept at the reference (its three rotation rows, dependent at
+        # theta_1 = 180 degrees where the four axes are coplanar) lose rank: 80 degrees of turn.
+        assert changed[0]["load_factor"] < np.radians(80.0)
+        assert changed[0]["statically_indeterminate"] != r["statically_indeterminate"]
+        assert len(changed[0]["statically_indeterminate"]) == 3
+        P0 = joint3(0.0)
+        for s in r["steps"]:
+            u = np.array(s["nodes"]["J3a"]["displacement"][:3]) / a
+            assert np.linalg.norm(P0 + u - joint3(s["load_factor"])) < 1e-7
+    si, mm = runs
+    assert [s["step"] for s in si["steps"] if "statically_indeterminate" in s] == \
+           [s["step"] for s in mm["steps"] if "statically_indeterminate" in s]

@@ -235,4 +235,127 @@ TEST(PathSingularity, ARowDroppedAtAFlatReferencePoseThatDepartsStopsThePath) {
   EXPECT_NE(r.brief_report().find("element 'coupler' ux"), std::string::npos) << r.brief_report();
 }
 
+
+// Bennett's linkage (G. T. Bennett, "A new mechanism", Engineering 76, 1903): four revolute joints in
+// a spatial loop, mobile although Gruebler gives it -2 degrees of freedom. With Denavit-Hartenberg
+// frames T_{i+1} = T_i Rz(theta_i) Tx(a_i) Rx(alpha_i), links a, b, a, b of twists alpha, beta,
+// alpha, beta, a sin(beta) = b sin(alpha), the loop closes for theta_3 = 2 pi - theta_1,
+// theta_4 = 2 pi - theta_2 and tan(theta_1 / 2) tan(theta_2 / 2) = sin((beta + alpha) / 2) /
+// sin((beta - alpha) / 2) (checked here: frames(t) closes to 1e-12 for every t used).
+struct Bennett {
+  double a = 1.0, alpha = M_PI / 3, beta = M_PI / 2, theta0 = 100.0 * M_PI / 180.0;
+  double b() const { return a * std::sin(beta) / std::sin(alpha); }
+  double theta2(double t1) const {
+    return 2.0 * std::atan(std::sin((beta + alpha) / 2) / std::sin((beta - alpha) / 2) / std::tan(t1 / 2));
+  }
+  // The frames of joints 1..4 and the closing frame (the identity when the loop closes).
+  std::array<Eigen::Matrix4d, 5> frames(double t1) const {
+    const double t2 = theta2(t1);
+    const std::array<double, 4> th{t1, t2, 2 * M_PI - t1, 2 * M_PI - t2}, len{a, b(), a, b()}, tw{alpha, beta, alpha, beta};
+    std::array<Eigen::Matrix4d, 5> F;
+    F[0].setIdentity();
+    for (int i = 0; i < 4; ++i) {
+      Eigen::Matrix4d Rz = Eigen::Matrix4d::Identity(), Tx = Eigen::Matrix4d::Identity(), Rx = Eigen::Matrix4d::Identity();
+      Rz.topLeftCorner<2, 2>() << std::cos(th[i]), -std::sin(th[i]), std::sin(th[i]), std::cos(th[i]);
+      Tx(0, 3) = len[i];
+      Rx.block<2, 2>(1, 1) << std::cos(tw[i]), -std::sin(tw[i]), std::sin(tw[i]), std::cos(tw[i]);
+      F[i + 1] = F[i] * Rz * Tx * Rx;
+    }
+    return F;
+  }
+  Eigen::Vector3d joint(int i, double t1) const { return frames(t1)[i].topRightCorner<3, 1>(); }
+  Eigen::Vector3d axis(int i, double t1) const { return frames(t1)[i].block<3, 1>(0, 2); }
+  // The middle of link 2 (joints 2 and 3), where the force acts.
+  Eigen::Vector3d middle(double t1) const { return 0.5 * (joint(1, t1) + joint(2, t1)); }
+};
+
+// Ground link 4 (joints 4 and 1) fixed, a spring k at joint 1, joints 2-4 passive; the load: a moment
+// k about joint 1's axis on link 1 and a force f on the middle of link 2. The linkage has one degree
+// of freedom theta_1, so equilibrium is one equation (virtual work): k (theta_1 - theta_0) =
+// lambda (k + f . dM/dtheta_1).
+json bennett_model(const Bennett& be, double k, const Eigen::Vector3d& f, double lambda_end, int increments) {
+  const double t = be.theta0;
+  const auto p = [](const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); };
+  json d;
+  d["nodes"] = json::array({{{"id", "J1g"}, {"xyz", p(be.joint(0, t))}}, {{"id", "J1l"}, {"xyz", p(be.joint(0, t))}},
+                            {{"id", "J2a"}, {"xyz", p(be.joint(1, t))}}, {{"id", "J2b"}, {"xyz", p(be.joint(1, t))}},
+                            {{"id", "J3a"}, {"xyz", p(be.joint(2, t))}}, {{"id", "J3b"}, {"xyz", p(be.joint(2, t))}},
+                            {{"id", "J4a"}, {"xyz", p(be.joint(3, t))}}, {{"id", "J4g"}, {"xyz", p(be.joint(3, t))}},
+                            {{"id", "M"}, {"xyz", p(be.middle(t))}}});
+  d["elements"] = json::array({{{"id", "l1"}, {"type", "rigid"}, {"nodes", {"J1l", "J2a"}}},
+                               {{"id", "l2"}, {"type", "rigid"}, {"nodes", {"J2b", "J3a"}}},
+                               {{"id", "l2m"}, {"type", "rigid"}, {"nodes", {"J2b", "M"}}},
+                               {{"id", "l3"}, {"type", "rigid"}, {"nodes", {"J3b", "J4a"}}}});
+  const auto joint = [&](const std::string& id, const std::string& n0, const std::string& n1, int i) {
+    json j{{"id", id}, {"type", "revolute"}, {"nodes", {n0, n1}}, {"axes", {p(be.axis(i, t))}}};
+    if (i == 0) j["stiffness"] = {k};
+    return j;
+  };
+  d["joints"] = json::array({joint("j1", "J1g", "J1l", 0), joint("j2", "J2a", "J2b", 1), joint("j3", "J3a", "J3b", 2),
+                             joint("j4", "J4a", "J4g", 3)});
+  d["supports"] = json::array({fix("J1g", {"ux", "uy", "uz", "rx", "ry", "rz"}), fix("J4g", {"ux", "uy", "uz", "rx", "ry", "rz"})});
+  const Eigen::Vector3d m = k * be.axis(0, t);
+  d["loads"] = json::array({load("J1l", 0, 0, 0, m.x(), m.y(), m.z()), load("M", f.x(), f.y(), f.z())});
+  d["analyses"] = json::array({{{"id", "p"}, {"type", "path"}, {"track", {"J3a", "M"}},
+                                {"control", {{"load_factor", lambda_end}, {"increments", increments}}}}});
+  return d;
+}
+
+// The virtual-work residual of equilibrium at theta_1 under the load factor lambda, over k (dM/dtheta by
+// central differences of the closed-form kinematics).
+double bennett_residual(const Bennett& be, double k, const Eigen::Vector3d& f, double lambda, double t) {
+  const Eigen::Vector3d dM = (be.middle(t + 1e-6) - be.middle(t - 1e-6)) / 2e-6;
+  return (k * (t - be.theta0) - lambda * (k + f.dot(dM))) / k;
+}
+
+// The rank-revealing choice of three of the closure's six rows at the reference (100 degrees) keeps
+// its three rotation rows, which lose rank at theta_1 = 180 degrees (the four joint axes fall into
+// one plane there, beta = 90 degrees) while the loop's six rows keep rank three: a pose the linkage
+// passes smoothly. The path must choose its rows afresh before it (and say which it drops from that
+// step on), report no singular pose, and follow the linkage to 250 degrees with the loop closed and in
+// equilibrium.
+TEST(PathRedundancy, ABennettLinkageHasItsRedundantRowsChosenAfreshWhereTheReferencesLoseRank) {
+  const Bennett be;
+  for (double t : {be.theta0, M_PI, 250.0 * M_PI / 180.0})
+    ASSERT_LT((be.frames(t)[4] - Eigen::Matrix4d::Identity()).cwiseAbs().maxCoeff(), 1e-12);
+  const double k = 10.0;
+  const Eigen::Vector3d f(0.0, 0.0, -2.0);
+  const double lambda_end = 150.0 * M_PI / 180.0;
+  const Model m = read_model(bennett_model(be, k, f, lambda_end, 30));
+  PathOptions o;
+  o.control = PathControl::LoadFactor;
+  o.target = lambda_end;
+  o.increments = 30;
+  o.track = {m.find_node("J3a"), m.find_node("M"), m.find_node("J1l")};
+  o.stability = true;
+  const PathResult r = follow_path(m, o);
+  ASSERT_TRUE(r.completed) << r.brief_report();
+  EXPECT_EQ(r.statically_indeterminate.size(), 3u);
+  for (const auto& c : r.critical_points) EXPECT_NE(c.type, CriticalPointType::Singularity) << c.what;
+  int changes = 0;
+  double worst = 0.0, worst_residual = 0.0, theta_end = 0.0;
+  for (const auto& st : r.steps) {
+    // Joint 1's axis is z: its angle is the rotation of link 1 about z.
+    const double t = be.theta0 + st.track[2][5];
+    worst_residual = std::max(worst_residual, std::abs(bennett_residual(be, k, f, st.load_factor, t)));
+    worst = std::max({worst, (be.joint(2, be.theta0) + st.track[0].head<3>() - be.joint(2, t)).norm(),
+                      (be.middle(be.theta0) + st.track[1].head<3>() - be.middle(t)).norm()});
+    if (st.statically_indeterminate) {
+      ++changes;
+      EXPECT_EQ(st.statically_indeterminate->size(), 3u);
+      // The first change leaves the reference's rows before they lose rank (later ones may return).
+      if (changes == 1) {
+        EXPECT_NE(*st.statically_indeterminate, r.statically_indeterminate);
+        EXPECT_LT(t, M_PI) << "step " << st.step << ": chosen afresh only past 180 degrees";
+      }
+    }
+    theta_end = t;
+  }
+  EXPECT_GE(changes, 1);
+  // Newton's tolerance is 1e-9 of the model length (about 2) and of the force scale.
+  EXPECT_LT(worst, 1e-7);
+  EXPECT_LT(worst_residual, 1e-6);
+  EXPECT_GT(theta_end, 240.0 * M_PI / 180.0);
+}
+
 }  // namespace path_singularity_test
