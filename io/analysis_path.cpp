@@ -388,6 +388,15 @@ AnalysisOutcome run_path(const AnalysisContext& ctx, const PathSpec& spec) {
     if (ctx.warning && c.type == CriticalPointType::Singularity && c.passed)
       ctx.warning(fmt::format("analysis '{}': the path passed a singular pose at load factor {:.6g} (control {:.6g}): {}",
                               ctx.id, c.load_factor, c.control, c.what));
+  std::string rechosen;  // the steps where the redundant rows were chosen afresh
+  int times = 0;
+  for (const auto& s : r.steps)
+    if (s.statically_indeterminate) rechosen += (times++ ? ", " : "") + std::to_string(s.step);
+  if (ctx.warning && times)
+    ctx.warning(fmt::format("analysis '{}': the redundant constraint rows were chosen afresh along the path, at step{} {} "
+                            "(the rows kept lost rank there; each such step's statically_indeterminate names the rows "
+                            "dropped from it on)",
+                            ctx.id, times > 1 ? "s" : "", rechosen));
   const bool imposed = o.control == PathControl::Displacement && r.steps.size() &&
                        std::any_of(r.steps.begin(), r.steps.end(), [](const PathStep& s) { return s.reaction != 0.0; });
 

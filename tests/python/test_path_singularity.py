@@ -155,7 +155,11 @@ def test_a_bennett_linkage_chooses_its_redundant_rows_afresh_and_stays_closed_in
     mm = scaled(doc)
     for load in mm["loads"]:
         load["moment"] = [A_LEN * B_FORCE * m for m in load["moment"]]
-    runs = [beamfea.run(d)["analyses"]["path"] for d in (doc, mm)]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        runs = [beamfea.run(d)["analyses"]["path"] for d in (doc, mm)]
+    msgs = [str(w.message) for w in caught if issubclass(w.category, beamfea.BeamfeaWarning)]
+    assert sum("redundant constraint rows were chosen afresh along the path" in m for m in msgs) == 2, msgs
     for r, a in zip(runs, (1.0, A_LEN)):
         assert r["completed"] is True, r["termination"]
         assert not [c for c in r["critical_points"] if c["type"] == "singularity"]
