@@ -328,19 +328,23 @@ TEST(SweepCommand, UnderMpirunADeadRankIsNamedWithItsCasesAndTheTableResumes) {
   const int rc = sh(std::string(kRankEnv) + "timeout 120 mpirun --allow-run-as-root --oversubscribe "
                     "--mca odls_base_sigkill_timeout 10 -n 2 " + (dir / "rank.sh").string() + " sweep " +
                     file.string() + " --out " + out.string() + " --jobs 1 -q > " + err.string() + " 2>&1");
-  EXPECT_NE(rc, 0);
-  EXPECT_NE(rc, 124) << "the run hung after its rank died:\n" << read(err);
   const std::string log = read(err);
+  EXPECT_NE(rc, 0) << log;
+  EXPECT_NE(rc, 124) << "the run hung after its rank died:\n" << log;
   EXPECT_NE(log.find("rank 1 stopped answering"), std::string::npos) << log;
   EXPECT_NE(log.find("not in the table"), std::string::npos) << log;
   bool well_formed = false;
   const Csv partial = read_csv(table, &well_formed);
-  EXPECT_TRUE(well_formed);
-  EXPECT_LT(partial.rows.size(), kLongCases);
+  EXPECT_TRUE(well_formed) << log;
+  EXPECT_LT(partial.rows.size(), kLongCases) << log;
 
-  ASSERT_EQ(sh(exe() + " sweep " + file.string() + " --out " + out.string() + " --resume -q"), 0);
+  const auto resume_err = dir / "resume.txt";
+  ASSERT_EQ(sh(exe() + " sweep " + file.string() + " --out " + out.string() + " --resume -q > " + resume_err.string() +
+               " 2>&1"),
+            0)
+      << read(resume_err) << "\nthe killed run's output:\n" << log;
   const Csv full = read_csv(table, &well_formed);
-  ASSERT_EQ(full.rows.size(), kLongCases);
+  ASSERT_EQ(full.rows.size(), kLongCases) << read(resume_err) << "\nthe killed run's output:\n" << log;
   expect_sorted_valid(full, well_formed);
   ASSERT_EQ(sh(exe() + " sweep " + file.string() + " --out " + (dir / "whole").string() + " -q"), 0);
   EXPECT_TRUE(text_without_time(table) == text_without_time(dir / "whole" / "cases.csv"));
