@@ -120,6 +120,10 @@ class PathRun {
  private:
   bool displacement() const { return o_.control == PathControl::Displacement; }
   ControlDof held_control() const { return displacement() ? ControlDof::Held : ControlDof::Free; }
+  // "load factor 1.2", or under an imposed motion (no loads) "control 0.3": where a state is.
+  std::string where(const Converged& c) const {
+    return sys_.has_loads() ? fmt::format("load factor {:.6g}", c.lambda) : fmt::format("control {:.6g}", control_.value(c));
+  }
   void say(const std::string& s) const {
     if (o_.progress) o_.progress(s);
   }
@@ -188,6 +192,7 @@ class PathRun {
   Converged cur_;
   std::string report_;   // the last solver report (the reason given when the path stops)
   std::string rows_chosen_ = "at the reference pose";  // where the rows kept were chosen
+  bool rows_rechosen_ = false;                         // elsewhere than at the reference
   int step_ = 0, cuts_ = 0, neg_ = -1;
   double slope_ = NAN;
   bool switched_ = false;
@@ -293,12 +298,12 @@ DroppedRows PathRun::check_dropped_rows(const Converged& next) {
   const PathSystem::Departure d = sys_.dropped_row_departure(next.state);
   if (!(d.value > kDroppedRowDeparture)) return DroppedRows::Held;
   const std::string departs = fmt::format("{}, dropped as redundant {}, departs from its target by {:.3g} of the model "
-                                          "length at load factor {:.6g}",
-                                          d.row, rows_chosen_, d.value, next.lambda);
+                                          "length at {}",
+                                          d.row, rows_chosen_, d.value, where(next));
   // The rank grew where the rows gained a singular value well above the departure, which an open
   // loop has only to the order of its opening.
   if (sys_.rank_above(next.state, kRankMargin * d.value) > sys_.nc()) {
-    const bool reference = step_ == 0 && rows_chosen_ == "at the reference pose";
+    const bool reference = !rows_rechosen_;
     res_.finish(PathTermination::RankChanged, cur_.lambda, 0,
                 fmt::format("{}: the {} is singular for the loops (their rows lose rank there){}", departs,
                             reference ? "reference pose" : "pose where the rows were chosen",
@@ -335,9 +340,9 @@ PathRun::RowCrossing PathRun::rows_lose_rank_within(const Converged& next, const
                        &nearest);
     const PathSystem::RowsAt rows = sys_.rows_at(nearest.state);
     if (rows.rank < sys_.nc() || rows.same_as_kept || !(rows.kept < kReselectRatio * rows.best)) continue;
-    report_ = fmt::format("the rows kept lose rank at load factor {:.6g} (smallest singular value {:.3g}, {:.3g} for a "
-                          "fresh choice), not the loop: {} is not singular there",
-                          nearest.lambda, rows.kept, rows.best, monitor_.describe(i));
+    report_ = fmt::format("the rows kept lose rank at {} (smallest singular value {:.3g}, {:.3g} for a fresh choice), "
+                          "not the loop: {} is not singular there",
+                          where(nearest), rows.kept, rows.best, monitor_.describe(i));
     // The fresh rows must serve at the step's start too (where the rows kept still do).
     if (!(sys_.rows_measure(cur_.state, rows.fresh.kept) >= kReselectRatio * sys_.rows_at(cur_.state).kept))
       return RowCrossing::TooLong;
@@ -355,12 +360,13 @@ void PathRun::reselect(const PathSystem::RowsAt& rows, const std::string& why) {
     m_start_ = m_cur_ = monitor_.measures(cur_.state);
     m_prev_.resize(0);
   }
-  rows_chosen_ = fmt::format("at load factor {:.6g} (step {})", cur_.lambda, step_);
+  rows_chosen_ = fmt::format("at {} (step {})", where(cur_), step_);
+  rows_rechosen_ = true;
   res_.steps.back().statically_indeterminate = sys_.redundant();
   std::string dropped;
   for (const auto& r : sys_.redundant()) dropped += (dropped.empty() ? "" : ", ") + r;
-  say(fmt::format("step {}: redundant constraint rows chosen afresh at load factor {:.6g} ({}): now {}", step_,
-                  cur_.lambda, why, dropped));
+  say(fmt::format("step {}: redundant constraint rows chosen afresh at {} ({}): now {}", step_, where(cur_), why,
+                  dropped));
 }
 
 bool PathRun::ends_at_singularity() {

@@ -13,10 +13,13 @@ PathScales path_scales(const Model& model, const PathSystem& sys, FactorCache& f
   if (!sys.has_loads()) return s;
   const Eigen::VectorXd t = factors.tangent(sys, start);
   double t_max = 0.0;  // largest translation of the linear response per unit load factor
+  double r_max = 0.0;  // and largest rotation
   if (t.size()) {
     s.t_norm = std::sqrt(sys.weighted_dot(t, t));
-    for (int k = 0; k < sys.nf(); ++k)
-      if (!sys.structure().is_rotation(sys.free_gens()[k])) t_max = std::max(t_max, std::abs(t[k]));
+    for (int k = 0; k < sys.nf(); ++k) {
+      double& m = sys.structure().is_rotation(sys.free_gens()[k]) ? r_max : t_max;
+      m = std::max(m, std::abs(t[k]));
+    }
   }
   try {
     BucklingOptions bo;
@@ -33,6 +36,10 @@ PathScales path_scales(const Model& model, const PathSystem& sys, FactorCache& f
     s.lambda_ref = s.buckling_factor;
   } else if (t_max > 0.0) {
     s.lambda_ref = sys.length_scale() / t_max;
+  } else if (r_max > 0.0) {
+    // No free translation (rigid links and joints, a lumped model): the load factor that turns
+    // some coordinate by a radian.
+    s.lambda_ref = 1.0 / r_max;
   }
   s.psi = std::max(s.t_norm, s.buckling_factor > 0.0 ? sys.length_scale() / s.buckling_factor : 0.0);
   if (!(s.psi > 0.0) && s.lambda_ref > 0.0) s.psi = sys.length_scale() / s.lambda_ref;

@@ -8,7 +8,9 @@
 //               (solvers/path/equilibrium.hpp), |t|_W its norm in the arc-length metric;
 //   lambda_ref  the structure's own load-factor scale: the lowest positive linearised buckling
 //               factor (solvers/buckling.hpp) where there is one, otherwise the load factor whose
-//               linear response moves some node by the model size L (L / max|t_translation|);
+//               linear response moves some node by the model size L (L / max|t_translation|), or,
+//               where no translation is free (rigid links and joints: a lumped model), turns some
+//               coordinate by a radian (1 / max|t_rotation|);
 //   psi         the arc-length weight of the load factor (Crisfield 1991, vol. 1, eq. 9.13:
 //               |Delta|_W^2 + psi^2 dlambda^2 = ds^2): psi = max(|t|_W, L / lambda_cr), the larger
 //               of the linear response per unit load factor and the model size per buckling factor

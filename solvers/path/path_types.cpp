@@ -72,7 +72,8 @@ std::string PathResult::brief_report() const {
     case PathTermination::InitialStateFailed:
       return "the initial state with the prescribed values did not converge: " + termination_detail;
     case PathTermination::NoAutomaticStep:
-      return "arc_length auto: no scale for the first step (the tangent at the start is singular)";
+      return "arc_length auto: no scale for the first step (the tangent at the start is singular, or the load moves "
+             "nothing)";
     case PathTermination::Singularity:
       return fmt::format("singular pose at load factor {:.6g}: {} (no step converged beyond it)", termination_value,
                          termination_detail);

@@ -308,24 +308,24 @@ double bennett_residual(const Bennett& be, double k, const Eigen::Vector3d& f, d
   return (k * (t - be.theta0) - lambda * (k + f.dot(dM))) / k;
 }
 
+// The load factor of the Bennett paths: 150 degrees of joint 1 under the moment alone.
+constexpr double kBennettLoadFactor = 150.0 * M_PI / 180.0;
+
 // The rank-revealing choice of three of the closure's six rows at the reference (100 degrees) keeps
 // its three rotation rows, which lose rank at theta_1 = 180 degrees (the four joint axes fall into
 // one plane there, beta = 90 degrees) while the loop's six rows keep rank three: a pose the linkage
 // passes smoothly. The path must choose its rows afresh before it (and say which it drops from that
 // step on), report no singular pose, and follow the linkage to 250 degrees with the loop closed and in
 // equilibrium.
-TEST(PathRedundancy, ABennettLinkageHasItsRedundantRowsChosenAfreshWhereTheReferencesLoseRank) {
+// `control`: the path's control (the load factor to 150 degrees' worth, or an arc length stopped there).
+void expect_bennett_followed(const PathOptions& control) {
   const Bennett be;
   for (double t : {be.theta0, M_PI, 250.0 * M_PI / 180.0})
     ASSERT_LT((be.frames(t)[4] - Eigen::Matrix4d::Identity()).cwiseAbs().maxCoeff(), 1e-12);
   const double k = 10.0;
   const Eigen::Vector3d f(0.0, 0.0, -2.0);
-  const double lambda_end = 150.0 * M_PI / 180.0;
-  const Model m = read_model(bennett_model(be, k, f, lambda_end, 30));
-  PathOptions o;
-  o.control = PathControl::LoadFactor;
-  o.target = lambda_end;
-  o.increments = 30;
+  const Model m = read_model(bennett_model(be, k, f, kBennettLoadFactor, 30));
+  PathOptions o = control;
   o.track = {m.find_node("J3a"), m.find_node("M"), m.find_node("J1l")};
   o.stability = true;
   const PathResult r = follow_path(m, o);
@@ -356,6 +356,24 @@ TEST(PathRedundancy, ABennettLinkageHasItsRedundantRowsChosenAfreshWhereTheRefer
   EXPECT_LT(worst, 1e-7);
   EXPECT_LT(worst_residual, 1e-6);
   EXPECT_GT(theta_end, 240.0 * M_PI / 180.0);
+}
+
+TEST(PathRedundancy, ABennettLinkageHasItsRedundantRowsChosenAfreshWhereTheReferencesLoseRank) {
+  PathOptions o;
+  o.control = PathControl::LoadFactor;
+  o.target = kBennettLoadFactor;
+  o.increments = 30;
+  expect_bennett_followed(o);
+}
+
+// The same under an automatic arc length: a model of rigid links and joints has no free translation,
+// so its scales come from the rotation per unit load factor.
+TEST(PathRedundancy, ABennettLinkageUnderAnAutomaticArcLength) {
+  PathOptions o;
+  o.control = PathControl::ArcLength;
+  o.arc_length_auto = true;
+  o.stop_load_factor = kBennettLoadFactor;
+  expect_bennett_followed(o);
 }
 
 }  // namespace path_singularity_test
