@@ -10,6 +10,8 @@
 
 #ifdef BEAMFEA_HAVE_PETSC
 #include <petscksp.h>
+
+#include "solvers/petsc_rows_matrix.hpp"
 #endif
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -228,31 +230,20 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
   PetscMPIInt size = 1;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   const PetscInt bs = block_size_ > 1 && n % block_size_ == 0 ? block_size_ : 1;
-  const auto first = static_cast<PetscInt>(rows_.first), local = static_cast<PetscInt>(rows_.count);
-  // A's columns are its rows (symmetric): the CSC arrays of columns [first, first + local) are
-  // the CSR arrays of those rows, with global column indices, as MATMPIAIJ takes them.
-  const int* outer = A->outerIndexPtr();
-  const PetscInt* cols = A->innerIndexPtr() + outer[first];
-  const PetscScalar* vals = A->valuePtr() + outer[first];
   if (borrow_ && size == 1 && A == &A_in) {
     // PETSc's matrix on A's own arrays (PetscInt is A's index type: Debian's PETSc has 32-bit
-    // indices): no copy, as set_borrow_matrix says. PETSc writes nothing into them.
+    // indices; A's CSC arrays are the CSR arrays of A^T = A): no copy, as set_borrow_matrix says.
+    // PETSc writes nothing into them.
     static_assert(std::is_same_v<PetscInt, Sparse::StorageIndex>);
-    check(MatCreateSeqAIJWithArrays(PETSC_COMM_WORLD, n, n, const_cast<PetscInt*>(outer), const_cast<PetscInt*>(cols),
-                                    const_cast<PetscScalar*>(vals), &s.A),
+    check(MatCreateSeqAIJWithArrays(PETSC_COMM_WORLD, n, n, const_cast<PetscInt*>(A->outerIndexPtr()),
+                                    const_cast<PetscInt*>(A->innerIndexPtr()), const_cast<PetscScalar*>(A->valuePtr()),
+                                    &s.A),
           "MatCreateSeqAIJWithArrays");
     if (bs > 1) check(MatSetBlockSize(s.A, bs), "MatSetBlockSize");
+    check(MatSetOption(s.A, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   } else {
-    std::vector<PetscInt> row_starts(static_cast<std::size_t>(local) + 1);
-    for (PetscInt k = 0; k <= local; ++k) row_starts[static_cast<std::size_t>(k)] = outer[first + k] - outer[first];
-    check(MatCreate(PETSC_COMM_WORLD, &s.A), "MatCreate");
-    check(MatSetSizes(s.A, local, local, n, n), "MatSetSizes");
-    check(MatSetType(s.A, MATAIJ), "MatSetType");  // MATSEQAIJ on one process, MATMPIAIJ on several
-    if (bs > 1) check(MatSetBlockSize(s.A, bs), "MatSetBlockSize");
-    check(MatSeqAIJSetPreallocationCSR(s.A, row_starts.data(), cols, vals), "MatSeqAIJSetPreallocationCSR");
-    check(MatMPIAIJSetPreallocationCSR(s.A, row_starts.data(), cols, vals), "MatMPIAIJSetPreallocationCSR");
+    symmetric_rows_aij(PETSC_COMM_WORLD, *A, rows_, bs, check, s.A);
   }
-  check(MatSetOption(s.A, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   check(MatSetOption(s.A, MAT_SPD, PETSC_TRUE), "MatSetOption");
   check(MatCreateVecs(s.A, &s.x, &s.b), "MatCreateVecs");
   if (near_null_.cols() > 0) {
@@ -261,7 +252,7 @@ FactorStatus PetscSolver::compute(const Sparse& A_in) {
       check(VecDuplicate(s.x, &modes[k]), "VecDuplicate");
       PetscScalar* v = nullptr;
       check(VecGetArrayWrite(modes[k], &v), "VecGetArrayWrite");
-      std::copy_n(near_null_.col(static_cast<Eigen::Index>(k)).data() + first, local, v);
+      std::copy_n(near_null_.col(static_cast<Eigen::Index>(k)).data() + rows_.first, rows_.count, v);
       check(VecRestoreArrayWrite(modes[k], &v), "VecRestoreArrayWrite");
     }
     MatNullSpace space = nullptr;

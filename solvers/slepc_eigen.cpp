@@ -16,6 +16,8 @@
 
 #ifdef BEAMFEA_HAVE_SLEPC
 #include <slepceps.h>
+
+#include "solvers/petsc_rows_matrix.hpp"
 #endif
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -137,21 +139,14 @@ Layout layout_for(Eigen::Index n, bool factor) {
 // An AIJ copy of this process's rows of a symmetric Eigen matrix (held whole by every process): its
 // CSC arrays of those columns are the CSR arrays of those rows, the matrix being its transpose.
 void petsc_matrix(const SparseMatrix& A, bool spd, const Layout& at, OwnedMat& out) {
-  SparseMatrix C = A;
-  C.makeCompressed();
-  const auto n = static_cast<PetscInt>(C.rows());
-  const auto first = static_cast<PetscInt>(at.rows.first), local = static_cast<PetscInt>(at.rows.count);
-  const int* outer = C.outerIndexPtr();
-  std::vector<PetscInt> ia(static_cast<std::size_t>(local) + 1);
-  for (PetscInt k = 0; k <= local; ++k) ia[static_cast<std::size_t>(k)] = outer[first + k] - outer[first];
-  std::vector<PetscInt> ja(C.innerIndexPtr() + outer[first], C.innerIndexPtr() + outer[first + local]);
-  const PetscScalar* values = C.valuePtr() + outer[first];
-  check(MatCreate(at.comm, &out.h), "MatCreate");
-  check(MatSetSizes(out.h, local, local, n, n), "MatSetSizes");
-  check(MatSetType(out.h, MATAIJ), "MatSetType");  // sequential on one process, MPIAIJ on several
-  check(MatSeqAIJSetPreallocationCSR(out.h, ia.data(), ja.data(), values), "MatSeqAIJSetPreallocationCSR");
-  check(MatMPIAIJSetPreallocationCSR(out.h, ia.data(), ja.data(), values), "MatMPIAIJSetPreallocationCSR");
-  check(MatSetOption(out.h, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+  const SparseMatrix* C = &A;
+  SparseMatrix compressed;
+  if (!A.isCompressed()) {
+    compressed = A;
+    compressed.makeCompressed();
+    C = &compressed;
+  }
+  symmetric_rows_aij(at.comm, *C, at.rows, 1, check, out.h);
   if (spd) check(MatSetOption(out.h, MAT_SPD, PETSC_TRUE), "MatSetOption");
 }
 
