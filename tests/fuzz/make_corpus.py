@@ -53,6 +53,40 @@ def example(path, bound_steps=None):
     return d
 
 
+def bennett(turn_deg=150.0, increments=10):
+    """Bennett's linkage (four revolute joints in a spatial loop; links 1, 1.155, twists 60 and 90
+    degrees), built at 100 degrees of joint 1 and turned by a moment: the path chooses its redundant
+    closure rows afresh twice (docs/analyses/path.md)."""
+    import math
+    al, be, a = math.radians(60.0), math.radians(90.0), 1.0
+    b = a * math.sin(be) / math.sin(al)
+    K = math.sin((be + al) / 2) / math.sin((be - al) / 2)
+    t1 = math.radians(100.0)
+    t2 = 2 * math.atan(K / math.tan(t1 / 2))
+    T = [[float(i == j) for j in range(4)] for i in range(4)]
+    frames = [T]
+    for th, ln, tw in zip((t1, t2, 2 * math.pi - t1, 2 * math.pi - t2), (a, b, a, b), (al, be, al, be)):
+        c, s, ct, st = math.cos(th), math.sin(th), math.cos(tw), math.sin(tw)
+        M = [[c, -s * ct, s * st, ln * c], [s, c * ct, -c * st, ln * s], [0, st, ct, 0], [0, 0, 0, 1]]
+        T = [[sum(T[i][k] * M[k][j] for k in range(4)) for j in range(4)] for i in range(4)]
+        frames.append(T)
+    P = [[round(f[i][3], 12) for i in range(3)] for f in frames[:4]]
+    Z = [[round(f[i][2], 12) for i in range(3)] for f in frames[:4]]
+    nodes = [{"id": i, "xyz": P[j]} for i, j in (("J1g", 0), ("J1l", 0), ("J2a", 1), ("J2b", 1), ("J3a", 2),
+                                                 ("J3b", 2), ("J4a", 3), ("J4g", 3))]
+    joints = [{"id": f"j{i + 1}", "type": "revolute", "nodes": n, "axes": [Z[i]]}
+              for i, n in enumerate((["J1g", "J1l"], ["J2a", "J2b"], ["J3a", "J3b"], ["J4a", "J4g"]))]
+    joints[0]["stiffness"] = [10.0]
+    return {"nodes": nodes,
+            "elements": [{"id": "l1", "type": "rigid", "nodes": ["J1l", "J2a"]},
+                         {"id": "l2", "type": "rigid", "nodes": ["J2b", "J3a"]},
+                         {"id": "l3", "type": "rigid", "nodes": ["J3b", "J4a"]}],
+            "joints": joints, "supports": [{"node": "J1g", "fix": "all"}, {"node": "J4g", "fix": "all"}],
+            "loads": [{"node": "J1l", "moment": [10.0 * z for z in Z[0]]}],
+            "analyses": [{"id": "p", "type": "path", "track": ["J3a"],
+                          "control": {"load_factor": round(math.radians(turn_deg), 12), "increments": increments}}]}
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
     # Seeds: the examples (paths bounded to a few steps) and one model per analysis type.
@@ -75,6 +109,7 @@ def main():
     hinge["joints"] = [{"id": "j", "type": "revolute", "nodes": ["B", "C"], "axes": [[0, 0, 1]], "stiffness": [50.0]}]
     hinge["loads"] = [{"node": "D", "force": [0, -10, 0]}, {"joint": "j", "coordinate": 0, "value": 1.0}]
     write("seed_joint_rigid.json", hinge)
+    write("seed_bennett_rows_rechosen.json", bennett())
     shapes = cantilever()
     shapes["sections"] = [{"id": "s", "shape": "tube", "d": 0.05, "t": 0.004}]
     write("seed_shape_tube.json", shapes)
