@@ -38,6 +38,13 @@
 // constraint Jacobian) losing rank; a crossing is located by bisection on the sign of the scaled
 // smallest singular value and passed, a fold where no step converges ends the path (termination
 // Singularity) instead of "no convergence".
+// Redundant constraint rows (solvers/path/equilibrium.hpp, PathSystem::reselect): chosen at the
+// reference, chosen afresh along the path where the rows kept lose rank and the constraints do not
+// (a spatial over-constrained loop: a Bennett linkage), at a converged state, within a step whose
+// passive Jacobian changes sign for the rows' sake, or before a failed step is cut; the step where
+// they change records the rows dropped from it on. A dropped row that departs from its target where
+// the constraints gained rank (a model built at a pose singular for its loops) stops the path
+// (termination RankChanged).
 //
 // The parts, one job each (solvers/path/):
 //   path_types        options, per-step records, critical points, result (PathTermination)
