@@ -112,7 +112,7 @@ class PathRun {
       : o_(o), original_(original), sys_(sys), factors_(factors),
         corrector_(sys, factors, kin, o.chord_corrector ? ChordIterations::On : ChordIterations::Off),
         stability_(sys, factors), predictor_(sys, factors), control_(o, sys, start, ds0),
-        parts_{o, sys, factors, corrector_, stability_, predictor_}, monitor_(sys), res_(res), cur_(start) {}
+        parts_{o, sys, factors, corrector_, stability_, predictor_}, monitor_(sys, start.state), res_(res), cur_(start) {}
   // Follows the path to its termination (set in the result).
   void run();
   const Corrector& corrector() const { return corrector_; }
@@ -158,21 +158,17 @@ class PathRun {
   // the step is cut.
   DroppedRows check_dropped_rows(const Converged& next);
   // Chooses the rows afresh at cur_ (the last converged state) when the rows kept lose rank there
-  // while the constraints do not (kReselectRatio); true when it changed them.
+  // while the constraints do not (kReselectRatio), or would a step ahead (their measure extrapolated
+  // from the last two states); true when it changed them.
   bool refresh_rows();
-  // A loop's passive Jacobian changes sign between cur_ and next (measures m_next at next) where
-  // the rows kept lose rank and the constraints do not (a pose inside the step; rows chosen well at
-  // both ends can lose rank in between). The rows are chosen afresh at cur_ from a fresh choice at
-  // the located pose (Reselected: the step is solved again) when that choice serves at cur_ too,
-  // else the step is too long to change them (TooLong: it is cut). None where the crossing is the
-  // linkage's own (a singular pose, located and reported by locate_singularities).
-  enum class RowCrossing { None, Reselected, TooLong };
-  RowCrossing rows_lose_rank_within(const Converged& next, const Eigen::VectorXd& m_next, const Eigen::VectorXd& dir);
   // Keeps the fresh selection `rows` (taken at cur_) from here on: cur_'s multipliers carried over,
   // the factor and the singularity measures dropped, the change recorded in cur_'s step.
   void reselect(const PathSystem::RowsAt& rows, const std::string& why);
   // The measures of the singular poses at cur_ (and the state before it) after cur_ changed.
   void track_singularities(const Eigen::VectorXd& m_next, const Converged& before);
+  // The loops' bases carried to the converged state `to` (SingularityMonitor::transport), its
+  // measures taken afresh where a basis was.
+  void carry_singularity_bases(const Converged& to);
 
   const PathOptions& o_;
   const Model& original_;
@@ -193,6 +189,7 @@ class PathRun {
   std::string report_;   // the last solver report (the reason given when the path stops)
   std::string rows_chosen_ = "at the reference pose";  // where the rows kept were chosen
   bool rows_rechosen_ = false;                         // elsewhere than at the reference
+  double kept_before_ = NAN;  // the kept rows' measure at the last converged state (refresh_rows)
   int step_ = 0, cuts_ = 0, neg_ = -1;
   double slope_ = NAN;
   bool switched_ = false;
@@ -323,44 +320,28 @@ DroppedRows PathRun::check_dropped_rows(const Converged& next) {
 bool PathRun::refresh_rows() {
   if (!sys_.has_dropped_rows()) return false;
   const PathSystem::RowsAt rows = sys_.rows_at(cur_.state);
-  if (rows.rank != sys_.nc() || rows.same_as_kept || !(rows.kept < kReselectRatio * rows.best)) return false;
-  reselect(rows, fmt::format("the rows kept lose rank (smallest singular value {:.3g}, {:.3g} for a fresh choice)",
-                             rows.kept, rows.best));
+  // The kept rows' measure one more step of the same size ahead, extrapolated from the last two
+  // states: rows that would lose rank within the next step are changed before it.
+  const double ahead = std::isnan(kept_before_) ? rows.kept : 2.0 * rows.kept - kept_before_;
+  kept_before_ = rows.kept;
+  if (rows.rank != sys_.nc() || rows.same_as_kept || !(std::min(rows.kept, ahead) < kReselectRatio * rows.best))
+    return false;
+  reselect(rows, fmt::format("the rows kept lose rank (smallest singular value {:.3g}, {:.3g} a step ahead, {:.3g} for "
+                             "a fresh choice)",
+                             rows.kept, ahead, rows.best));
   return true;
-}
-
-PathRun::RowCrossing PathRun::rows_lose_rank_within(const Converged& next, const Eigen::VectorXd& m_next,
-                                                    const Eigen::VectorXd& dir) {
-  if (!sys_.has_dropped_rows()) return RowCrossing::None;
-  const auto at = [&](const Converged& c, double f) { return control_at(c, f); };
-  for (int i = 0; i < m_next.size(); ++i) {
-    if (!monitor_.candidates()[i].square || !(m_cur_[i] * m_next[i] < 0.0)) continue;
-    Converged nearest;
-    locate_singularity(parts_, monitor_, i, cur_, next, m_cur_[i], m_next[i], control_.h(), dir, control_.mode(), at,
-                       &nearest);
-    const PathSystem::RowsAt rows = sys_.rows_at(nearest.state);
-    if (rows.rank < sys_.nc() || rows.same_as_kept || !(rows.kept < kReselectRatio * rows.best)) continue;
-    report_ = fmt::format("the rows kept lose rank at {} (smallest singular value {:.3g}, {:.3g} for a fresh choice), "
-                          "not the loop: {} is not singular there",
-                          where(nearest), rows.kept, rows.best, monitor_.describe(i));
-    // The fresh rows must serve at the step's start too (where the rows kept still do).
-    if (!(sys_.rows_measure(cur_.state, rows.fresh.kept) >= kReselectRatio * sys_.rows_at(cur_.state).kept))
-      return RowCrossing::TooLong;
-    reselect(rows, report_);
-    return RowCrossing::Reselected;
-  }
-  return RowCrossing::None;
 }
 
 void PathRun::reselect(const PathSystem::RowsAt& rows, const std::string& why) {
   cur_.mu = sys_.reselect(cur_.state, cur_.mu, rows.fresh);
   factors_.forget();
-  monitor_.refresh();
+  monitor_.refresh(cur_.state);
   if (!monitor_.empty()) {
     m_start_ = m_cur_ = monitor_.measures(cur_.state);
     m_prev_.resize(0);
   }
   rows_chosen_ = fmt::format("at {} (step {})", where(cur_), step_);
+  kept_before_ = NAN;
   rows_rechosen_ = true;
   res_.steps.back().statically_indeterminate = sys_.redundant();
   std::string dropped;
@@ -382,6 +363,12 @@ bool PathRun::ends_at_singularity() {
   res_.finish(PathTermination::Singularity, cp->load_factor, cuts_, cp->what);
   res_.critical_points.push_back(std::move(*cp));
   return true;
+}
+
+void PathRun::carry_singularity_bases(const Converged& to) {
+  if (monitor_.transport(to.state)) return;
+  m_cur_ = monitor_.measures(to.state);
+  m_prev_.resize(0);
 }
 
 void PathRun::track_singularities(const Eigen::VectorXd& m_next, const Converged& before) {
@@ -463,7 +450,10 @@ bool PathRun::switch_onto_branch(const LocatedCriticalPoint& lc, CriticalPoint& 
   control_.restart_at(s_lo + bs.ds, bs.ds);
   neg_ = record(bs.state, step_, control_.path_length(), bs.ds, o_.control);
   predictor_.accept(bs.direction);
-  if (!monitor_.empty()) track_singularities(monitor_.measures(bs.state.state), lc.before);
+  if (!monitor_.empty()) {
+    track_singularities(monitor_.measures(bs.state.state), lc.before);
+    carry_singularity_bases(bs.state);
+  }
   cur_ = std::move(bs.state);
   res_.critical_points.push_back(cp);
   say(fmt::format("branch switched onto the secondary path at load factor {:.6g}", cur_.lambda));
@@ -505,16 +495,10 @@ void PathRun::run() {
       if (!cut(r->why, r->what)) return;
       continue;
     }
+    // The singularity measures at next, and whether their signs compare with cur_'s (the loops'
+    // row spaces turned less than 60 degrees over the step).
     const Eigen::VectorXd m_next = monitor_.empty() ? Eigen::VectorXd() : monitor_.measures(next.state);
-    if (m_next.size()) {
-      const RowCrossing crossing = rows_lose_rank_within(next, m_next, dir);
-      if (crossing == RowCrossing::Reselected) continue;
-      if (crossing == RowCrossing::TooLong) {
-        if (!cut(PathTermination::NoConvergence, report_ + "; the rows chosen there do not serve at the step's start"))
-          return;
-        continue;
-      }
-    }
+    const bool signs_compare = m_next.size() && monitor_.transportable(next.state);
     ++step_;
     control_.advance();
     const int neg_before = neg_;
@@ -523,7 +507,7 @@ void PathRun::run() {
                     next.lambda, control_.value(next), next.iterations,
                     next.chord_iterations ? fmt::format(" ({} chord)", next.chord_iterations) : std::string(), neg_));
     const bool fall_back = control_.mode() != o_.control;  // a snap-back fall-back's arc-length step
-    if (m_next.size()) locate_singularities(next, m_next, dir);
+    if (signs_compare) locate_singularities(next, m_next, dir);
     const bool control_turns = displacement() && o_.locate_critical && locate_limit_point(next, dir);
     if (!control_turns && o_.stability && o_.locate_critical && neg_ >= 0 && neg_before >= 0 &&
         neg_ != neg_before && locate_inertia_change(next, dir, neg_before)) {
@@ -532,7 +516,10 @@ void PathRun::run() {
       continue;
     }
     predictor_.accept(dir);
-    if (m_next.size()) track_singularities(m_next, cur_);
+    if (m_next.size()) {
+      track_singularities(m_next, cur_);
+      carry_singularity_bases(next);
+    }
     if (fall_back && control_.resume_displacement(cur_, next))
       say(fmt::format("step {}: the controlled DOF moves toward its target again: displacement control", step_));
     else

@@ -455,18 +455,24 @@ Eigen::VectorXd PathSystem::direction(const Converged& a, const Converged& b) co
   return d;
 }
 
-Eigen::VectorXd PathSystem::increment(const Converged& a, const Converged& b) const {
+Eigen::VectorXd PathSystem::increment(const Converged& a, const Converged& b) const { return increment(a.state, b.state); }
+
+NonlinearState PathSystem::between(const NonlinearState& a, const NonlinearState& b, double f) const {
+  return ns_.retract(a, delta_gens(f * increment(a, b)));
+}
+
+Eigen::VectorXd PathSystem::increment(const NonlinearState& a, const NonlinearState& b) const {
   Eigen::VectorXd du(nf_);
   const auto& gens = ns_.gens();
   for (int k = 0; k < nf_; ++k) {
     const auto& g = gens[free_[k]];
     switch (g.kind) {
-      case NonlinearStructure::GenKind::NodeTranslation: du[k] = b.state.x[g.owner][g.comp] - a.state.x[g.owner][g.comp]; break;
+      case NonlinearStructure::GenKind::NodeTranslation: du[k] = b.x[g.owner][g.comp] - a.x[g.owner][g.comp]; break;
       case NonlinearStructure::GenKind::NodeSpin:
-        du[k] = log_so3(b.state.R[g.owner] * a.state.R[g.owner].transpose())[g.comp];
+        du[k] = log_so3(b.R[g.owner] * a.R[g.owner].transpose())[g.comp];
         break;
       case NonlinearStructure::GenKind::JointScalar:
-      case NonlinearStructure::GenKind::JointSpherical: du[k] = b.state.q[g.owner][g.comp] - a.state.q[g.owner][g.comp]; break;
+      case NonlinearStructure::GenKind::JointSpherical: du[k] = b.q[g.owner][g.comp] - a.q[g.owner][g.comp]; break;
     }
   }
   return du;

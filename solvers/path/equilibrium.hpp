@@ -178,6 +178,10 @@ class PathSystem {
   Eigen::VectorXd direction(const Converged& a, const Converged& b) const;
   // Increment of the free coordinates from a to b (translations exact, spins by the logarithm).
   Eigen::VectorXd increment(const Converged& a, const Converged& b) const;
+  Eigen::VectorXd increment(const NonlinearState& a, const NonlinearState& b) const;
+  // The state at fraction f of the increment from a to b (a (+) f increment(a, b)): off the
+  // constraints to second order in the distance.
+  NonlinearState between(const NonlinearState& a, const NonlinearState& b, double f) const;
 
   // The value of a constrained raw DOF at a state (translation from the reference, or log R).
   double constraint_value(const NonlinearState& st, const ConstraintDef& c) const;

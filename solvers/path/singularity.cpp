@@ -36,6 +36,12 @@ std::string quoted_joints(const Model& m, const std::vector<int>& joints) {
   return s;
 }
 
+// The polar factor U V^T of M = U S V^T (6 x r): the orthonormal basis nearest M, turning with it.
+Eigen::MatrixXd polar_factor(const Eigen::MatrixXd& M) {
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  return svd.matrixU() * svd.matrixV().transpose();
+}
+
 // The smallest singular value of M (rows <= cols: the rows-th), signed by det M when square.
 double measure_of(const Eigen::MatrixXd& M, bool square) {
   if (M.rows() == 0) return 0.0;
@@ -47,7 +53,7 @@ double measure_of(const Eigen::MatrixXd& M, bool square) {
 
 }  // namespace
 
-void SingularityMonitor::refresh() {
+void SingularityMonitor::refresh(const NonlinearState& st) {
   candidates_.clear();
   const PathSystem& sys = sys_;
   const NonlinearStructure& ns = sys.structure();
@@ -88,6 +94,78 @@ void SingularityMonitor::refresh() {
     c.nodes = nodes_of(m, c.joints);
     candidates_.push_back(std::move(c));
   }
+  // A loop's basis: its kept rows' unit vectors projected onto its row space at st.
+  at_ = st;
+  basis_.assign(candidates_.size(), Eigen::MatrixXd());
+  for (std::size_t i = 0; i < candidates_.size(); ++i)
+    if (candidates_[i].closure >= 0) basis_[i] = fresh_basis(st, candidates_[i]);
+}
+
+Eigen::MatrixXd SingularityMonitor::fresh_basis(const NonlinearState& st, const SingularityCandidate& c) const {
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(6, static_cast<Eigen::Index>(c.rows.size()));
+  for (std::size_t r = 0; r < c.rows.size(); ++r) S(c.rows[r] % 6, static_cast<Eigen::Index>(r)) = 1.0;
+  const Eigen::MatrixXd U = row_space(st, c);
+  return polar_factor(U * (U.transpose() * S));
+}
+
+Eigen::MatrixXd SingularityMonitor::loop_rows(const NonlinearState& st, const SingularityCandidate& c) const {
+  const NonlinearStructure& ns = sys_.structure();
+  const double L = sys_.length_scale();
+  const SparseRowMatrix J = SparseRowMatrix(ns.closure_jacobian(st, ns.twists(st)));
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(6, sys_.nf());
+  for (int r = 0; r < 6; ++r)
+    for (SparseRowMatrix::InnerIterator it(J, 6 * c.closure + r); it; ++it) {
+      const int k = sys_.free_index(static_cast<int>(it.col()));
+      if (k >= 0) A(r, k) = it.value() * (ns.is_rotation(static_cast<int>(it.col())) ? 1.0 : L) / (r < 3 ? L : 1.0);
+    }
+  return A;
+}
+
+Eigen::MatrixXd SingularityMonitor::row_space(const NonlinearState& st, const SingularityCandidate& c) const {
+  const Eigen::MatrixXd A = loop_rows(st, c);
+  // The leading left singular vectors (6 x rows) of A, through A A^T (6 x 6).
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(A * A.transpose());
+  const auto r = static_cast<Eigen::Index>(c.rows.size());
+  return es.eigenvectors().rightCols(r);
+}
+
+bool SingularityMonitor::carry(const NonlinearState& st, std::vector<Eigen::MatrixXd>& out) const {
+  out = basis_;
+  if (std::all_of(basis_.begin(), basis_.end(), [](const Eigen::MatrixXd& b) { return b.size() == 0; })) return true;
+  for (int n = 1; n <= kMaxCarrySteps; n *= 2) {
+    out = basis_;
+    bool ok = true;
+    for (int k = 1; k <= n && ok; ++k) {
+      const NonlinearState s = k == n ? st : sys_.between(at_, st, static_cast<double>(k) / n);
+      for (std::size_t i = 0; i < candidates_.size() && ok; ++i) {
+        if (out[i].size() == 0) continue;
+        const Eigen::MatrixXd U = row_space(s, candidates_[i]);
+        const Eigen::MatrixXd projected = U * (U.transpose() * out[i]);
+        ok = Eigen::JacobiSVD<Eigen::MatrixXd>(projected).singularValues().minCoeff() >= kCarryQuality;
+        out[i] = polar_factor(projected);
+      }
+    }
+    if (ok) return true;
+  }
+  return false;
+}
+
+bool SingularityMonitor::transportable(const NonlinearState& st) const {
+  std::vector<Eigen::MatrixXd> carried;
+  return carry(st, carried);
+}
+
+bool SingularityMonitor::transport(const NonlinearState& st) {
+  std::vector<Eigen::MatrixXd> carried;
+  const bool ok = carry(st, carried);
+  at_ = st;
+  if (ok) {
+    basis_ = std::move(carried);
+    return true;
+  }
+  for (std::size_t i = 0; i < candidates_.size(); ++i)
+    if (basis_[i].size()) basis_[i] = fresh_basis(st, candidates_[i]);
+  return false;
 }
 
 Eigen::VectorXd SingularityMonitor::measures(const NonlinearState& st) const {
@@ -98,15 +176,18 @@ Eigen::VectorXd SingularityMonitor::measures(const NonlinearState& st) const {
   // Columns: translational coordinates times L; rows: translations over L (unit-free).
   const auto col_scale = [&](int gen) { return ns.is_rotation(gen) ? 1.0 : L; };
   Eigen::VectorXd out(static_cast<Eigen::Index>(candidates_.size()));
+  std::vector<Eigen::MatrixXd> carried;
+  carry(st, carried);
   for (std::size_t i = 0; i < candidates_.size(); ++i) {
     const SingularityCandidate& c = candidates_[i];
     Eigen::MatrixXd A;
     if (c.closure >= 0) {
-      A.resize(static_cast<Eigen::Index>(c.rows.size()), static_cast<Eigen::Index>(c.gens.size()));
-      for (std::size_t r = 0; r < c.rows.size(); ++r)
+      // Q^T J_p with Q the basis carried to this state's row space (see the header).
+      Eigen::MatrixXd Jp(6, static_cast<Eigen::Index>(c.gens.size()));
+      for (int r = 0; r < 6; ++r)
         for (std::size_t g = 0; g < c.gens.size(); ++g)
-          A(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(g)) =
-              J(c.rows[r], c.gens[g]) * col_scale(c.gens[g]) / (c.rows[r] % 6 < 3 ? L : 1.0);
+          Jp(r, static_cast<Eigen::Index>(g)) = J(6 * c.closure + r, c.gens[g]) * col_scale(c.gens[g]) / (r < 3 ? L : 1.0);
+      A = carried[i].transpose() * Jp;
       out[static_cast<Eigen::Index>(i)] = measure_of(A, c.square);
     } else {
       // The whole constraint Jacobian: sigma_min^2 = the lowest eigenvalue of C C^T (nc x nc).
@@ -152,8 +233,7 @@ CriticalPoint singular_point(const SingularityMonitor& monitor, int candidate) {
 CriticalPoint locate_singularity(const CriticalPointParts& parts, const SingularityMonitor& monitor, int candidate,
                                  const Converged& cur, const Converged& next, double m_cur, double m_next, double h,
                                  const Eigen::VectorXd& dir, PathControl mode,
-                                 const std::function<double(const Converged&, double)>& control_at,
-                                 Converged* nearest) {
+                                 const std::function<double(const Converged&, double)>& control_at) {
   Converged before = cur, after = next;
   double lo = 0.0, hi = 1.0, m_lo = m_cur, m_hi = m_next;
   for (int it = 0; it < kMaxBisections && hi - lo > parts.options.critical_tolerance; ++it) {
@@ -175,7 +255,6 @@ CriticalPoint locate_singularity(const CriticalPointParts& parts, const Singular
   p.control = control_at(before, lo) + t * (control_at(after, hi) - control_at(before, lo));
   p.reaction = before.extra_mu + t * (after.extra_mu - before.extra_mu);
   p.passed = true;
-  if (nearest) *nearest = std::abs(m_lo) < std::abs(m_hi) ? before : after;
   return p;
 }
 

@@ -15,7 +15,16 @@
 // units: translation rows by 1/L, translational coordinates by L (L: the model length), so that the
 // measure is the same in any consistent unit system. Where A is square the measure carries the sign of
 // det A, which changes through a crossing of the singular pose: the crossing is located by bisection on
-// that sign, like a critical point. Where the path ends at the singular pose (a fold: the measure goes
+// that sign, like a critical point. A's rows are not the closure's rows themselves but an orthonormal
+// basis Q of the loop's row space (the span of its closure rows' Jacobian over all coordinates, of
+// the dimension of the rows kept for it), A = Q^T J_p: then A is singular exactly where J_p loses
+// rank, whichever rows are kept (the rows a model keeps can lose rank on the passive coordinates
+// where the loop does not: a Bennett linkage's rotation rows, where its passive axes fall into a
+// plane). Q is carried along the path, projected from one converged state onto the next one's row
+// space and orthonormalised by its polar factor (transport), so that its orientation, and the sign
+// of det A, change continuously: through states interpolated along the way, each turning the row
+// space by less than 25 degrees (a loop's row space can turn by 90 degrees and back within one step
+// of a path: a Bennett linkage's near 180 degrees of its first joint). Where the path ends at the singular pose (a fold: the measure goes
 // to zero like the square root of the distance, so its square linearly), the point is where the square
 // of the measure, extrapolated from the last two converged states, vanishes.
 #include <Eigen/Core>
@@ -46,9 +55,17 @@ struct SingularityCandidate {
 
 class SingularityMonitor {
  public:
-  explicit SingularityMonitor(const PathSystem& sys) : sys_(sys) { refresh(); }
-  // The candidates afresh from the system's rows (after PathSystem::reselect).
-  void refresh();
+  // The candidates of the system's rows, their bases taken at `st` (the path's first state).
+  SingularityMonitor(const PathSystem& sys, const NonlinearState& st) : sys_(sys) { refresh(st); }
+  // The candidates afresh from the system's rows (after PathSystem::reselect), at the state st.
+  void refresh(const NonlinearState& st);
+  // Carries the loops' bases to the converged state st (the next state of the path). Where they do
+  // not carry (kMaxCarrySteps interpolated states do not suffice) they are taken afresh there, and
+  // false returned: a change of sign of a measure over that step means nothing.
+  bool transport(const NonlinearState& st);
+  // Whether the loops' bases carry to st (transport would keep them): the signs of the measures at
+  // st compare with those at the state the bases are at.
+  bool transportable(const NonlinearState& st) const;
   bool empty() const { return candidates_.empty(); }
   const std::vector<SingularityCandidate>& candidates() const { return candidates_; }
   // The measure of every candidate at a state (signed where square).
@@ -58,19 +75,35 @@ class SingularityMonitor {
   std::string describe(int candidate) const;
 
  private:
+  // A loop candidate's scaled closure rows over every free coordinate (6 x nf) at a state, and the
+  // projector's basis: the leading left singular vectors of as many rows as are kept for the loop.
+  Eigen::MatrixXd loop_rows(const NonlinearState& st, const SingularityCandidate& c) const;
+  Eigen::MatrixXd row_space(const NonlinearState& st, const SingularityCandidate& c) const;
+  // The bases carried from at_ to st through interpolated states (`out`); false where they do not
+  // carry.
+  bool carry(const NonlinearState& st, std::vector<Eigen::MatrixXd>& out) const;
+  // A loop's basis taken afresh at st: the unit vectors of its kept rows projected on its row space.
+  Eigen::MatrixXd fresh_basis(const NonlinearState& st, const SingularityCandidate& c) const;
+
   const PathSystem& sys_;
   std::vector<SingularityCandidate> candidates_;
+  std::vector<Eigen::MatrixXd> basis_;  // per candidate: Q (6 x rows) of a loop; empty for the whole Jacobian
+  NonlinearState at_;                   // the state the bases are at
 };
+
+// A basis is carried from one interpolated state to the next when its projection onto the next
+// one's row space keeps its smallest singular value above this (cos 25 degrees), through at most
+// kMaxCarrySteps states.
+inline constexpr double kCarryQuality = 0.9;
+inline constexpr int kMaxCarrySteps = 256;
 
 // A crossing of a signed candidate's singular pose between cur and next (measures m_cur, m_next of
 // opposite signs), located by bisection of the step on the sign of the measure; the point carries
-// the load factor and control value interpolated to the zero of the measure. `nearest`, when given,
-// receives the end of the final bracket where the measure is smaller.
+// the load factor and control value interpolated to the zero of the measure.
 CriticalPoint locate_singularity(const CriticalPointParts& parts, const SingularityMonitor& monitor, int candidate,
                                  const Converged& cur, const Converged& next, double m_cur, double m_next, double h,
                                  const Eigen::VectorXd& dir, PathControl mode,
-                                 const std::function<double(const Converged&, double)>& control_at,
-                                 Converged* nearest = nullptr);
+                                 const std::function<double(const Converged&, double)>& control_at);
 
 // The end of a path at a singular pose: of the candidates whose measure fell from m_prev to m_cur
 // (below kSingularDrop of m_start), the one whose squared measure, extrapolated linearly in the
