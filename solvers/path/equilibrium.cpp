@@ -219,6 +219,14 @@ int PathSystem::rank_above(const NonlinearState& st, double sigma) const {
   return static_cast<int>((s.array() > sigma).count());
 }
 
+double PathSystem::rank_measure(const NonlinearState& st) const {
+  if (nc_ == 0) return 0.0;
+  const Eigen::MatrixXd C = scaled_rows(st);
+  // Eigenvalues of C C^T (rows x rows), ascending: the nc-th largest is the nc-th singular value squared.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(C * C.transpose(), Eigen::EigenvaluesOnly);
+  return std::sqrt(std::max(0.0, es.eigenvalues()[C.rows() - nc_]));
+}
+
 double PathSystem::rows_measure(const NonlinearState& st, const std::vector<int>& rows) const {
   return smallest_singular_value(scaled_rows(st), rows);
 }

@@ -146,6 +146,9 @@ class PathSystem {
   // departure of sigma from the constraints cannot have made (an open loop's rows gain rank with
   // its opening).
   int rank_above(const NonlinearState& st, double sigma) const;
+  // The nc()-th singular value of all the rows at a state (scaled): zero where they lose the rank
+  // of the rows kept, whichever rows are kept.
+  double rank_measure(const NonlinearState& st) const;
   // The smallest singular value of the rows `rows` (RowsAt::fresh's numbering) at a state, scaled.
   double rows_measure(const NonlinearState& st, const std::vector<int>& rows) const;
   // Whether rows were dropped (only then can the selection change without the rank changing).

@@ -190,17 +190,9 @@ Eigen::VectorXd SingularityMonitor::measures(const NonlinearState& st) const {
       A = carried[i].transpose() * Jp;
       out[static_cast<Eigen::Index>(i)] = measure_of(A, c.square);
     } else {
-      // The whole constraint Jacobian: sigma_min^2 = the lowest eigenvalue of C C^T (nc x nc).
-      A = sys_.constraint_matrix(st, ControlDof::Free);
-      const int ncs = sys_.nc() - static_cast<int>(sys_.closure_rows().size());
-      for (int r = 0; r < A.rows(); ++r) {
-        const bool translation = r < ncs ? sys_.constraints()[r].comp < 3 : sys_.closure_rows()[r - ncs] % 6 < 3;
-        if (translation) A.row(r) /= L;
-      }
-      for (int k = 0; k < A.cols(); ++k) A.col(k) *= col_scale(sys_.free_gens()[k]);
-      const Eigen::MatrixXd G = A * A.transpose();
-      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(G, Eigen::EigenvaluesOnly);
-      out[static_cast<Eigen::Index>(i)] = std::sqrt(std::max(0.0, es.eigenvalues()[0]));
+      // The whole constraint Jacobian: its nc()-th singular value over all the rows (kept or
+      // dropped), whichever rows are kept.
+      out[static_cast<Eigen::Index>(i)] = sys_.rank_measure(st);
     }
   }
   return out;

@@ -9,7 +9,8 @@
 // IEEE Trans. Robot. Autom. 6(3), the type-II singularity of the loop with the actuated joints held),
 // which neither the inertia of the constrained tangent nor the rank of the whole closure need show.
 // The whole constraint Jacobian C (supports on slave nodes and closures over every free coordinate)
-// loses rank where the loop as a whole does (a change point).
+// loses rank where the loop as a whole does (a change point): its measure is the nc-th singular value
+// of all its rows, kept or dropped (PathSystem::rank_measure).
 //
 // The measure of each is its smallest singular value after scaling the rows and columns to be free of
 // units: translation rows by 1/L, translational coordinates by L (L: the model length), so that the
