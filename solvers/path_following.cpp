@@ -283,8 +283,10 @@ void PathRun::locate_singularities(const Converged& next, const Eigen::VectorXd&
   const auto at = [&](const Converged& c, double f) { return control_at(c, f); };
   for (int i = 0; i < m_next.size(); ++i) {
     if (!monitor_.candidates()[i].square || !(m_cur_[i] * m_next[i] < 0.0)) continue;
+    bool confirmed = false;
     CriticalPoint cp = locate_singularity(parts_, monitor_, i, cur_, next, m_cur_[i], m_next[i], control_.h(), dir,
-                                          control_.mode(), at);
+                                          control_.mode(), at, &confirmed);
+    if (!confirmed) continue;  // the sign changed without the passive Jacobian losing rank
     cp.step = step_;
     say(fmt::format("critical point (singularity) at load factor {:.6g}, step {}: {}", cp.load_factor, step_, cp.what));
     res_.critical_points.push_back(std::move(cp));

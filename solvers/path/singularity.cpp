@@ -177,7 +177,7 @@ Eigen::VectorXd SingularityMonitor::measures(const NonlinearState& st) const {
   const auto col_scale = [&](int gen) { return ns.is_rotation(gen) ? 1.0 : L; };
   Eigen::VectorXd out(static_cast<Eigen::Index>(candidates_.size()));
   std::vector<Eigen::MatrixXd> carried;
-  carry(st, carried);
+  const bool carries = carry(st, carried);
   for (std::size_t i = 0; i < candidates_.size(); ++i) {
     const SingularityCandidate& c = candidates_[i];
     Eigen::MatrixXd A;
@@ -188,7 +188,7 @@ Eigen::VectorXd SingularityMonitor::measures(const NonlinearState& st) const {
         for (std::size_t g = 0; g < c.gens.size(); ++g)
           Jp(r, static_cast<Eigen::Index>(g)) = J(6 * c.closure + r, c.gens[g]) * col_scale(c.gens[g]) / (r < 3 ? L : 1.0);
       A = carried[i].transpose() * Jp;
-      out[static_cast<Eigen::Index>(i)] = measure_of(A, c.square);
+      out[static_cast<Eigen::Index>(i)] = carries ? measure_of(A, c.square) : NAN;
     } else {
       // The whole constraint Jacobian: its nc()-th singular value over all the rows (kept or
       // dropped), whichever rows are kept.
@@ -225,7 +225,8 @@ CriticalPoint singular_point(const SingularityMonitor& monitor, int candidate) {
 CriticalPoint locate_singularity(const CriticalPointParts& parts, const SingularityMonitor& monitor, int candidate,
                                  const Converged& cur, const Converged& next, double m_cur, double m_next, double h,
                                  const Eigen::VectorXd& dir, PathControl mode,
-                                 const std::function<double(const Converged&, double)>& control_at) {
+                                 const std::function<double(const Converged&, double)>& control_at,
+                                 bool* confirmed) {
   Converged before = cur, after = next;
   double lo = 0.0, hi = 1.0, m_lo = m_cur, m_hi = m_next;
   for (int it = 0; it < kMaxBisections && hi - lo > parts.options.critical_tolerance; ++it) {
@@ -234,6 +235,7 @@ CriticalPoint locate_singularity(const CriticalPointParts& parts, const Singular
     const StepSolution sol = parts.corrector.solve(cur, trial.spec, trial.u);
     if (!sol.converged) break;
     const double m = monitor.measures(sol.state.state)[candidate];
+    if (!std::isfinite(m)) break;  // a state the basis does not carry to
     if ((m > 0.0) == (m_cur > 0.0)) {
       lo = mid, m_lo = m, before = sol.state;
     } else {
@@ -247,7 +249,24 @@ CriticalPoint locate_singularity(const CriticalPointParts& parts, const Singular
   p.control = control_at(before, lo) + t * (control_at(after, hi) - control_at(before, lo));
   p.reaction = before.extra_mu + t * (after.extra_mu - before.extra_mu);
   p.passed = true;
+  // Confirmed where the passive Jacobian itself (all the loop's rows) nearly loses rank at the
+  // bracket, against the step's ends.
+  const double at_bracket = std::min(monitor.passive_rank_measure(before.state, candidate),
+                                     monitor.passive_rank_measure(after.state, candidate));
+  const double at_ends = std::max(monitor.passive_rank_measure(cur.state, candidate),
+                                  monitor.passive_rank_measure(next.state, candidate));
+  if (confirmed) *confirmed = at_bracket <= kSingularConfirm * at_ends;
   return p;
+}
+
+double SingularityMonitor::passive_rank_measure(const NonlinearState& st, int candidate) const {
+  const SingularityCandidate& c = candidates_[candidate];
+  if (c.closure < 0) return sys_.rank_measure(st);
+  const Eigen::MatrixXd A = loop_rows(st, c);
+  Eigen::MatrixXd Jp(6, static_cast<Eigen::Index>(c.gens.size()));
+  for (std::size_t g = 0; g < c.gens.size(); ++g) Jp.col(static_cast<Eigen::Index>(g)) = A.col(sys_.free_index(c.gens[g]));
+  const Eigen::VectorXd s = Eigen::JacobiSVD<Eigen::MatrixXd>(Jp).singularValues();
+  return s.size() ? s[s.size() - 1] : 0.0;
 }
 
 std::optional<CriticalPoint> singular_end(const SingularityMonitor& monitor, const Eigen::VectorXd& m_start,

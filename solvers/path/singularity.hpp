@@ -44,6 +44,9 @@ inline constexpr double kSingularReach = 1.0;
 // The measure at the last converged state must have dropped to this fraction of its value at the
 // path's start before the end of a path is ascribed to a singular pose.
 inline constexpr double kSingularDrop = 0.1;
+// A located crossing is a singular pose where the passive Jacobian's smallest singular value at the
+// final bracket is below this fraction of its value at the step's ends.
+inline constexpr double kSingularConfirm = 0.1;
 
 // One measured Jacobian: a loop's passive Jacobian, or the whole constraint Jacobian.
 struct SingularityCandidate {
@@ -69,8 +72,12 @@ class SingularityMonitor {
   bool transportable(const NonlinearState& st) const;
   bool empty() const { return candidates_.empty(); }
   const std::vector<SingularityCandidate>& candidates() const { return candidates_; }
-  // The measure of every candidate at a state (signed where square).
+  // The measure of every candidate at a state (signed where square; NaN for a loop whose basis does
+  // not carry there).
   Eigen::VectorXd measures(const NonlinearState& st) const;
+  // The smallest singular value of a loop's passive Jacobian over all its six closure rows (scaled,
+  // unsigned: no basis), or the whole Jacobian's measure.
+  double passive_rank_measure(const NonlinearState& st, int candidate) const;
   // "passive joints 'J4', 'J5', 'J6' of the loop closed by element 'PJ4'" / "the constraints of the
   // loops through joints ...": what a candidate is, in words.
   std::string describe(int candidate) const;
@@ -100,11 +107,16 @@ inline constexpr int kMaxCarrySteps = 256;
 
 // A crossing of a signed candidate's singular pose between cur and next (measures m_cur, m_next of
 // opposite signs), located by bisection of the step on the sign of the measure; the point carries
-// the load factor and control value interpolated to the zero of the measure.
+// the load factor and control value interpolated to the zero of the measure. `confirmed` (when
+// given): whether the passive Jacobian over all the loop's rows (unsigned, free of any basis) at the
+// final bracket is below kSingularConfirm of its value at the step's ends, as it is at a singular
+// pose bisected to critical_tolerance; not where the bisection could not close in (its trial steps
+// failing, off the loop) or the sign changed without the rank dropping.
 CriticalPoint locate_singularity(const CriticalPointParts& parts, const SingularityMonitor& monitor, int candidate,
                                  const Converged& cur, const Converged& next, double m_cur, double m_next, double h,
                                  const Eigen::VectorXd& dir, PathControl mode,
-                                 const std::function<double(const Converged&, double)>& control_at);
+                                 const std::function<double(const Converged&, double)>& control_at,
+                                 bool* confirmed = nullptr);
 
 // The end of a path at a singular pose: of the candidates whose measure fell from m_prev to m_cur
 // (below kSingularDrop of m_start), the one whose squared measure, extrapolated linearly in the
