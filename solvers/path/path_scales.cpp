@@ -32,15 +32,13 @@ PathScales path_scales(const Model& model, const PathSystem& sys, FactorCache& f
     // Linearised buckling is not available for this model (e.g. a closed loop): the linear
     // response alone sets the scales.
   }
-  if (s.buckling_factor > 0.0) {
-    s.lambda_ref = s.buckling_factor;
-  } else if (t_max > 0.0) {
-    s.lambda_ref = sys.length_scale() / t_max;
-  } else if (r_max > 0.0) {
-    // No free translation (rigid links and joints, a lumped model): the load factor that turns
-    // some coordinate by a radian.
-    s.lambda_ref = 1.0 / r_max;
-  }
+  // The linear response's scale: the load factor that moves some node by L, or, with no free
+  // translation (rigid links and joints, a lumped model), turns some coordinate by a radian.
+  const double lambda_linear = t_max > 0.0 ? sys.length_scale() / t_max : (r_max > 0.0 ? 1.0 / r_max : 0.0);
+  // A buckling factor this far beyond it is the round-off of a geometric stiffness the load hardly
+  // has (a moment turning a mechanism: 1.6e16 against 1), not a scale of the path.
+  if (lambda_linear > 0.0 && s.buckling_factor > kRoundOffBucklingRatio * lambda_linear) s.buckling_factor = 0.0;
+  s.lambda_ref = s.buckling_factor > 0.0 ? s.buckling_factor : lambda_linear;
   s.psi = std::max(s.t_norm, s.buckling_factor > 0.0 ? sys.length_scale() / s.buckling_factor : 0.0);
   if (!(s.psi > 0.0) && s.lambda_ref > 0.0) s.psi = sys.length_scale() / s.lambda_ref;
   if (s.lambda_ref > 0.0) s.ds_auto = s.lambda_ref / kAutoIncrementsToReference * std::hypot(s.t_norm, s.psi);

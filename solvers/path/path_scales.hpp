@@ -7,7 +7,8 @@
 //   t           linear response: tangent displacement per unit load factor at the start
 //               (solvers/path/equilibrium.hpp), |t|_W its norm in the arc-length metric;
 //   lambda_ref  the structure's own load-factor scale: the lowest positive linearised buckling
-//               factor (solvers/buckling.hpp) where there is one, otherwise the load factor whose
+//               factor (solvers/buckling.hpp) where there is one (and it is not above
+//               kRoundOffBucklingRatio times the linear scale below), otherwise the load factor whose
 //               linear response moves some node by the model size L (L / max|t_translation|), or,
 //               where no translation is free (rigid links and joints: a lumped model), turns some
 //               coordinate by a radian (1 / max|t_rotation|);
@@ -34,6 +35,9 @@ namespace beamfea {
 // The first step of "arc_length": "auto" raises the load factor by lambda_ref / 10: the first
 // critical point of a structure that buckles near its linearised load is some 10-30 steps away.
 inline constexpr double kAutoIncrementsToReference = 10.0;
+// A linearised buckling factor above this many times the linear response's load-factor scale is
+// taken for round-off (no scale of the path): such a load hardly stiffens or softens the structure.
+inline constexpr double kRoundOffBucklingRatio = 1e8;
 // Default step bounds of an automatic arc length, relative to its first step.
 inline constexpr double kAutoMinArcRatio = 1e-4;
 inline constexpr double kAutoMaxArcRatio = 10.0;

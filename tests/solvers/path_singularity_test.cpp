@@ -1,6 +1,7 @@
 // Singular poses of closed loops along a path (solvers/path/singularity.hpp): located, reported as
 // "singularity" critical points naming the loop's passive joints, passed where the path goes on, or
 // the path's end; against equilibria and kinematics computed here.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -374,6 +375,34 @@ TEST(PathRedundancy, ABennettLinkageUnderAnAutomaticArcLength) {
   o.arc_length_auto = true;
   o.stop_load_factor = kBennettLoadFactor;
   expect_bennett_followed(o);
+}
+
+// Other Bennett linkages (twists 60 and 75 or 120 degrees), built at 30, 100 and 250 degrees and turned
+// 300 degrees by the moment alone (theta_1 = theta_0 + lambda, the passive joints unloaded), under an
+// automatic arc length: the closed form has no singular pose (the passive Jacobian over the six rows
+// keeps full rank), and none may be reported however the rows kept turn; every state on the linkage.
+TEST(PathRedundancy, BennettLinkagesOfOtherTwistsReportNoSingularPose) {
+  for (double beta_deg : {75.0, 120.0})
+    for (double theta0_deg : {30.0, 100.0, 250.0}) {
+      Bennett be;
+      be.beta = beta_deg * M_PI / 180.0;
+      be.theta0 = theta0_deg * M_PI / 180.0;
+      const double turn = 300.0 * M_PI / 180.0;
+      const Model m = read_model(bennett_model(be, 10.0, Eigen::Vector3d::Zero(), turn, 40));
+      PathOptions o;
+      o.control = PathControl::ArcLength;
+      o.arc_length_auto = true;
+      o.stop_load_factor = turn;
+      o.track = {m.find_node("J3a")};
+      const PathResult r = follow_path(m, o);
+      const std::string what = fmt::format("beta {} theta0 {}", beta_deg, theta0_deg);
+      ASSERT_TRUE(r.completed) << what << ": " << r.brief_report();
+      for (const auto& c : r.critical_points) EXPECT_NE(c.type, CriticalPointType::Singularity) << what << ": " << c.what;
+      double worst = 0.0;
+      for (const auto& st : r.steps)
+        worst = std::max(worst, (be.joint(2, be.theta0) + st.track[0].head<3>() - be.joint(2, be.theta0 + st.load_factor)).norm());
+      EXPECT_LT(worst, 1e-7) << what;
+    }
 }
 
 }  // namespace path_singularity_test
