@@ -161,6 +161,11 @@ class PathRun {
   // while the constraints do not (kReselectRatio), or would a step ahead (their measure extrapolated
   // from the last two states); true when it changed them.
   bool refresh_rows();
+  // Whether the fresh choice in `rows` (of the kept rows' rank) beats the kept rows, whose measure
+  // is `kept`, by the factor 1 / ratio.
+  bool fresh_rows_better(const PathSystem::RowsAt& rows, double kept, double ratio) const {
+    return rows.rank == sys_.nc() && !rows.same_as_kept && kept < ratio * rows.best;
+  }
   // Keeps the fresh selection `rows` (taken at cur_) from here on: cur_'s multipliers carried over,
   // the factor and the singularity measures dropped, the change recorded in cur_'s step.
   void reselect(const PathSystem::RowsAt& rows, const std::string& why);
@@ -246,7 +251,7 @@ bool PathRun::cut(PathTermination why, const std::string& what) {
   // may be what failed it.
   if (sys_.has_dropped_rows()) {
     const PathSystem::RowsAt rows = sys_.rows_at(cur_.state);
-    if (rows.rank == sys_.nc() && !rows.same_as_kept && rows.kept < rows.best) {
+    if (fresh_rows_better(rows, rows.kept, 1.0)) {
       reselect(rows, fmt::format("step {} failed: {}", step_ + 1, what));
       return true;
     }
@@ -311,7 +316,7 @@ DroppedRows PathRun::check_dropped_rows(const Converged& next) {
     return DroppedRows::Stop;
   }
   const PathSystem::RowsAt at_cur = sys_.rows_at(cur_.state);
-  if (at_cur.rank == sys_.nc() && !at_cur.same_as_kept && at_cur.kept < at_cur.best) {
+  if (fresh_rows_better(at_cur, at_cur.kept, 1.0)) {
     reselect(at_cur, departs);
     return DroppedRows::Reselected;
   }
@@ -326,8 +331,7 @@ bool PathRun::refresh_rows() {
   // states: rows that would lose rank within the next step are changed before it.
   const double ahead = std::isnan(kept_before_) ? rows.kept : 2.0 * rows.kept - kept_before_;
   kept_before_ = rows.kept;
-  if (rows.rank != sys_.nc() || rows.same_as_kept || !(std::min(rows.kept, ahead) < kReselectRatio * rows.best))
-    return false;
+  if (!fresh_rows_better(rows, std::min(rows.kept, ahead), kReselectRatio)) return false;
   reselect(rows, fmt::format("the rows kept lose rank (smallest singular value {:.3g}, {:.3g} a step ahead, {:.3g} for "
                              "a fresh choice)",
                              rows.kept, ahead, rows.best));

@@ -227,10 +227,6 @@ double PathSystem::rank_measure(const NonlinearState& st) const {
   return std::sqrt(std::max(0.0, es.eigenvalues()[C.rows() - nc_]));
 }
 
-double PathSystem::rows_measure(const NonlinearState& st, const std::vector<int>& rows) const {
-  return smallest_singular_value(scaled_rows(st), rows);
-}
-
 Eigen::MatrixXd PathSystem::multiplier_forces(const NonlinearState& st) const {
   const auto tw = ns_.twists(st);
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nf_, nc_);

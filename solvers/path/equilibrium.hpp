@@ -149,8 +149,11 @@ class PathSystem {
   // The nc()-th singular value of all the rows at a state (scaled): zero where they lose the rank
   // of the rows kept, whichever rows are kept.
   double rank_measure(const NonlinearState& st) const;
-  // The smallest singular value of the rows `rows` (RowsAt::fresh's numbering) at a state, scaled.
-  double rows_measure(const NonlinearState& st, const std::vector<int>& rows) const;
+  // All the rows at a state (RowsAt::fresh's numbering: the slave constraints, then the structure's
+  // closure rows from closure_row_offset()), over the free coordinates, scaled to lengths: rotation
+  // rows times L, rotation coordinates' columns over L (free of units).
+  Eigen::MatrixXd scaled_rows(const NonlinearState& st) const;
+  int closure_row_offset() const { return static_cast<int>(all_cons_.size()); }
   // Whether rows were dropped (only then can the selection change without the rank changing).
   bool has_dropped_rows() const { return !dropped_.empty(); }
   // Keeps `fresh`'s rows from here on (rows_at(st).fresh, of the same rank as nc()) and returns the
@@ -242,9 +245,6 @@ class PathSystem {
   Start reference_start() const;
 
  private:
-  // All the rows at a state, scaled to lengths (rotation rows and rotation coordinates by L), over
-  // the free coordinates.
-  Eigen::MatrixXd scaled_rows(const NonlinearState& st) const;
   // Keeps the rows `kept` of all the rows (ascending) and drops the others.
   void keep_rows(const RowSelection& sel);
   // The generalized force over the free coordinates of each multiplier at a state (nf x nc: the

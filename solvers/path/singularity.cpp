@@ -109,16 +109,14 @@ Eigen::MatrixXd SingularityMonitor::fresh_basis(const NonlinearState& st, const 
 }
 
 Eigen::MatrixXd SingularityMonitor::loop_rows(const NonlinearState& st, const SingularityCandidate& c) const {
-  const NonlinearStructure& ns = sys_.structure();
-  const double L = sys_.length_scale();
-  const SparseRowMatrix J = SparseRowMatrix(ns.closure_jacobian(st, ns.twists(st)));
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(6, sys_.nf());
-  for (int r = 0; r < 6; ++r)
-    for (SparseRowMatrix::InnerIterator it(J, 6 * c.closure + r); it; ++it) {
-      const int k = sys_.free_index(static_cast<int>(it.col()));
-      if (k >= 0) A(r, k) = it.value() * (ns.is_rotation(static_cast<int>(it.col())) ? 1.0 : L) / (r < 3 ? L : 1.0);
-    }
-  return A;
+  return sys_.scaled_rows(st).middleRows(sys_.closure_row_offset() + 6 * c.closure, 6);
+}
+
+Eigen::MatrixXd SingularityMonitor::passive_jacobian(const NonlinearState& st, const SingularityCandidate& c) const {
+  const Eigen::MatrixXd A = loop_rows(st, c);
+  Eigen::MatrixXd Jp(6, static_cast<Eigen::Index>(c.gens.size()));
+  for (std::size_t g = 0; g < c.gens.size(); ++g) Jp.col(static_cast<Eigen::Index>(g)) = A.col(sys_.free_index(c.gens[g]));
+  return Jp;
 }
 
 Eigen::MatrixXd SingularityMonitor::row_space(const NonlinearState& st, const SingularityCandidate& c) const {
@@ -169,25 +167,14 @@ bool SingularityMonitor::transport(const NonlinearState& st) {
 }
 
 Eigen::VectorXd SingularityMonitor::measures(const NonlinearState& st) const {
-  const NonlinearStructure& ns = sys_.structure();
-  const double L = sys_.length_scale();
-  const auto tw = ns.twists(st);
-  const Eigen::MatrixXd J = Eigen::MatrixXd(ns.closure_jacobian(st, tw));
-  // Columns: translational coordinates times L; rows: translations over L (unit-free).
-  const auto col_scale = [&](int gen) { return ns.is_rotation(gen) ? 1.0 : L; };
   Eigen::VectorXd out(static_cast<Eigen::Index>(candidates_.size()));
   std::vector<Eigen::MatrixXd> carried;
   const bool carries = carry(st, carried);
   for (std::size_t i = 0; i < candidates_.size(); ++i) {
     const SingularityCandidate& c = candidates_[i];
-    Eigen::MatrixXd A;
     if (c.closure >= 0) {
       // Q^T J_p with Q the basis carried to this state's row space (see the header).
-      Eigen::MatrixXd Jp(6, static_cast<Eigen::Index>(c.gens.size()));
-      for (int r = 0; r < 6; ++r)
-        for (std::size_t g = 0; g < c.gens.size(); ++g)
-          Jp(r, static_cast<Eigen::Index>(g)) = J(6 * c.closure + r, c.gens[g]) * col_scale(c.gens[g]) / (r < 3 ? L : 1.0);
-      A = carried[i].transpose() * Jp;
+      const Eigen::MatrixXd A = carried[i].transpose() * passive_jacobian(st, c);
       out[static_cast<Eigen::Index>(i)] = carries ? measure_of(A, c.square) : NAN;
     } else {
       // The whole constraint Jacobian: its nc()-th singular value over all the rows (kept or
@@ -262,10 +249,7 @@ CriticalPoint locate_singularity(const CriticalPointParts& parts, const Singular
 double SingularityMonitor::passive_rank_measure(const NonlinearState& st, int candidate) const {
   const SingularityCandidate& c = candidates_[candidate];
   if (c.closure < 0) return sys_.rank_measure(st);
-  const Eigen::MatrixXd A = loop_rows(st, c);
-  Eigen::MatrixXd Jp(6, static_cast<Eigen::Index>(c.gens.size()));
-  for (std::size_t g = 0; g < c.gens.size(); ++g) Jp.col(static_cast<Eigen::Index>(g)) = A.col(sys_.free_index(c.gens[g]));
-  const Eigen::VectorXd s = Eigen::JacobiSVD<Eigen::MatrixXd>(Jp).singularValues();
+  const Eigen::VectorXd s = Eigen::JacobiSVD<Eigen::MatrixXd>(passive_jacobian(st, c)).singularValues();
   return s.size() ? s[s.size() - 1] : 0.0;
 }
 

@@ -87,6 +87,8 @@ class SingularityMonitor {
   // projector's basis: the leading left singular vectors of as many rows as are kept for the loop.
   Eigen::MatrixXd loop_rows(const NonlinearState& st, const SingularityCandidate& c) const;
   Eigen::MatrixXd row_space(const NonlinearState& st, const SingularityCandidate& c) const;
+  // The loop's six scaled rows over its passive coordinates (6 x gens).
+  Eigen::MatrixXd passive_jacobian(const NonlinearState& st, const SingularityCandidate& c) const;
   // The bases carried from at_ to st through interpolated states (`out`); false where they do not
   // carry.
   bool carry(const NonlinearState& st, std::vector<Eigen::MatrixXd>& out) const;
